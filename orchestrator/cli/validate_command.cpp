@@ -1,0 +1,11 @@
+// TEMPORARY placeholder while the command is being written (this session).
+#include <iostream>
+
+#include "cli/commands.hpp"
+
+namespace orch::cli {
+int validate_command(const ValidateOptions&) {
+  std::cerr << "validate_command: not written yet\n";
+  return 2;
+}
+}  // namespace orch::cli

@@ -1,0 +1,207 @@
+#include "core/polyline.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <stdexcept>
+
+namespace orch {
+
+double wrap_angle(double a) {
+  constexpr double two_pi = 2 * std::numbers::pi;
+  a = std::fmod(a, two_pi);
+  if (a <= -std::numbers::pi) a += two_pi;
+  if (a > std::numbers::pi) a -= two_pi;
+  return a;
+}
+
+Polyline::Polyline(std::vector<Vec2> points) : points_(std::move(points)) {
+  if (points_.size() < 2) throw std::invalid_argument("a polyline needs at least two points");
+  cumulative_.resize(points_.size());
+  cumulative_[0] = 0;
+  for (std::size_t i = 1; i < points_.size(); ++i)
+    cumulative_[i] = cumulative_[i - 1] + (points_[i] - points_[i - 1]).norm();
+  if (length() <= 0) throw std::invalid_argument("a polyline needs a non-zero length");
+  build_grid();
+}
+
+void Polyline::build_grid() {
+  for (std::size_t seg = 0; seg + 1 < points_.size(); ++seg) {
+    const Vec2& a = points_[seg];
+    const Vec2& b = points_[seg + 1];
+    const auto x0 = static_cast<long long>(std::floor(std::min(a.x(), b.x()) / cell_));
+    const auto x1 = static_cast<long long>(std::floor(std::max(a.x(), b.x()) / cell_));
+    const auto y0 = static_cast<long long>(std::floor(std::min(a.y(), b.y()) / cell_));
+    const auto y1 = static_cast<long long>(std::floor(std::max(a.y(), b.y()) / cell_));
+    for (long long cx = x0; cx <= x1; ++cx)
+      for (long long cy = y0; cy <= y1; ++cy) grid_[cell_key(cx, cy)].push_back(seg);
+  }
+}
+
+double Polyline::s_at_fractional_index(double index) const {
+  if (index <= 0) return 0;
+  const double last = static_cast<double>(points_.size() - 1);
+  if (index >= last) return length();
+  const auto i = static_cast<std::size_t>(std::floor(index));
+  const double frac = index - static_cast<double>(i);
+  return cumulative_[i] + frac * (cumulative_[i + 1] - cumulative_[i]);
+}
+
+std::size_t Polyline::segment_at(double s) const {
+  if (s <= 0) return 0;
+  if (s >= length()) return points_.size() - 2;
+  auto it = std::upper_bound(cumulative_.begin(), cumulative_.end(), s);
+  auto seg = static_cast<std::size_t>(it - cumulative_.begin()) - 1;
+  return std::min(seg, points_.size() - 2);
+}
+
+Vec2 Polyline::tangent_at(double s) const {
+  std::size_t seg = segment_at(s);
+  // Zero-length segments have no direction: take the nearest one that has.
+  for (std::size_t k = 0; k < points_.size(); ++k) {
+    for (long long cand : {static_cast<long long>(seg) + static_cast<long long>(k),
+                           static_cast<long long>(seg) - static_cast<long long>(k)}) {
+      if (cand < 0 || cand + 1 >= static_cast<long long>(points_.size())) continue;
+      const auto c = static_cast<std::size_t>(cand);
+      Vec2 d = points_[c + 1] - points_[c];
+      if (d.norm() > 1e-9) return d.normalized();
+    }
+  }
+  return {1, 0};
+}
+
+double Polyline::heading_at(double s) const {
+  const Vec2 t = tangent_at(s);
+  return std::atan2(t.y(), t.x());
+}
+
+Vec2 Polyline::point_at(double s) const {
+  if (s <= 0) return points_.front() + s * tangent_at(0);
+  if (s >= length()) return points_.back() + (s - length()) * tangent_at(length());
+  const std::size_t seg = segment_at(s);
+  const double seg_len = cumulative_[seg + 1] - cumulative_[seg];
+  if (seg_len <= 1e-12) return points_[seg];
+  const double f = (s - cumulative_[seg]) / seg_len;
+  return points_[seg] + f * (points_[seg + 1] - points_[seg]);
+}
+
+Vec2 Polyline::offset_point(double s, double lateral) const {
+  return point_at(s) + lateral * left_normal(tangent_at(s));
+}
+
+Polyline::Projection Polyline::project_on_segment(const Vec2& p, std::size_t seg) const {
+  const Vec2& a = points_[seg];
+  const Vec2 d = points_[seg + 1] - a;
+  const double len2 = d.squaredNorm();
+  double f = len2 > 0 ? (p - a).dot(d) / len2 : 0.0;
+  f = std::clamp(f, 0.0, 1.0);
+  const Vec2 q = a + f * d;
+  Projection r;
+  r.segment = seg;
+  r.s = cumulative_[seg] + f * std::sqrt(len2);
+  r.distance = (p - q).norm();
+  return r;
+}
+
+Polyline::Projection Polyline::finish(Projection best, const Vec2& p) const {
+  const Vec2 t = tangent_at(best.s);
+  const Vec2 rel = p - point_at(best.s);
+  const double along = rel.dot(t);
+  best.lateral = rel.dot(left_normal(t));
+  // A point past either end projects onto the end; report how far along it lies so callers
+  // can tell "beside the end" from "beyond the end".
+  if (best.s <= 1e-9 && along < -1e-9) best.before_start = true;
+  if (best.s >= length() - 1e-9 && along > 1e-9) best.after_end = true;
+  return best;
+}
+
+Polyline::Projection Polyline::project(const Vec2& p) const {
+  const auto cx = static_cast<long long>(std::floor(p.x() / cell_));
+  const auto cy = static_cast<long long>(std::floor(p.y() / cell_));
+  Projection best;
+  best.distance = std::numeric_limits<double>::infinity();
+  // Rings of cells around p; a hit within the searched radius cannot be beaten further out.
+  for (long long ring = 0; ring <= 4; ++ring) {
+    for (long long dx = -ring; dx <= ring; ++dx)
+      for (long long dy = -ring; dy <= ring; ++dy) {
+        if (std::max(std::llabs(dx), std::llabs(dy)) != ring) continue;
+        auto it = grid_.find(cell_key(cx + dx, cy + dy));
+        if (it == grid_.end()) continue;
+        for (std::size_t seg : it->second) {
+          Projection r = project_on_segment(p, seg);
+          if (r.distance < best.distance) best = r;
+        }
+      }
+    if (best.distance <= static_cast<double>(ring) * cell_) return finish(best, p);
+  }
+  for (std::size_t seg = 0; seg + 1 < points_.size(); ++seg) {
+    Projection r = project_on_segment(p, seg);
+    if (r.distance < best.distance) best = r;
+  }
+  return finish(best, p);
+}
+
+Polyline::Projection Polyline::project_near(const Vec2& p, double s_hint, double window) const {
+  const std::size_t first = segment_at(s_hint - window);
+  const std::size_t last = segment_at(s_hint + window);
+  Projection best;
+  best.distance = std::numeric_limits<double>::infinity();
+  for (std::size_t seg = first; seg <= last; ++seg) {
+    Projection r = project_on_segment(p, seg);
+    if (r.distance < best.distance) best = r;
+  }
+  return finish(best, p);
+}
+
+Polyline Polyline::slice(double s0, double s1) const {
+  std::vector<Vec2> out;
+  out.push_back(point_at(s0));
+  for (std::size_t i = 0; i < points_.size(); ++i)
+    if (cumulative_[i] > s0 + 1e-6 && cumulative_[i] < s1 - 1e-6) out.push_back(points_[i]);
+  out.push_back(point_at(s1));
+  return Polyline(std::move(out));
+}
+
+namespace {
+void douglas_peucker(const std::vector<Vec2>& pts, std::size_t first, std::size_t last,
+                     double tol, std::vector<bool>& keep) {
+  if (last <= first + 1) return;
+  const Vec2& a = pts[first];
+  const Vec2 d = pts[last] - a;
+  const double len = d.norm();
+  double worst = -1;
+  std::size_t worst_i = first;
+  for (std::size_t i = first + 1; i < last; ++i) {
+    const Vec2 r = pts[i] - a;
+    double dist;
+    if (len < 1e-12) {
+      dist = r.norm();
+    } else {
+      const double f = std::clamp(r.dot(d) / (len * len), 0.0, 1.0);
+      dist = (r - f * d).norm();
+    }
+    if (dist > worst) {
+      worst = dist;
+      worst_i = i;
+    }
+  }
+  if (worst > tol) {
+    keep[worst_i] = true;
+    douglas_peucker(pts, first, worst_i, tol, keep);
+    douglas_peucker(pts, worst_i, last, tol, keep);
+  }
+}
+}  // namespace
+
+Polyline Polyline::simplified(double tolerance) const {
+  std::vector<bool> keep(points_.size(), false);
+  keep.front() = keep.back() = true;
+  douglas_peucker(points_, 0, points_.size() - 1, tolerance, keep);
+  std::vector<Vec2> out;
+  for (std::size_t i = 0; i < points_.size(); ++i)
+    if (keep[i] && (out.empty() || (points_[i] - out.back()).norm() > 1e-9)) out.push_back(points_[i]);
+  return Polyline(std::move(out));
+}
+
+}  // namespace orch

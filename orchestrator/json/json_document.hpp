@@ -1,0 +1,41 @@
+#pragma once
+// A parsed JSON file that remembers on which line every value starts, so that every
+// message about it can name file, line and JSON pointer. nlohmann::json parses the values;
+// a SAX pass over the same text records the lines (nlohmann 3.11 keeps no positions).
+#include <nlohmann/json.hpp>
+#include <string>
+#include <unordered_map>
+
+#include "core/diagnostics.hpp"
+
+namespace orch {
+
+class JsonDocument {
+ public:
+  // Reads and parses `path`. Throws ScenarioError (with line) on unreadable or invalid JSON,
+  // including duplicate keys, which nlohmann would otherwise silently collapse.
+  static JsonDocument load(const std::string& path);
+  static JsonDocument parse(std::string text, const std::string& path_for_messages);
+
+  [[nodiscard]] const nlohmann::json& root() const { return root_; }
+  [[nodiscard]] const std::string& path() const { return path_; }
+  [[nodiscard]] const std::string& text() const { return text_; }
+  // Line where the value at `pointer` starts; for a pointer that does not exist, the line
+  // of its nearest existing ancestor.
+  [[nodiscard]] int line_of(const std::string& pointer) const;
+  [[nodiscard]] SourceLocation where(const std::string& pointer) const {
+    return {path_, pointer, line_of(pointer)};
+  }
+
+ private:
+  std::string path_;
+  std::string text_;
+  nlohmann::json root_;
+  std::unordered_map<std::string, int> lines_;
+};
+
+// Appends one reference token to a JSON pointer, escaping '~' and '/' (RFC 6901).
+std::string json_pointer_child(const std::string& parent, const std::string& key);
+std::string json_pointer_child(const std::string& parent, std::size_t index);
+
+}  // namespace orch

@@ -1,0 +1,70 @@
+#pragma once
+// The SUMO lanes under the waypoint routes, computed once per map: every waypoint of every
+// route resolves to edge, lane, lane position (SUMO's lane coordinates) and lateral offset,
+// respecting the direction of travel. Routes are tied to lanes through the lane parameter
+// "orch.route" that `map build` writes into the net.
+#include <optional>
+#include <string>
+#include <string_view>
+#include <unordered_map>
+#include <vector>
+
+#include "core/polyline.hpp"
+#include "map/waypoint_file.hpp"
+
+namespace orch {
+
+struct LaneInfo {
+  std::string id;    // SUMO lane id, e.g. "road0#0_1"
+  std::string edge;  // SUMO edge id
+  int index = 0;     // 0 = rightmost
+  double length = 0; // SUMO lane length (lane positions run 0..length)
+  double width = 0;
+  double speed = 0;  // m/s
+  Polyline shape;
+  std::vector<std::string> routes;  // waypoint routes this lane was built from
+
+  // SUMO scales positions on lanes whose drawn shape is longer or shorter than the lane.
+  [[nodiscard]] double geometry_factor() const { return shape.length() / length; }
+};
+
+struct LanePlace {
+  int lane = -1;          // index into LaneMap::lanes()
+  double lane_pos = 0;    // SUMO lane position, m
+  double lateral = 0;     // m from the lane centre, + = left
+  double distance = 0;    // |lateral| unless the point lies beyond the lane's ends
+};
+
+struct RouteLanes {
+  std::string route_id;
+  std::vector<int> lanes;          // the route's lanes in driving order
+  std::vector<LanePlace> points;   // one per waypoint
+};
+
+class LaneMap {
+ public:
+  // Parses the SUMO net (pugixml) and maps every waypoint. Throws MapError when a route has
+  // no lanes in the net (the net was not built from this waypoint file).
+  static LaneMap build(const std::string& net_file, const WaypointFile& waypoints);
+
+  [[nodiscard]] const std::vector<LaneInfo>& lanes() const { return lanes_; }
+  [[nodiscard]] const LaneInfo& lane(int i) const { return lanes_[static_cast<std::size_t>(i)]; }
+  [[nodiscard]] const RouteLanes* route(std::string_view route_id) const;
+
+  // Where a point at arc length s of a route, `lateral` metres left of it, lies on the
+  // route's own lanes (the lane nearest to it among them).
+  [[nodiscard]] LanePlace place_on_route(const WaypointRoute& route, double s, double lateral) const;
+  // Nearest lane whose direction is within 90 degrees of `heading`; nullopt if none within
+  // `max_distance` metres.
+  [[nodiscard]] std::optional<LanePlace> locate(const Vec2& p, double heading, double max_distance = 10.0) const;
+  // SUMO edges a vehicle passes driving route `route_id` from arc length s0 to s1.
+  [[nodiscard]] std::vector<std::string> route_edges(const WaypointRoute& route, double s0, double s1) const;
+  // Convert a point on a lane into SUMO lane coordinates.
+  [[nodiscard]] LanePlace place_on_lane(int lane, const Vec2& p) const;
+
+ private:
+  std::vector<LaneInfo> lanes_;
+  std::unordered_map<std::string, RouteLanes> routes_;
+};
+
+}  // namespace orch

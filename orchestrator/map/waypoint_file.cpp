@@ -1,0 +1,103 @@
+#include "map/waypoint_file.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+
+#include "core/errors.hpp"
+#include "json/object_reader.hpp"
+
+namespace orch {
+
+double WaypointRoute::speed_at(double s) const {
+  if (points.empty()) return 0;
+  std::size_t lo = 0;
+  std::size_t hi = points.size() - 1;
+  // Last point whose arc length is <= s (points are in driving order).
+  while (lo < hi) {
+    const std::size_t mid = (lo + hi + 1) / 2;
+    if (line.s_at_index(mid) <= s) lo = mid;
+    else hi = mid - 1;
+  }
+  return points[lo].v;
+}
+
+const WaypointRoute* WaypointFile::find(std::string_view route_id) const {
+  for (const auto& r : routes)
+    if (r.id == route_id) return &r;
+  return nullptr;
+}
+
+std::vector<std::string> WaypointFile::route_ids() const {
+  std::vector<std::string> ids;
+  for (const auto& r : routes) ids.push_back(r.id);
+  return ids;
+}
+
+WaypointFile load_waypoint_file(const std::string& path) {
+  const JsonDocument doc = JsonDocument::load(path);
+  Diagnostics diags;
+  WaypointFile file;
+  file.path = path;
+  ObjectReader top(doc, doc.root(), "", diags, "waypoint file");
+  file.id = top.string("id", Need::Optional).value_or("");
+  file.map_id = top.string("mapId", Need::Optional).value_or("");
+  const auto* routes = top.array("waypoints", Need::Required);
+  const auto* props = top.array("properties", Need::Optional);
+  top.finish();
+
+  if (routes) {
+    const std::string routes_ptr = top.child("waypoints");
+    for (std::size_t i = 0; i < routes->size(); ++i) {
+      const std::string rptr = json_pointer_child(routes_ptr, i);
+      ObjectReader r(doc, (*routes)[i], rptr, diags, "waypoint route");
+      WaypointRoute route;
+      route.id = r.string("id", Need::Required).value_or("");
+      const auto* points = r.array("points", Need::Required);
+      r.finish();
+      if (!route.id.empty() && file.find(route.id))
+        r.error("id", fmt::format("route id \"{}\" is used twice", route.id));
+      if (!points) continue;
+      std::vector<Vec2> xy;
+      for (std::size_t k = 0; k < points->size(); ++k) {
+        ObjectReader p(doc, (*points)[k], json_pointer_child(r.child("points"), k), diags, "waypoint");
+        const auto x = p.number("x", Need::Required);
+        const auto y = p.number("y", Need::Optional);
+        const auto z = p.number("z", Need::Required);
+        const auto v = p.number("v", Need::Optional);
+        p.finish();
+        if (!x || !z) continue;
+        route.points.push_back({*x, -*z, y.value_or(0.0), v.value_or(0.0) / 3.6});
+        xy.emplace_back(*x, -*z);
+      }
+      if (xy.size() < 2) {
+        r.error("points", fmt::format("route \"{}\" needs at least two points", route.id));
+        continue;
+      }
+      try {
+        route.line = Polyline(std::move(xy));
+      } catch (const std::invalid_argument&) {
+        r.error("points", fmt::format("route \"{}\" has all its points in one place", route.id));
+        continue;
+      }
+      file.routes.push_back(std::move(route));
+    }
+  }
+  if (props) {
+    for (std::size_t i = 0; i < props->size(); ++i) {
+      ObjectReader p(doc, (*props)[i], json_pointer_child(top.child("properties"), i), diags, "property");
+      WaypointProperty prop;
+      prop.id = p.string("id", Need::Optional).value_or("");
+      prop.name = p.string("name", Need::Optional).value_or("");
+      prop.index = p.number("index", Need::Optional).value_or(0);
+      prop.waypoint_id = p.string("waypointId", Need::Optional).value_or("");
+      p.finish();
+      file.properties.push_back(prop);
+    }
+  }
+  if (diags.has_errors()) throw ScenarioError(diags);
+  if (file.routes.empty()) throw ScenarioError(doc.where("/waypoints"), "the waypoint file has no routes");
+  return file;
+}
+
+}  // namespace orch

@@ -1,0 +1,40 @@
+#pragma once
+// The models a scenario may name (model_id), with the dimensions the simulation and the
+// collision test use. The default catalog is compiled in (catalog/models.json); a user
+// catalog can replace it with --catalog FILE.
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace orch {
+
+enum class ActorKind { Vehicle, Pedestrian, Obstacle };
+const char* to_string(ActorKind k);
+
+struct ModelInfo {
+  std::string id;        // exact model id, or a pattern ending in '*' ("walker.pedestrian.*")
+  ActorKind kind = ActorKind::Vehicle;
+  double length = 0;     // m
+  double width = 0;      // m
+  double height = 0;     // m
+  std::string vclass;    // SUMO vehicle class (vehicles and obstacles)
+  std::string gui_shape; // SUMO guiShape, for sumo-gui
+  bool emergency = false;  // has special1 lights / a siren
+};
+
+class Catalog {
+ public:
+  static Catalog embedded();
+  // Throws ScenarioError naming file, line and pointer on a malformed catalog.
+  static Catalog load(const std::string& path);
+  static Catalog parse(const std::string& text, const std::string& path_for_messages);
+
+  // Exact ids win over patterns; nullptr when unknown.
+  [[nodiscard]] const ModelInfo* find(std::string_view model_id) const;
+  [[nodiscard]] std::vector<std::string> ids() const;
+
+ private:
+  std::vector<ModelInfo> models_;
+};
+
+}  // namespace orch
