@@ -12,7 +12,8 @@ std::string sumo_home() {
   return (env && *env) ? std::string(env) : std::string("/usr/share/sumo");
 }
 
-ProcessResult run_process(const std::string& program, const std::vector<std::string>& args) {
+ProcessResult run_process(const std::string& program, const std::vector<std::string>& args,
+                          const std::filesystem::path& working_dir) {
   namespace bp = boost::process;
   const auto exe = bp::search_path(program);
   if (exe.empty()) throw OrchError("cannot find the program \"" + program + "\" in PATH");
@@ -22,7 +23,8 @@ ProcessResult run_process(const std::string& program, const std::vector<std::str
   bp::ipstream out;
   ProcessResult result;
   try {
-    bp::child child(exe, bp::args(args), child_env, (bp::std_out & bp::std_err) > out);
+    const std::string start_dir = working_dir.empty() ? std::string(".") : working_dir.string();
+    bp::child child(exe, bp::args(args), child_env, bp::start_dir(start_dir), (bp::std_out & bp::std_err) > out);
     std::string line;
     while (std::getline(out, line)) result.output += line + "\n";
     child.wait();

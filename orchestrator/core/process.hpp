@@ -1,5 +1,6 @@
 #pragma once
 // Runs an external tool (netconvert, sumo) and collects its exit code and output.
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -12,7 +13,10 @@ struct ProcessResult {
 
 // Runs `program` (looked up in PATH) with `args`; SUMO_HOME is set for SUMO's tools when
 // the caller's environment lacks it. Throws OrchError when the program cannot be started.
-ProcessResult run_process(const std::string& program, const std::vector<std::string>& args);
+// `working_dir` (default: the caller's) lets tools that echo their relative input paths
+// into their output (netconvert) write the same bytes wherever the files live.
+ProcessResult run_process(const std::string& program, const std::vector<std::string>& args,
+                          const std::filesystem::path& working_dir = {});
 
 // SUMO_HOME for SUMO's tools and XML schemas: $SUMO_HOME, else /usr/share/sumo.
 std::string sumo_home();

@@ -50,6 +50,10 @@ void ObjectReader::allow(const std::vector<std::string>& keys) {
   known_.insert(known_.end(), keys.begin(), keys.end());
 }
 
+void ObjectReader::already_reported(const std::vector<std::string>& keys) {
+  reported_.insert(reported_.end(), keys.begin(), keys.end());
+}
+
 const nlohmann::json* ObjectReader::fetch(const std::string& key, Need need, const char* type_name,
                                           bool (*type_ok)(const nlohmann::json&)) {
   known_.push_back(key);
@@ -120,6 +124,7 @@ void ObjectReader::finish() {
   if (!is_object_) return;
   for (auto it = value_.begin(); it != value_.end(); ++it) {
     if (std::find(known_.begin(), known_.end(), it.key()) != known_.end()) continue;
+    if (std::find(reported_.begin(), reported_.end(), it.key()) != reported_.end()) continue;
     std::vector<std::string> unique = known_;
     std::sort(unique.begin(), unique.end());
     unique.erase(std::unique(unique.begin(), unique.end()), unique.end());

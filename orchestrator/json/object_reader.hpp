@@ -40,6 +40,9 @@ class ObjectReader {
   const nlohmann::json* array(const std::string& key, Need need);
   // Declares keys that are valid here even when this reader does not read them.
   void allow(const std::vector<std::string>& keys);
+  // Keys the caller reported itself (a key that belongs elsewhere): finish() neither
+  // reports them again nor lists them among the keys allowed here.
+  void already_reported(const std::vector<std::string>& keys);
   // Reports every key present but neither read nor allowed. Call once, after reading.
   void finish();
 
@@ -57,6 +60,7 @@ class ObjectReader {
   std::string what_;
   bool is_object_;
   std::vector<std::string> known_;
+  std::vector<std::string> reported_;
 };
 
 // Name of a JSON value's type for messages ("a string", "an array", ...).

@@ -15,7 +15,7 @@
 namespace orch {
 
 struct LaneInfo {
-  std::string id;    // SUMO lane id, e.g. "road0#0_1"
+  std::string id;    // SUMO lane id, e.g. "Waypoint03+Waypoint02+Waypoint01#0_1" (net_plan.hpp)
   std::string edge;  // SUMO edge id
   int index = 0;     // 0 = rightmost
   double length = 0; // SUMO lane length (lane positions run 0..length)
@@ -52,18 +52,31 @@ class LaneMap {
   [[nodiscard]] const RouteLanes* route(std::string_view route_id) const;
 
   // Where a point at arc length s of a route, `lateral` metres left of it, lies on the
-  // route's own lanes (the lane nearest to it among them).
+  // route's own lanes (the lane nearest to it among them). Interpolates between the
+  // precomputed places of the neighbouring waypoints; s beyond the route extends it
+  // straight (the lanes reach lane_extension past the end waypoints). Throws MapError for a
+  // route this map does not know.
   [[nodiscard]] LanePlace place_on_route(const WaypointRoute& route, double s, double lateral) const;
   // Nearest lane whose direction is within 90 degrees of `heading`; nullopt if none within
   // `max_distance` metres.
   [[nodiscard]] std::optional<LanePlace> locate(const Vec2& p, double heading, double max_distance = 10.0) const;
-  // SUMO edges a vehicle passes driving route `route_id` from arc length s0 to s1.
+  // SUMO edges a vehicle passes driving route `route_id` from arc length s0 to s1, in
+  // driving order, each once (s1 < s0 is read as the stretch between them).
   [[nodiscard]] std::vector<std::string> route_edges(const WaypointRoute& route, double s0, double s1) const;
-  // Convert a point on a lane into SUMO lane coordinates.
+  // Convert a point on a lane into SUMO lane coordinates (lane_pos clamped to the lane).
   [[nodiscard]] LanePlace place_on_lane(int lane, const Vec2& p) const;
 
  private:
+  struct Bounds {
+    Vec2 lo;
+    Vec2 hi;
+  };
+  [[nodiscard]] const RouteLanes& route_or_throw(const WaypointRoute& route) const;
+  // The lane of `candidates` nearest to p, preferring lanes beside which p lies.
+  [[nodiscard]] LanePlace nearest_of(const std::vector<int>& candidates, const Vec2& p) const;
+
   std::vector<LaneInfo> lanes_;
+  std::vector<Bounds> bounds_;  // per lane, for skipping far lanes cheaply
   std::unordered_map<std::string, RouteLanes> routes_;
 };
 

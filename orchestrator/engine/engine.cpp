@@ -1,0 +1,157 @@
+#include "engine/engine.hpp"
+
+#include <fmt/format.h>
+
+#include "engine/conditions.hpp"
+
+namespace orch::engine {
+
+using namespace orch::scenario;
+
+namespace {
+std::string join(const std::vector<std::string>& parts) {
+  std::string out;
+  for (const auto& p : parts) out += (out.empty() ? "" : "; ") + p;
+  return out;
+}
+}  // namespace
+
+Engine::Engine(const Scenario& s, MapContext map, const Catalog& catalog, EngineOptions options)
+    : scenario_(s), map_(map), options_(options), actors_(s, catalog), machine_(s) {}
+
+const WaypointRoute* Engine::route_of(ActorId id) const {
+  if (auto it = motions_.find(id); it != motions_.end()) return &it->second.route();
+  if (id == scenario_.ego.id) return ego_route_;
+  return nullptr;
+}
+
+bool Engine::collided(ActorId id) const {
+  const ActorSlot* slot = actors_.find(id);
+  if (!slot) return false;
+  for (const auto& c : current_.collisions)
+    if (c.collider == slot->tracked.sumo_id || c.victim == slot->tracked.sumo_id) return true;
+  return false;
+}
+
+bool Engine::siren(ActorId id) const {
+  auto it = sirens_.find(id);
+  return it != sirens_.end() && it->second;
+}
+
+void Engine::fail(const std::string& reason, double t, StepOutput& out) {
+  state_ = RunState::Error;
+  end_reason_ = reason;
+  out.events.push_back({t, EventKind::Warning, reason});
+}
+
+StepOutput Engine::step(const WorldSnapshot& snapshot) {
+  StepOutput out;
+  if (state_ != RunState::Running) return out;
+  if (!current_.actors.empty()) previous_ = std::move(current_);
+  current_ = snapshot;
+  const double t = snapshot.time;
+
+  for (auto& a : current_.actors) {
+    auto it = motions_.find(a.id);
+    if (it == motions_.end()) continue;
+    if (!a.present) {
+      fail(fmt::format("actor {} is no longer in the simulation (SUMO removed it)", a.id), t, out);
+      return out;
+    }
+    // SUMO derives a placed vehicle's speed from the distance it was moved; the scenario's
+    // own value is exact, and conditions must see exactly what the scenario commanded.
+    a.speed = it->second.speed();
+    a.accel = it->second.accel();
+  }
+  update_ego(out);
+
+  ConditionContext ctx{current_, previous_ ? &*previous_ : nullptr, actors_, map_.waypoints,
+                       [this](ActorId id) { return route_of(id); }, [this](ActorId id) { return collided(id); }};
+  std::vector<std::string> fired;
+  const auto transition = machine_.step(t, [&](const Scene& scene) {
+    fired.clear();
+    return evaluate(scene.conditions, ctx, &fired);
+  });
+  if (transition) {
+    const Scene& to = *transition->to;
+    out.events.push_back({t, EventKind::Scene,
+                          fmt::format("scene {} -> {}{}{}", transition->from, to.id,
+                                      to.description.empty() ? "" : " \"" + to.description + "\"",
+                                      fired.empty() ? std::string(" (no conditions)") : ": " + join(fired))});
+    if (to.ending) {
+      state_ = RunState::EndingReached;
+      end_reason_ = fmt::format("ending scene {} reached", to.id);
+      return out;
+    }
+    enter_scene(to, t, out);
+    if (state_ != RunState::Running) return out;
+  }
+  if (scenario_.stop_conditions) {
+    std::vector<std::string> stop_fired;
+    if (evaluate(*scenario_.stop_conditions, ctx, &stop_fired) && !scenario_.stop_conditions->items.empty()) {
+      state_ = RunState::StopConditionMet;
+      end_reason_ = "stop condition met: " + join(stop_fired);
+      out.events.push_back({t, EventKind::Scene, end_reason_});
+      return out;
+    }
+  }
+  move_scripted_actors(t, out);
+  return out;
+}
+
+void Engine::enter_scene(const Scene& scene, double t, StepOutput& out) {
+  for (const auto& action : scene.actions) {
+    start_action(action, t, out);
+    if (state_ != RunState::Running) return;
+  }
+}
+
+void Engine::update_ego(StepOutput& out) {
+  const ActorState* ego = current_.find(scenario_.ego.id);
+  if (!ego || !ego->present || !ego_route_) return;
+  ego_s_ = ego_route_->line.project_near(ego->position, ego_s_, 50.0).s;
+  const double v = ego_route_->speed_at(ego_s_);
+  if (std::abs(v - ego_max_speed_) > 1e-6) {
+    ego_max_speed_ = v;
+    out.commands.push_back(SetMaxSpeed{"ego", v});
+  }
+}
+
+void Engine::move_scripted_actors(double t, StepOutput& out) {
+  for (auto& [id, motion] : motions_) {
+    resolve_longitudinal(id, motion);
+    motion.advance(t, options_.step);
+    const ActorSlot* slot = actors_.find(id);
+    out.commands.push_back(pose_command(*slot, motion));
+    if (motion.running_out_of_road() && !reported_route_end_[id]) {
+      reported_route_end_[id] = true;
+      out.events.push_back({t + options_.step, EventKind::Warning,
+                            fmt::format("actor {} runs out of road at the end of route {}: it brakes to stop there",
+                                        id, motion.route().id)});
+    }
+  }
+}
+
+SetPose Engine::pose_command(const ActorSlot& slot, const ScriptedMotion& m) const {
+  SetPose p;
+  p.sumo_id = slot.tracked.sumo_id;
+  p.kind = slot.tracked.kind;
+  p.length = slot.tracked.length;
+  p.position = m.position();
+  p.heading = m.heading();
+  p.speed = m.speed();
+  if (auto it = signals_.find(slot.spec.id); it != signals_.end()) p.signals = it->second;
+  if (!m.walking()) {
+    const LanePlace place = map_.lanes.place_on_route(m.route(), m.s(), m.lateral());
+    if (place.lane >= 0) {
+      p.edge = map_.lanes.lane(place.lane).edge;
+      p.lane = map_.lanes.lane(place.lane).index;
+    }
+  } else if (const auto place = map_.lanes.locate(p.position, p.heading)) {
+    p.edge = map_.lanes.lane(place->lane).edge;
+    p.lane = map_.lanes.lane(place->lane).index;
+  }
+  return p;
+}
+
+}  // namespace orch::engine

@@ -1,0 +1,127 @@
+#pragma once
+// The scenario interpreter. Each step it reads a WorldSnapshot and returns Commands:
+//   conditions -> scene transitions -> actions -> scripted actors' next poses.
+// It never calls SUMO (ARCHITECTURE.md "One step, as data"), so every rule here is unit
+// testable with hand-made snapshots.
+//
+// Timing: step(snapshot at t) moves the scripted actors to their poses for t + dt, which
+// the simulator shows after its next step. start() places them at their poses for the
+// first step, when SUMO inserts every actor.
+#include <map>
+#include <optional>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "engine/actor_table.hpp"
+#include "engine/motion.hpp"
+#include "engine/scene_machine.hpp"
+#include "engine/world.hpp"
+#include "map/lane_map.hpp"
+#include "map/waypoint_file.hpp"
+#include "scenario/model.hpp"
+
+namespace orch::engine {
+
+struct MapContext {
+  const WaypointFile& waypoints;
+  const LaneMap& lanes;
+  double lane_extension = 20.0;  // m the lanes reach beyond the routes' ends
+};
+
+struct EngineOptions {
+  double step = 0.05;  // s
+};
+
+enum class EventKind { Scene, Action, Info, Warning };
+
+struct Event {
+  double time = 0;
+  EventKind kind = EventKind::Info;
+  std::string text;
+};
+
+enum class RunState { Running, EndingReached, StopConditionMet, Error };
+
+struct StepOutput {
+  std::vector<Command> commands;
+  std::vector<Event> events;
+};
+
+// What a hand_over action asked for, kept for an external ego plug-in and the results.
+struct HandOverRecord {
+  double time = 0;
+  scenario::HandOverAction action;
+};
+
+class Engine {
+ public:
+  Engine(const scenario::Scenario& s, MapContext map, const Catalog& catalog, EngineOptions options);
+
+  // Spawns every actor; must be called once before the first step.
+  StepOutput start();
+  StepOutput step(const WorldSnapshot& snapshot);
+
+  [[nodiscard]] std::vector<TrackedActor> tracked() const { return actors_.tracked(); }
+  [[nodiscard]] const ActorTable& actors() const { return actors_; }
+  [[nodiscard]] scenario::SceneId scene() const { return machine_.current(); }
+  [[nodiscard]] const std::vector<SceneVisit>& visits() const { return machine_.visits(); }
+  [[nodiscard]] RunState state() const { return state_; }
+  [[nodiscard]] const std::string& end_reason() const { return end_reason_; }
+  // The last snapshot as the engine judged it: scripted actors carry their commanded speed
+  // and acceleration (SUMO only sees the poses).
+  [[nodiscard]] const WorldSnapshot& judged() const { return current_; }
+  [[nodiscard]] bool siren(ActorId id) const;
+  [[nodiscard]] bool scripted(ActorId id) const { return motions_.count(id) > 0; }
+  [[nodiscard]] const std::vector<HandOverRecord>& hand_overs() const { return hand_overs_; }
+
+ private:
+  // Longitudinal behaviour of a scripted actor (the latest action on that axis wins).
+  struct HoldSpeed {
+    scenario::SpeedAction action;
+  };
+  struct KeepGap {
+    scenario::TraveledDistanceAction action;
+  };
+  using Longitudinal = std::variant<HoldSpeed, KeepGap>;
+
+  void place_opening_actors(StepOutput& out);
+  void place_other(const scenario::OtherOpening& o);
+  void spawn_ego(StepOutput& out);
+  [[nodiscard]] double ego_start_s() const;
+
+  void enter_scene(const scenario::Scene& scene, double t, StepOutput& out);
+  void start_action(const scenario::Action& a, double t, StepOutput& out);
+  void move_scripted_actors(double t, StepOutput& out);
+  void resolve_longitudinal(ActorId id, ScriptedMotion& m);
+  void update_ego(StepOutput& out);
+  [[nodiscard]] SetPose pose_command(const ActorSlot& slot, const ScriptedMotion& m) const;
+  [[nodiscard]] const WaypointRoute* route_of(ActorId id) const;
+  [[nodiscard]] bool collided(ActorId id) const;
+  void fail(const std::string& reason, double t, StepOutput& out);
+
+  const scenario::Scenario& scenario_;
+  MapContext map_;
+  EngineOptions options_;
+  ActorTable actors_;
+  SceneMachine machine_;
+
+  std::map<ActorId, ScriptedMotion> motions_;
+  std::map<ActorId, Longitudinal> longitudinal_;
+  std::map<ActorId, int> signals_;
+  std::map<ActorId, bool> sirens_;
+  std::vector<HandOverRecord> hand_overs_;
+
+  const WaypointRoute* ego_route_ = nullptr;
+  double ego_s_ = 0;
+  double ego_max_speed_ = 0;
+  bool ego_stop_sent_ = false;
+
+  WorldSnapshot current_;
+  std::optional<WorldSnapshot> previous_;
+  RunState state_ = RunState::Running;
+  std::string end_reason_;
+  std::map<ActorId, bool> reported_route_end_;
+};
+
+}  // namespace orch::engine

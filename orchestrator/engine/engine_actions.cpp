@@ -1,0 +1,158 @@
+// Scene actions. Each actor has independent axes; a new action replaces the running one on
+// its axis only (README "Actions"):
+//   longitudinal: speed, traveled_distance       lateral: lane_change, lane_offset,
+//   route_move wp_offset                          route: route_move waypoint
+//   lights: light_state (per light)               sound: sound_state
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "engine/conditions.hpp"
+#include "engine/engine.hpp"
+
+namespace orch::engine {
+
+using namespace orch::scenario;
+
+namespace {
+
+// Gap keeping for traveled_distance: follow the target's speed, closing the gap error at
+// kGapGain per second, within kGapAccel. Plausible for a car (|a| <= 4 m/s^2).
+constexpr double kGapGain = 0.5;   // 1/s
+constexpr double kGapAccel = 4.0;  // m/s^2
+
+std::string on_off(const std::optional<bool>& v) { return v ? (*v ? "on" : "off") : "unchanged"; }
+
+std::string describe_speed(const SpeedAction& a) {
+  std::string what = a.type == SpeedType::Absolute
+                         ? fmt::format("{:.1f} km/h", a.value * 3.6)
+                         : fmt::format("actor {} {:+.1f} km/h", a.target.value_or(0), a.value * 3.6);
+  std::string how = a.accel.type == AccelType::Specify ? fmt::format("at {:g} m/s^2", a.accel.value) : "instantly";
+  return fmt::format("speed: actor {} to {} {}", a.actor, what, how);
+}
+
+}  // namespace
+
+void Engine::resolve_longitudinal(ActorId id, ScriptedMotion& m) {
+  auto it = longitudinal_.find(id);
+  if (it == longitudinal_.end()) return;
+  if (const auto* hold = std::get_if<HoldSpeed>(&it->second)) {
+    const SpeedAction& a = hold->action;
+    double v = a.value;
+    if (a.type == SpeedType::Relative) {
+      const ActorState* target = current_.find(a.target.value_or(scenario_.ego.id));
+      if (!target || !target->present) return;  // keep heading for the last target speed
+      v += target->speed;
+    }
+    m.set_desired(std::max(0.0, v), a.accel.type == AccelType::Specify ? a.accel.value : 0.0);
+    return;
+  }
+  const auto& gap = std::get<KeepGap>(it->second).action;
+  const ActorState* target = current_.find(gap.target);
+  if (!target || !target->present) return;
+  double now_gap = along_road(m.route(), target->position, m.position());
+  if (gap.measure == MeasureType::Surface) {
+    const double halves = (actors_.find(id)->model.length + actors_.find(gap.target)->model.length) / 2;
+    now_gap += now_gap >= 0 ? -halves : halves;
+  }
+  const double error = now_gap - gap.value;  // > 0: too far ahead of the wanted place
+  m.set_desired(std::max(0.0, target->speed - kGapGain * error), kGapAccel);
+}
+
+void Engine::start_action(const Action& action, double t, StepOutput& out) {
+  auto event = [&](const std::string& text) { out.events.push_back({t, EventKind::Action, text}); };
+  auto require_present = [&](ActorId id) {
+    const ActorState* a = current_.find(id);
+    if (a && a->present) return true;
+    fail(fmt::format("an action of this scene names actor {}, which is not in the simulation", id), t, out);
+    return false;
+  };
+  auto motion = [&](ActorId id) -> ScriptedMotion* {
+    auto it = motions_.find(id);
+    return it == motions_.end() ? nullptr : &it->second;
+  };
+  auto ego_only = [&](ActorId id, const char* what) {
+    out.events.push_back({t, EventKind::Warning,
+                          fmt::format("{} on actor {} ignored: the ego is driven by SUMO's driver model", what, id)});
+  };
+
+  std::visit(
+      [&](const auto& a) {
+        using T = std::decay_t<decltype(a)>;
+        if constexpr (std::is_same_v<T, SpeedAction>) {
+          if (!require_present(a.actor)) return;
+          event(describe_speed(a));
+          if (motion(a.actor)) longitudinal_[a.actor] = HoldSpeed{a};
+          else if (a.type == SpeedType::Absolute) out.commands.push_back(SetMaxSpeed{"ego", a.value});
+          else ego_only(a.actor, "a relative speed action");
+        } else if constexpr (std::is_same_v<T, TraveledDistanceAction>) {
+          if (!require_present(a.actor) || !require_present(a.target)) return;
+          event(fmt::format("traveled_distance: actor {} keeps {:+.1f} m ({}) from actor {}", a.actor, a.value,
+                            a.measure == MeasureType::Surface ? "surface" : "center", a.target));
+          if (motion(a.actor)) longitudinal_[a.actor] = KeepGap{a};
+          else ego_only(a.actor, "traveled_distance");
+        } else if constexpr (std::is_same_v<T, LaneChangeAction>) {
+          if (!require_present(a.actor)) return;
+          event(fmt::format("lane_change: actor {} to the lane of {} over {:g} s", a.actor, a.wp_id, a.time));
+          ScriptedMotion* m = motion(a.actor);
+          if (!m) return ego_only(a.actor, "lane_change");
+          m->change_route(*map_.waypoints.find(a.wp_id), 0.0, t, a.time);
+        } else if constexpr (std::is_same_v<T, LaneOffsetAction>) {
+          if (!require_present(a.actor)) return;
+          event(fmt::format("lane_offset: actor {} to {:+.2f} m over {:g} s", a.actor, a.value, a.time));
+          ScriptedMotion* m = motion(a.actor);
+          if (!m) return ego_only(a.actor, "lane_offset");
+          m->plan_lateral({{a.value, a.time}}, t);
+        } else if constexpr (std::is_same_v<T, RouteMoveAction>) {
+          if (!require_present(a.actor)) return;
+          ScriptedMotion* m = motion(a.actor);
+          if (!m) return ego_only(a.actor, "route_move");
+          if (a.type == RouteMoveType::WpOffset) {
+            std::vector<LateralLeg> legs;
+            for (const auto& leg : a.legs) legs.push_back({leg.wp_offset.value_or(0.0), leg.time});
+            event(fmt::format("route_move: actor {} through {} lateral offsets", a.actor, legs.size()));
+            m->plan_lateral(legs, t);
+          } else {
+            std::vector<std::pair<Vec2, double>> legs;
+            for (const auto& leg : a.legs) {
+              const WaypointRoute* r = map_.waypoints.find(leg.waypoint->wp_id);
+              const double s = r->s_of(std::min(leg.waypoint->wp_idx, r->last_index()));
+              legs.emplace_back(r->line.offset_point(s, leg.wp_offset.value_or(0.0)), leg.time);
+            }
+            event(fmt::format("route_move: actor {} through {} waypoints", a.actor, legs.size()));
+            m->plan_walk(legs, t);
+          }
+        } else if constexpr (std::is_same_v<T, LightStateAction>) {
+          if (!require_present(a.actor)) return;
+          int& bits = signals_[a.actor];
+          auto apply = [&](const std::optional<bool>& v, int bit) {
+            if (v) bits = *v ? (bits | bit) : (bits & ~bit);
+          };
+          apply(a.blinker_left, kSignalBlinkerLeft);
+          apply(a.blinker_right, kSignalBlinkerRight);
+          apply(a.special1, kSignalEmergencyBlue);
+          event(fmt::format("light_state: actor {} blinker_left {}, blinker_right {}, special1 {}", a.actor,
+                            on_off(a.blinker_left), on_off(a.blinker_right), on_off(a.special1)));
+          out.commands.push_back(SetSignals{actors_.find(a.actor)->tracked.sumo_id, bits});
+        } else if constexpr (std::is_same_v<T, SoundStateAction>) {
+          if (!require_present(a.actor)) return;
+          if (a.sound) sirens_[a.actor] = *a.sound;
+          event(fmt::format("sound_state: actor {} siren {}", a.actor, on_off(a.sound)));
+          out.commands.push_back(
+              SetParameter{actors_.find(a.actor)->tracked.sumo_id, "orch.siren", siren(a.actor) ? "on" : "off"});
+        } else if constexpr (std::is_same_v<T, HandOverAction>) {
+          hand_overs_.push_back({t, a});
+          event(fmt::format("hand_over: {}{}", a.hand_over ? "on" : "off",
+                            a.hand_over ? fmt::format(" (throttle {}, brake {}, steer {})", a.throttle.value_or(0.0),
+                                                      a.brake.value_or(0.0), a.steer.value_or(0.0))
+                                        : std::string{}));
+          out.commands.push_back(SetParameter{"ego", "orch.hand_over", a.hand_over ? "1" : "0"});
+        } else {
+          // EmptyAction: `{}` in the file does nothing.
+        }
+      },
+      action.kind);
+}
+
+}  // namespace orch::engine

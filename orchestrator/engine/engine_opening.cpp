@@ -1,0 +1,203 @@
+// The opening scene: where every actor starts and how fast.
+#include <fmt/format.h>
+
+#include <set>
+
+#include "core/errors.hpp"
+#include "engine/engine.hpp"
+
+namespace orch::engine {
+
+using namespace orch::scenario;
+
+namespace {
+
+const WaypointRoute& route_named(const WaypointFile& wps, const std::string& id, const SourceLocation& where) {
+  const WaypointRoute* r = wps.find(id);
+  if (!r) throw ScenarioError(where, "no route \"" + id + "\" in the map's waypoint file");
+  return *r;
+}
+
+// Initial speed from a start_speed block, evaluated at t = 0 against speeds already known.
+double initial_speed(const std::optional<SpeedAction>& start, const std::map<ActorId, double>& known) {
+  if (!start) return 0.0;
+  if (start->accel.type == AccelType::Specify && start->accel.value > 0) return 0.0;  // accelerates from rest
+  double v = start->value;
+  if (start->type == SpeedType::Relative) {
+    auto it = known.find(start->target.value_or(0));
+    v += it != known.end() ? it->second : 0.0;
+  }
+  return std::max(0.0, v);
+}
+
+}  // namespace
+
+double Engine::ego_start_s() const {
+  const WaypointRef& w = *scenario_.opening.ego.start.waypoint;
+  return ego_route_->s_of(w.wp_idx);
+}
+
+void Engine::spawn_ego(StepOutput& out) {
+  const EgoOpening& o = scenario_.opening.ego;
+  const WaypointRef& start = *o.start.waypoint;
+  ego_route_ = &route_named(map_.waypoints, start.wp_id, start.where);
+  ego_s_ = ego_start_s();
+  double end_s = ego_route_->line.length();
+  if (o.end) {
+    const WaypointRoute& end_route = route_named(map_.waypoints, o.end->wp_id, o.end->where);
+    const double idx = std::min(o.end->wp_idx, end_route.last_index());
+    const Vec2 end_point = end_route.line.point_at(end_route.s_of(idx));
+    // The ego drives its own route; an end on another route means the point beside it.
+    end_s = ego_route_->line.project(end_point).s;
+  }
+  if (end_s <= ego_s_) {
+    out.events.push_back({0, EventKind::Warning, "the ego's end_position is not ahead of its start: it stays where it starts"});
+    end_s = ego_s_;
+  }
+  const ActorSlot& slot = *actors_.find(scenario_.ego.id);
+  const LanePlace place = map_.lanes.place_on_route(*ego_route_, ego_s_, o.start.wp_offset);
+  if (place.lane < 0) throw MapError("the ego's start position is not on any lane of the map");
+  SpawnVehicle spawn;
+  spawn.actor = slot.tracked;
+  spawn.model = slot.model;
+  spawn.color = slot.spec.color;
+  spawn.scripted = false;
+  spawn.route = map_.lanes.route_edges(*ego_route_, ego_s_, end_s);
+  spawn.edge = map_.lanes.lane(place.lane).edge;
+  spawn.lane = map_.lanes.lane(place.lane).index;
+  spawn.lane_pos = place.lane_pos;
+  spawn.speed = 0;
+  ego_max_speed_ = ego_route_->speed_at(ego_s_);
+  spawn.max_speed = ego_max_speed_;
+  out.commands.push_back(spawn);
+
+  // A start beside the route line or turned away from it: placed once, then SUMO drives.
+  const StartPosition& sp = o.start;
+  if (std::abs(sp.wp_offset) > 1e-9 || sp.heading) {
+    spawn.keep_lateral = true;
+    SetPose pose;
+    pose.sumo_id = slot.tracked.sumo_id;
+    pose.length = slot.tracked.length;
+    pose.position = ego_route_->line.offset_point(ego_s_, sp.wp_offset);
+    pose.heading = wrap_angle(ego_route_->line.heading_at(ego_s_) + sp.heading.value_or(0.0));
+    pose.edge = spawn.edge;
+    pose.lane = spawn.lane;
+    pose.scripted = false;
+    out.commands.back() = spawn;
+    out.commands.push_back(pose);
+  }
+
+  const LanePlace end_place = map_.lanes.place_on_route(*ego_route_, end_s, 0.0);
+  out.commands.push_back(SetStop{"ego", map_.lanes.lane(end_place.lane).edge, map_.lanes.lane(end_place.lane).index,
+                                 end_place.lane_pos, slot.tracked.length});
+}
+
+void Engine::place_other(const OtherOpening& o) {
+  const ActorSlot& slot = *actors_.find(o.actor);
+  const StartPosition& p = o.start;
+  const WaypointRoute* route = nullptr;
+  double s = 0;
+  if (p.type == StartPositionType::Waypoint) {
+    route = &route_named(map_.waypoints, p.waypoint->wp_id, p.waypoint->where);
+    s = route->s_of(p.waypoint->wp_idx);
+  } else {
+    const ActorId target = p.target.value_or(scenario_.ego.id);
+    const WaypointRoute* target_route = route_of(target);
+    const ActorState* target_state = current_.find(target);
+    if (!target_route || !target_state) throw ScenarioError(p.where, "the start position's target actor is not placed");
+    route = p.waypoint ? &route_named(map_.waypoints, p.waypoint->wp_id, p.waypoint->where) : target_route;
+    const auto proj = route->line.project(target_state->position);
+    double offset = p.distance;
+    if (p.measure == MeasureType::Surface) {
+      const double halves = (slot.model.length + actors_.find(target)->model.length) / 2;
+      offset += offset >= 0 ? halves : -halves;
+    }
+    s = proj.s + offset;
+  }
+  std::map<ActorId, double> speeds;
+  for (const auto& a : current_.actors) speeds[a.id] = a.speed;
+  const double v0 = initial_speed(o.start_speed, speeds);
+  auto [it, inserted] = motions_.emplace(
+      o.actor, ScriptedMotion(*route, s, p.wp_offset, v0, p.heading.value_or(0.0), slot.model.length,
+                              map_.lane_extension));
+  if (o.start_speed) longitudinal_[o.actor] = HoldSpeed{*o.start_speed};
+  else longitudinal_[o.actor] = HoldSpeed{SpeedAction{o.actor, SpeedType::Absolute, std::nullopt, 0.0, {}}};
+
+  ActorState state;
+  state.id = o.actor;
+  state.present = true;
+  state.position = it->second.position();
+  state.heading = it->second.heading();
+  state.speed = v0;
+  current_.actors.push_back(state);
+}
+
+void Engine::place_opening_actors(StepOutput& out) {
+  spawn_ego(out);
+  ActorState ego;
+  ego.id = scenario_.ego.id;
+  ego.present = true;
+  ego.position = ego_route_->line.point_at(ego_s_);
+  ego.heading = ego_route_->line.heading_at(ego_s_);
+  current_.actors.push_back(ego);
+
+  // Actors placed relative to another actor come after it (the validator rejects cycles).
+  std::set<ActorId> placed{scenario_.ego.id};
+  std::vector<const OtherOpening*> todo;
+  for (const auto& o : scenario_.opening.others) todo.push_back(&o);
+  while (!todo.empty()) {
+    const std::size_t before = todo.size();
+    for (auto it = todo.begin(); it != todo.end();) {
+      const StartPosition& p = (*it)->start;
+      const bool ready = p.type == StartPositionType::Waypoint || placed.count(p.target.value_or(scenario_.ego.id));
+      if (!ready) {
+        ++it;
+        continue;
+      }
+      place_other(**it);
+      placed.insert((*it)->actor);
+      it = todo.erase(it);
+    }
+    if (todo.size() == before) throw ScenarioError(todo.front()->where, "start positions refer to each other in a cycle");
+  }
+}
+
+StepOutput Engine::start() {
+  StepOutput out;
+  current_ = WorldSnapshot{};
+  place_opening_actors(out);
+  // Scripted actors appear at their poses of the first step, when SUMO inserts them.
+  StepOutput moved;
+  move_scripted_actors(0.0, moved);
+  for (const auto& cmd : moved.commands) {
+    const auto& pose = std::get<SetPose>(cmd);
+    const ActorSlot& slot = *actors_.find_sumo(pose.sumo_id);
+    const ScriptedMotion& m = motions_.at(slot.spec.id);
+    const LanePlace place = map_.lanes.place_on_route(m.route(), m.s(), m.lateral());
+    if (place.lane < 0) throw MapError(fmt::format("actor {} does not start on a lane of the map", slot.spec.id));
+    const LaneInfo& lane = map_.lanes.lane(place.lane);
+    if (slot.tracked.kind == ActorKind::Pedestrian) {
+      out.commands.push_back(SpawnPerson{slot.tracked, slot.model, slot.spec.color, lane.edge, place.lane_pos});
+    } else {
+      SpawnVehicle v;
+      v.actor = slot.tracked;
+      v.model = slot.model;
+      v.color = slot.spec.color;
+      v.scripted = true;
+      v.route = map_.lanes.route_edges(m.route(), m.s(), m.route().line.length());
+      v.edge = lane.edge;
+      v.lane = lane.index;
+      v.lane_pos = place.lane_pos;
+      v.speed = m.speed();
+      out.commands.push_back(v);
+    }
+    out.commands.push_back(cmd);
+  }
+  out.events.insert(out.events.end(), moved.events.begin(), moved.events.end());
+  out.events.push_back({0, EventKind::Scene,
+                        fmt::format("scene 0 (opening): {} actors placed", actors_.slots().size())});
+  current_ = WorldSnapshot{};
+  return out;
+}
+
+}  // namespace orch::engine

@@ -1,0 +1,125 @@
+#pragma once
+// The values that cross the simulator seam: what the engine reads each step
+// (WorldSnapshot) and what it asks the simulator to do (Command). Plain data, so that the
+// scenario semantics are testable without SUMO and a run is replayable.
+#include <optional>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "core/polyline.hpp"
+#include "scenario/catalog.hpp"
+#include "scenario/model.hpp"
+
+namespace orch::engine {
+
+using scenario::ActorId;
+
+// SUMO vehicle signal bits the format's lights map to (TraCI VEH_SIGNAL_*).
+inline constexpr int kSignalBlinkerRight = 1 << 0;
+inline constexpr int kSignalBlinkerLeft = 1 << 1;
+inline constexpr int kSignalEmergencyBlue = 1 << 11;  // special1: emergency vehicles' beacon
+
+// One scenario actor as the simulator knows it.
+struct TrackedActor {
+  ActorId id = 0;
+  std::string sumo_id;  // "ego" for the ego, "actor<id>" for the others
+  ActorKind kind = ActorKind::Vehicle;
+  double length = 0;
+  double width = 0;
+};
+
+struct ActorState {
+  ActorId id = 0;
+  bool present = false;  // false before insertion or after the actor left the simulation
+  Vec2 position{0, 0};   // centre of the actor, map frame, m
+  double heading = 0;    // rad, counter-clockwise from +x
+  double speed = 0;      // m/s
+  double accel = 0;      // m/s^2
+  std::string edge;      // SUMO edge ("" off-road)
+  int lane = -1;         // SUMO lane index, 0 = rightmost
+  double lane_pos = 0;   // SUMO lane position of the centre, m
+  std::optional<double> lat_offset;  // m from the lane centre, + = left (nullopt: simulator cannot tell)
+  int signals = 0;       // SUMO signal bits
+};
+
+// A collision SUMO reported in the last step (ids are SUMO ids).
+struct SimCollision {
+  std::string collider;
+  std::string victim;
+  std::string type;  // "collision", "frontal", "junction", ...
+  std::string lane;
+  double pos = 0;
+};
+
+struct WorldSnapshot {
+  double time = 0;
+  std::vector<ActorState> actors;  // same order as the tracked actors
+  std::vector<SimCollision> collisions;
+  int other_vehicles = 0;  // SUMO vehicles that are not scenario actors
+
+  [[nodiscard]] const ActorState* find(ActorId id) const {
+    for (const auto& a : actors)
+      if (a.id == id) return &a;
+    return nullptr;
+  }
+};
+
+// ---------------------------------------------------------------- commands
+struct SpawnVehicle {
+  TrackedActor actor;
+  ModelInfo model;
+  std::string color;                 // "rrggbb" or ""
+  bool scripted = true;              // placed by the orchestrator every step (no SUMO driver)
+  std::vector<std::string> route;    // SUMO edges
+  std::string edge;
+  int lane = 0;
+  double lane_pos = 0;               // SUMO lane position of the centre
+  double speed = 0;                  // m/s at insertion
+  double max_speed = 0;              // m/s, SUMO-driven vehicles only (0 = type default)
+  bool keep_lateral = false;         // SUMO-driven: keep the lateral offset it is placed at
+};
+struct SpawnPerson {
+  TrackedActor actor;
+  ModelInfo model;
+  std::string color;
+  std::string edge;
+  double lane_pos = 0;
+};
+// Put an actor's centre at `position` facing `heading` (scripted actors, every step).
+struct SetPose {
+  std::string sumo_id;
+  ActorKind kind = ActorKind::Vehicle;
+  double length = 0;
+  Vec2 position{0, 0};
+  double heading = 0;
+  double speed = 0;
+  std::string edge;  // lane hint
+  int lane = 0;
+  int signals = 0;   // SUMO forgets signals of vehicles it does not drive: sent with every pose
+  bool scripted = true;  // false: a one-off placement of a SUMO-driven vehicle (speed left to SUMO)
+};
+struct SetSignals {
+  std::string sumo_id;
+  int signals = 0;
+};
+struct SetMaxSpeed {  // the desired speed of a SUMO-driven vehicle
+  std::string sumo_id;
+  double speed = 0;
+};
+struct SetStop {  // a SUMO-driven vehicle stops with its centre here and stays
+  std::string sumo_id;
+  std::string edge;
+  int lane = 0;
+  double lane_pos = 0;  // of the centre
+  double length = 0;
+};
+struct SetParameter {
+  std::string sumo_id;
+  std::string key;
+  std::string value;
+};
+
+using Command = std::variant<SpawnVehicle, SpawnPerson, SetPose, SetSignals, SetMaxSpeed, SetStop, SetParameter>;
+
+}  // namespace orch::engine

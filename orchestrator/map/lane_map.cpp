@@ -1,0 +1,227 @@
+#include "map/lane_map.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <limits>
+#include <pugixml.hpp>
+
+#include "core/errors.hpp"
+
+namespace orch {
+
+namespace {
+
+constexpr const char* kRouteParam = "orch.route";  // written by map build (net_builder.cpp)
+constexpr double kSumoDefaultLaneWidth = 3.2;      // SUMO omits width="..." at its default
+
+// SUMO shapes: "x,y x,y ..." or "x,y,z ..."; heights are dropped (the map is planar).
+Polyline parse_shape(const char* text, const std::string& lane_id, const std::string& net_file) {
+  std::vector<Vec2> pts;
+  const char* p = text;
+  while (*p) {
+    while (*p == ' ') ++p;
+    if (!*p) break;
+    char* end = nullptr;
+    const double x = std::strtod(p, &end);
+    if (end == p || *end != ',') throw MapError(fmt::format("{}: lane \"{}\" has a malformed shape", net_file, lane_id));
+    p = end + 1;
+    const double y = std::strtod(p, &end);
+    if (end == p) throw MapError(fmt::format("{}: lane \"{}\" has a malformed shape", net_file, lane_id));
+    p = end;
+    if (*p == ',') {  // a height: skip it
+      std::strtod(p + 1, &end);
+      p = end;
+    }
+    pts.emplace_back(x, y);
+  }
+  try {
+    return Polyline(std::move(pts));
+  } catch (const std::invalid_argument&) {
+    throw MapError(fmt::format("{}: lane \"{}\" has a shape of less than two distinct points", net_file, lane_id));
+  }
+}
+
+LaneInfo read_lane(const pugi::xml_node& lane, const std::string& edge_id, const std::string& net_file) {
+  LaneInfo info;
+  info.id = lane.attribute("id").as_string();
+  info.edge = edge_id;
+  info.index = lane.attribute("index").as_int();
+  info.length = lane.attribute("length").as_double();
+  info.width = lane.attribute("width").as_double(kSumoDefaultLaneWidth);
+  info.speed = lane.attribute("speed").as_double();
+  info.shape = parse_shape(lane.attribute("shape").as_string(), info.id, net_file);
+  if (info.length <= 0) throw MapError(fmt::format("{}: lane \"{}\" has no positive length", net_file, info.id));
+  for (const pugi::xml_node param : lane.children("param"))
+    if (std::string_view(param.attribute("key").as_string()) == kRouteParam)
+      info.routes.emplace_back(param.attribute("value").as_string());
+  return info;
+}
+
+// A point beside a lane beats a point beyond its ends, then the nearer lane wins.
+bool better_place(const LanePlace& a, const LanePlace& b) {
+  const bool a_beyond = a.distance > std::abs(a.lateral) + 1e-6;
+  const bool b_beyond = b.distance > std::abs(b.lateral) + 1e-6;
+  if (a_beyond != b_beyond) return !a_beyond;
+  return a.distance < b.distance;
+}
+
+}  // namespace
+
+LaneMap LaneMap::build(const std::string& net_file, const WaypointFile& waypoints) {
+  pugi::xml_document doc;
+  const pugi::xml_parse_result parsed = doc.load_file(net_file.c_str());
+  if (!parsed)
+    throw MapError(fmt::format("cannot read SUMO net {}: {} (at byte {})", net_file, parsed.description(), parsed.offset));
+  const pugi::xml_node net = doc.child("net");
+  if (!net) throw MapError(fmt::format("{} is not a SUMO net (no <net> element)", net_file));
+
+  LaneMap map;
+  for (const pugi::xml_node edge : net.children("edge")) {
+    // Internal lanes (junction interiors), crossings and walking areas carry no routes.
+    const std::string_view function = edge.attribute("function").as_string();
+    if (!function.empty() && function != "normal") continue;
+    const std::string edge_id = edge.attribute("id").as_string();
+    for (const pugi::xml_node lane : edge.children("lane")) map.lanes_.push_back(read_lane(lane, edge_id, net_file));
+  }
+  for (const LaneInfo& lane : map.lanes_) {
+    Bounds b{lane.shape.point(0), lane.shape.point(0)};
+    for (const Vec2& p : lane.shape.points()) {
+      b.lo = b.lo.cwiseMin(p);
+      b.hi = b.hi.cwiseMax(p);
+    }
+    map.bounds_.push_back(b);
+  }
+
+  for (const WaypointRoute& route : waypoints.routes) {
+    RouteLanes rl;
+    rl.route_id = route.id;
+    std::vector<std::pair<double, int>> along;  // (arc length of the lane's middle on the route, lane)
+    for (std::size_t i = 0; i < map.lanes_.size(); ++i) {
+      const LaneInfo& lane = map.lanes_[i];
+      if (std::find(lane.routes.begin(), lane.routes.end(), route.id) == lane.routes.end()) continue;
+      const double s = route.line.project(lane.shape.point_at(lane.shape.length() / 2)).s;
+      along.emplace_back(s, static_cast<int>(i));
+    }
+    if (along.empty())
+      throw MapError(fmt::format("route \"{}\" of {} has no lanes in {}: the net was not built from this waypoint "
+                                 "file (run `orchestrator map build`)", route.id, waypoints.path, net_file));
+    std::sort(along.begin(), along.end());
+    for (const auto& [s, lane] : along) rl.lanes.push_back(lane);
+    rl.points.reserve(route.points.size());
+    for (std::size_t i = 0; i < route.points.size(); ++i) rl.points.push_back(map.nearest_of(rl.lanes, route.line.point(i)));
+    map.routes_.emplace(route.id, std::move(rl));
+  }
+  return map;
+}
+
+const RouteLanes* LaneMap::route(std::string_view route_id) const {
+  const auto it = routes_.find(std::string(route_id));
+  return it == routes_.end() ? nullptr : &it->second;
+}
+
+const RouteLanes& LaneMap::route_or_throw(const WaypointRoute& r) const {
+  const RouteLanes* rl = route(r.id);
+  if (!rl) throw MapError(fmt::format("route \"{}\" is not part of this map", r.id));
+  return *rl;
+}
+
+LanePlace LaneMap::place_on_lane(int lane, const Vec2& p) const {
+  const LaneInfo& info = lanes_[static_cast<std::size_t>(lane)];
+  const Polyline::Projection proj = info.shape.project(p);
+  LanePlace place;
+  place.lane = lane;
+  place.lane_pos = std::clamp(proj.s / info.geometry_factor(), 0.0, info.length);
+  place.lateral = proj.lateral;
+  place.distance = proj.distance;
+  return place;
+}
+
+LanePlace LaneMap::nearest_of(const std::vector<int>& candidates, const Vec2& p) const {
+  LanePlace best;
+  best.distance = std::numeric_limits<double>::infinity();
+  for (const int lane : candidates) {
+    // A lane whose bounding box is farther than the best so far cannot beat it.
+    const Bounds& b = bounds_[static_cast<std::size_t>(lane)];
+    const Vec2 outside = (b.lo - p).cwiseMax(p - b.hi).cwiseMax(Vec2::Zero());
+    if (best.lane >= 0 && outside.norm() > best.distance) continue;
+    const LanePlace place = place_on_lane(lane, p);
+    if (best.lane < 0 || better_place(place, best)) best = place;
+  }
+  return best;
+}
+
+LanePlace LaneMap::place_on_route(const WaypointRoute& route, double s, double lateral) const {
+  const RouteLanes& rl = route_or_throw(route);
+  const auto& pts = rl.points;
+  const double length = route.line.length();
+  if (pts.size() != route.points.size()) return nearest_of(rl.lanes, route.line.offset_point(s, lateral));
+  if (s <= 0 || s >= length) {
+    const LanePlace& end = s <= 0 ? pts.front() : pts.back();
+    return place_on_lane(end.lane, route.line.offset_point(s, lateral));
+  }
+  // Waypoints lo and hi = lo + 1 with s(lo) <= s < s(hi).
+  std::size_t lo = 0;
+  std::size_t hi = pts.size() - 1;
+  while (hi - lo > 1) {
+    const std::size_t mid = (lo + hi) / 2;
+    (route.line.s_at_index(mid) <= s ? lo : hi) = mid;
+  }
+  const LanePlace& a = pts[lo];
+  const LanePlace& b = pts[hi];
+  if (a.lane != b.lane) {
+    // An edge boundary lies between the two waypoints: place exactly on either lane.
+    const Vec2 p = route.line.offset_point(s, lateral);
+    const LanePlace pa = place_on_lane(a.lane, p);
+    const LanePlace pb = place_on_lane(b.lane, p);
+    return better_place(pb, pa) ? pb : pa;
+  }
+  // Lane shapes follow the route within centimetres, so lane coordinates are linear in s
+  // between waypoints, and a sideways offset from the route is one from the lane.
+  const double s0 = route.line.s_at_index(lo);
+  const double s1 = route.line.s_at_index(hi);
+  const double f = s1 > s0 ? (s - s0) / (s1 - s0) : 0.0;
+  LanePlace place;
+  place.lane = a.lane;
+  place.lane_pos = a.lane_pos + f * (b.lane_pos - a.lane_pos);
+  place.lateral = a.lateral + f * (b.lateral - a.lateral) + lateral;
+  place.distance = std::abs(place.lateral);
+  return place;
+}
+
+std::optional<LanePlace> LaneMap::locate(const Vec2& p, double heading, double max_distance) const {
+  const Vec2 direction(std::cos(heading), std::sin(heading));
+  std::optional<LanePlace> best;
+  for (std::size_t i = 0; i < lanes_.size(); ++i) {
+    const Bounds& b = bounds_[i];
+    const Vec2 outside = (b.lo - p).cwiseMax(p - b.hi).cwiseMax(Vec2::Zero());
+    if (outside.norm() > max_distance) continue;
+    const LanePlace place = place_on_lane(static_cast<int>(i), p);
+    if (place.distance > max_distance) continue;
+    const LaneInfo& lane = lanes_[i];
+    if (lane.shape.tangent_at(place.lane_pos * lane.geometry_factor()).dot(direction) <= 0) continue;
+    if (!best || better_place(place, *best)) best = place;
+  }
+  return best;
+}
+
+std::vector<std::string> LaneMap::route_edges(const WaypointRoute& route, double s0, double s1) const {
+  const RouteLanes& rl = route_or_throw(route);
+  const auto position = [&](double s) {
+    const int lane = place_on_route(route, s, 0.0).lane;
+    return std::find(rl.lanes.begin(), rl.lanes.end(), lane) - rl.lanes.begin();
+  };
+  auto first = position(s0);
+  auto last = position(s1);
+  if (last < first) std::swap(first, last);
+  std::vector<std::string> edges;
+  for (auto k = first; k <= last; ++k) {
+    const std::string& edge = lanes_[static_cast<std::size_t>(rl.lanes[static_cast<std::size_t>(k)])].edge;
+    if (edges.empty() || edges.back() != edge) edges.push_back(edge);
+  }
+  return edges;
+}
+
+}  // namespace orch

@@ -1,0 +1,421 @@
+#include "map/net_plan.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <set>
+#include <tuple>
+
+#include "core/errors.hpp"
+#include "map/corridor_geometry.hpp"
+#include "map/route_corridors.hpp"
+
+namespace orch {
+
+namespace {
+
+using namespace corridor;
+
+// Consecutive routes of one lane may share up to this much road (a repeated point or two).
+constexpr double kMaxContinuationOverlap = 2.0;  // m
+
+constexpr std::size_t kMaxNameLength = 60;
+
+// One route of a corridor, extended so that every cut lies on it.
+struct Member {
+  const WaypointRoute* route = nullptr;
+  std::size_t index = 0;    // of the route in the waypoint file
+  Polyline line;            // route + straight extensions (lane_extension + slack)
+  double first_wp_s = 0;    // arc length of waypoint 0 on `line`
+  double lane_start = 0;    // where its lane begins: lane_extension before waypoint 0,
+  double lane_end = 0;      // ... and ends: past the last one (less for continuations)
+  double lateral = 0;       // m left of the corridor's reference route (naming order)
+  std::vector<double> keys; // position along the corridor every kTrackStep of `line`
+  std::size_t start_cut = 0;
+  std::size_t end_cut = 0;
+  std::vector<double> cut_s;  // arc length on `line` of cuts start_cut..end_cut
+  [[nodiscard]] double cut_at(std::size_t cut) const { return cut_s[cut - start_cut]; }
+  [[nodiscard]] bool active_in(std::size_t segment) const { return start_cut <= segment && segment < end_cut; }
+
+  // Position along the corridor of arc length s on `line`, and the reverse (keys[i]
+  // belongs to s = i * kTrackStep, the last one to the end of the line).
+  [[nodiscard]] double sample_s(std::size_t i) const { return std::min(static_cast<double>(i) * kTrackStep, line.length()); }
+  [[nodiscard]] double key_of(double s) const {
+    const auto i = std::min(static_cast<std::size_t>(std::max(s, 0.0) / kTrackStep), keys.size() - 2);
+    const double f = std::clamp((s - sample_s(i)) / (sample_s(i + 1) - sample_s(i)), 0.0, 1.0);
+    return keys[i] + f * (keys[i + 1] - keys[i]);
+  }
+  [[nodiscard]] double s_of_key(double key) const {
+    const auto it = std::lower_bound(keys.begin(), keys.end(), key);
+    if (it == keys.begin()) return 0.0;
+    if (it == keys.end()) return line.length();
+    const auto i = static_cast<std::size_t>(it - keys.begin()) - 1;
+    const double span = keys[i + 1] - keys[i];
+    const double f = span > 1e-9 ? (key - keys[i]) / span : 0.0;
+    return sample_s(i) + f * (sample_s(i + 1) - sample_s(i));
+  }
+  [[nodiscard]] double last_wp_s() const { return first_wp_s + route->line.length(); }
+};
+
+struct Cut {
+  Vec2 point;
+  Vec2 direction;
+  double key = 0;            // position along the corridor
+  std::size_t member = 0;    // the lane end that placed the cut
+  bool at_start = false;     // ... its start (else its end)
+};
+
+struct Event {
+  double key = 0;  // position along the corridor's reference route
+  std::size_t member = 0;
+  bool is_start = false;
+};
+
+std::string corridor_name(const std::vector<Member>& members, std::set<std::string>& used) {
+  std::vector<const Member*> order;
+  for (const Member& m : members) order.push_back(&m);
+  std::stable_sort(order.begin(), order.end(), [](const Member* a, const Member* b) { return a->lateral < b->lateral; });
+  // Pieces of one lane (consecutive routes) keep their file order.
+  for (auto run = order.begin(); run != order.end();) {
+    auto end = run + 1;
+    while (end != order.end() && (*end)->lateral - (*(end - 1))->lateral < kMinLaneSpacing / 2) ++end;
+    std::sort(run, end, [](const Member* a, const Member* b) { return a->index < b->index; });
+    run = end;
+  }
+  std::string name;
+  for (const Member* m : order) name += (name.empty() ? "" : "+") + sumo_safe_id(m->route->id);
+  if (name.size() > kMaxNameLength)
+    name = sumo_safe_id(order.front()->route->id) + ".." + sumo_safe_id(order.back()->route->id);
+  std::string unique = name;
+  for (int k = 2; used.count(unique); ++k) unique = fmt::format("{}~{}", name, k);
+  used.insert(unique);
+  return unique;
+}
+
+double lane_speed(const Member& m, double s0, double s1, std::vector<std::string>& notes) {
+  const WaypointRoute& r = *m.route;
+  double best = 0;
+  bool any = false;
+  for (std::size_t i = 0; i < r.points.size(); ++i) {
+    const double s = m.first_wp_s + r.line.s_at_index(i);
+    if (s < s0 || s > s1) continue;
+    best = std::max(best, r.points[i].v);
+    any = true;
+  }
+  // A stretch that lies wholly in the straight extension takes the speed of the end it extends.
+  if (!any) best = (s1 <= m.first_wp_s) ? r.points.front().v : r.points.back().v;
+  if (best > 0) return best;
+  notes.push_back(fmt::format("route \"{}\" has no positive target speed v between its waypoints; its lane gets "
+                              "{:.2f} m/s", r.id, kFallbackLaneSpeed));
+  return kFallbackLaneSpeed;
+}
+
+class CorridorPlanner {
+ public:
+  CorridorPlanner(const WaypointFile& wf, const std::vector<std::size_t>& route_indices, const NetPlanSettings& st)
+      : settings_(st) {
+    double shortest = std::numeric_limits<double>::infinity();
+    for (std::size_t i : route_indices)
+      shortest = std::min(shortest, wf.routes[i].line.length() + 2 * st.lane_extension);
+    merge_ = std::min(kMaxCutMerge, 0.5 * shortest);
+    slack_ = merge_ + kExtensionStep;
+    for (std::size_t i : route_indices) {
+      Member m;
+      m.route = &wf.routes[i];
+      m.index = i;
+      const double ext = st.lane_extension + slack_;
+      std::tie(m.line, m.first_wp_s) = extend_straight(m.route->line, ext, ext);
+      m.lane_start = m.first_wp_s - st.lane_extension;
+      m.lane_end = m.first_wp_s + m.route->line.length() + st.lane_extension;
+      members_.push_back(std::move(m));
+    }
+  }
+
+  void plan(std::set<std::string>& used_names, NetPlan& out) {
+    const std::size_t first_edge = out.edges.size();
+    build_axis();
+    name_ = corridor_name(members_, used_names);
+    link_continuations(out.notes);
+    place_cuts();
+    cut_members();
+    std::vector<std::ptrdiff_t> edge_of_segment(cuts_.size() - 1, -1);
+    std::vector<bool> node_used(cuts_.size(), false);
+    int edge_number = 0;
+    for (std::size_t seg = 0; seg + 1 < cuts_.size(); ++seg) {
+      PlannedEdge e = plan_edge(seg, out.notes);
+      if (e.lanes.empty()) continue;  // the corridor's routes leave a gap here
+      e.id = fmt::format("{}#{}", name_, edge_number++);
+      e.from = node_id(seg);
+      e.to = node_id(seg + 1);
+      node_used[seg] = node_used[seg + 1] = true;
+      edge_of_segment[seg] = static_cast<std::ptrdiff_t>(out.edges.size());
+      out.edges.push_back(std::move(e));
+    }
+    std::vector<PlannedNode> nodes;
+    for (std::size_t c = 0; c < cuts_.size(); ++c)
+      if (node_used[c]) nodes.push_back(plan_node(c, edge_of_segment, out.edges));
+    for (std::size_t i = first_edge; i < out.edges.size(); ++i) {
+      PlannedEdge& e = out.edges[i];
+      e.shape = centre_line(e);
+      for (const PlannedNode& n : nodes) {
+        if (n.id == e.from) e.shape.front() = n.position;
+        if (n.id == e.to) e.shape.back() = n.position;
+      }
+    }
+    out.nodes.insert(out.nodes.end(), nodes.begin(), nodes.end());
+    add_connections(edge_of_segment, out);
+  }
+
+ private:
+  // The longest route, extended far enough that every other member projects onto it: the
+  // common measure of "how far along the corridor" for ordering the cuts.
+  void build_axis() {
+    std::size_t ref = 0;
+    double longest = 0;
+    for (std::size_t i = 0; i < members_.size(); ++i)
+      if (members_[i].route->line.length() > longest) {
+        longest = members_[i].route->line.length();
+        ref = i;
+      }
+    double reach = 0;
+    for (const Member& m : members_) reach = std::max(reach, m.line.length());
+    axis_ = extend_straight(members_[ref].route->line, reach, reach).first;
+    for (Member& m : members_) {
+      m.keys = track_along(axis_, m.line);
+      const double mid = m.first_wp_s + m.route->line.length() / 2;
+      m.lateral = axis_.project_near(m.line.point_at(mid), m.key_of(mid), kTrackWindow).lateral;
+    }
+  }
+
+  // Every lane start and end is an event; events closer than merge_ become one cut, placed
+  // so that no lane loses its extension where possible (earliest start, latest end).
+  void place_cuts() {
+    std::vector<Event> events;
+    for (std::size_t i = 0; i < members_.size(); ++i) {
+      const Member& m = members_[i];
+      for (const bool start : {true, false}) {
+        events.push_back({m.key_of(start ? m.lane_start : m.lane_end), i, start});
+      }
+    }
+    std::sort(events.begin(), events.end(), [](const Event& a, const Event& b) {
+      if (a.key != b.key) return a.key < b.key;
+      if (a.member != b.member) return a.member < b.member;
+      return a.is_start > b.is_start;
+    });
+    for (std::size_t first = 0; first < events.size();) {
+      std::size_t last = first;
+      while (last + 1 < events.size() && events[last + 1].key - events[first].key <= merge_) ++last;
+      bool all_start = true;
+      bool all_end = true;
+      for (std::size_t k = first; k <= last; ++k) {
+        all_start = all_start && events[k].is_start;
+        all_end = all_end && !events[k].is_start;
+        Member& m = members_[events[k].member];
+        (events[k].is_start ? m.start_cut : m.end_cut) = cuts_.size();
+      }
+      const Event& rep = all_start ? events[first] : all_end ? events[last] : events[(first + last) / 2];
+      const Member& rm = members_[rep.member];
+      const double s = rep.is_start ? rm.lane_start : rm.lane_end;
+      cuts_.push_back({rm.line.point_at(s), rm.line.tangent_at(s), rep.key, rep.member, rep.is_start});
+      first = last + 1;
+    }
+  }
+
+  // Where each member crosses each cut it spans: exactly at its own lane ends, elsewhere
+  // the foot of the cut point on it, searched near where the tracking predicts it.
+  void cut_members() {
+    for (std::size_t i = 0; i < members_.size(); ++i) {
+      Member& m = members_[i];
+      if (m.end_cut <= m.start_cut)
+        throw MapError(fmt::format("route \"{}\" is too short to become a lane", m.route->id));
+      for (std::size_t c = m.start_cut; c <= m.end_cut; ++c) {
+        const Cut& cut = cuts_[c];
+        double s = m.line.project_near(cut.point, m.s_of_key(cut.key), kTrackWindow).s;
+        if (cut.member == i) s = cut.at_start ? m.lane_start : m.lane_end;
+        s = std::clamp(s, 0.0, m.line.length());
+        if (!m.cut_s.empty() && s <= m.cut_s.back() + 0.5)
+          throw MapError(fmt::format("cannot cut route \"{}\" consistently with its neighbouring routes near "
+                                     "({:.1f}, {:.1f}): its neighbours start or end out of order along it",
+                                     m.route->id, cut.point.x(), cut.point.y()));
+        m.cut_s.push_back(s);
+      }
+    }
+  }
+
+  [[nodiscard]] PlannedEdge plan_edge(std::size_t seg, std::vector<std::string>& notes) const {
+    std::vector<const Member*> active;
+    for (const Member& m : members_)
+      if (m.active_in(seg)) active.push_back(&m);
+    PlannedEdge e;
+    if (active.empty()) return e;
+    std::vector<std::pair<double, PlannedLane>> lanes;
+    for (const Member* m : active) {
+      const double s0 = m->cut_at(seg);
+      const double s1 = m->cut_at(seg + 1);
+      PlannedLane lane;
+      lane.route_id = m->route->id;
+      lane.shape = m->line.slice(s0, s1).simplified(settings_.simplify_tolerance);
+      lane.speed = lane_speed(*m, s0, s1, notes);
+      lanes.emplace_back(0.0, std::move(lane));
+    }
+    // Order right to left by the lateral offset from the longest lane of the stretch.
+    const auto ref = std::max_element(lanes.begin(), lanes.end(), [](const auto& a, const auto& b) {
+      return a.second.shape.length() < b.second.shape.length();
+    });
+    const Polyline ref_shape = ref->second.shape;
+    for (auto& [lateral, lane] : lanes) {
+      const double mid = lane.shape.length() / 2;
+      lateral = project_along(ref_shape, lane.shape.point_at(mid), lane.shape.tangent_at(mid)).lateral;
+    }
+    std::stable_sort(lanes.begin(), lanes.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+    for (auto& l : lanes) e.lanes.push_back(std::move(l.second));
+    // Lane width = spacing of neighbouring routes (mean of both sides for inner lanes).
+    std::vector<double> spacing;
+    for (std::size_t i = 0; i + 1 < e.lanes.size(); ++i)
+      spacing.push_back(lane_spacing(e.lanes[i].shape, e.lanes[i + 1].shape));
+    for (std::size_t i = 0; i < e.lanes.size(); ++i) {
+      std::vector<double> sides;
+      if (i > 0) sides.push_back(spacing[i - 1]);
+      if (i < spacing.size()) sides.push_back(spacing[i]);
+      double width = kDefaultLaneWidth;
+      if (!sides.empty()) width = (sides.front() + sides.back()) / 2;
+      e.lanes[i].width = std::round(width * 100) / 100;
+    }
+    return e;
+  }
+
+  // The junction at a cut: a line across the road through the ends of every lane that
+  // ends or begins there (see PlannedNode::shape), reaching half a lane beyond the outer
+  // ones. Each piece is perpendicular to the lanes it touches (the other lanes' ends are
+  // feet of the cut point on them), so no lane crosses it anywhere but at its own end,
+  // however the road curves.
+  [[nodiscard]] PlannedNode plan_node(std::size_t c, const std::vector<std::ptrdiff_t>& edge_of_segment,
+                                      const std::vector<PlannedEdge>& edges) const {
+    const Vec2 n = left_normal(cuts_[c].direction);
+    struct LaneEnd {
+      double lateral;
+      Vec2 point;
+      Vec2 normal;  // left normal of the lane there
+    };
+    std::vector<LaneEnd> ends;
+    for (const Member& m : members_) {
+      if (m.start_cut > c || m.end_cut < c) continue;
+      const double s = m.cut_at(c);
+      const Vec2 p = m.line.point_at(s);
+      ends.push_back({p.dot(n), p, left_normal(m.line.tangent_at(s))});
+    }
+    std::sort(ends.begin(), ends.end(), [](const LaneEnd& a, const LaneEnd& b) { return a.lateral < b.lateral; });
+    double half_width = 0;
+    for (const std::size_t seg : {c - 1, c}) {
+      if (seg >= edge_of_segment.size() || edge_of_segment[seg] < 0) continue;
+      for (const PlannedLane& l : edges[static_cast<std::size_t>(edge_of_segment[seg])].lanes)
+        half_width = std::max(half_width, l.width / 2);
+    }
+    PlannedNode node;
+    node.id = node_id(c);
+    node.position = 0.5 * (ends.front().point + ends.back().point);
+    // Out through the lane ends and back the same way: netconvert closes the shape into a
+    // polygon, and a closing chord straight across a curved cut would clip the lanes.
+    node.shape.push_back(ends.front().point - half_width * ends.front().normal);
+    for (const LaneEnd& e : ends) node.shape.push_back(e.point);
+    node.shape.push_back(ends.back().point + half_width * ends.back().normal);
+    for (auto e = ends.rbegin(); e != ends.rend(); ++e) node.shape.push_back(e->point);
+    return node;
+  }
+
+  // Each route continues on its own lane across a cut, and only there.
+  void add_connections(const std::vector<std::ptrdiff_t>& edge_of_segment, NetPlan& out) const {
+    const auto lane_of = [&](const PlannedEdge& e, const Member& m) {
+      for (std::size_t i = 0; i < e.lanes.size(); ++i)
+        if (e.lanes[i].route_id == m.route->id) return static_cast<int>(i);
+      return -1;
+    };
+    for (std::size_t c = 1; c + 1 < cuts_.size(); ++c) {
+      if (edge_of_segment[c - 1] < 0 || edge_of_segment[c] < 0) continue;
+      const PlannedEdge& from = out.edges[static_cast<std::size_t>(edge_of_segment[c - 1])];
+      const PlannedEdge& to = out.edges[static_cast<std::size_t>(edge_of_segment[c])];
+      for (const Member& m : members_)
+        if (m.active_in(c - 1) && m.active_in(c)) out.connections.push_back({from.id, to.id, lane_of(from, m), lane_of(to, m)});
+      for (const auto& [before, after] : continuations_) {
+        const Member& b = members_[before];
+        const Member& a = members_[after];
+        if (b.end_cut == c && a.start_cut == c) out.connections.push_back({from.id, to.id, lane_of(from, b), lane_of(to, a)});
+      }
+    }
+  }
+
+  // One lane drawn as consecutive routes ("B" up to some point, "C" from there on): their
+  // extensions would overlap and stack two lanes on each other. Instead both stop halfway
+  // between B's last and C's first waypoint, and B's lane continues into C's.
+  void link_continuations(std::vector<std::string>& notes) {
+    std::vector<bool> has_next(members_.size(), false);
+    std::vector<bool> has_previous(members_.size(), false);
+    for (std::size_t b = 0; b < members_.size(); ++b)
+      for (std::size_t a = 0; a < members_.size(); ++a) {
+        Member& before = members_[b];
+        Member& after = members_[a];
+        if (a == b || has_next[b] || has_previous[a] || std::abs(before.lateral - after.lateral) >= kMinLaneSpacing)
+          continue;
+        const double end_key = before.key_of(before.last_wp_s());
+        const double start_key = after.key_of(after.first_wp_s);
+        const double gap = start_key - end_key;
+        // Touching or apart by less than the two extensions; overlapping pieces are
+        // "coincident" routes and never share a corridor (route_corridors.cpp).
+        if (gap < -kMaxContinuationOverlap || gap > 2 * settings_.lane_extension) continue;
+        const double meet = (end_key + start_key) / 2;
+        before.lane_end = std::max(before.s_of_key(meet), before.last_wp_s());
+        after.lane_start = std::min(after.s_of_key(meet), after.first_wp_s);
+        has_next[b] = has_previous[a] = true;
+        continuations_.emplace_back(b, a);
+        notes.push_back(fmt::format("route \"{}\" continues route \"{}\" on the same lane: their lanes are connected",
+                                    after.route->id, before.route->id));
+      }
+  }
+
+  [[nodiscard]] std::string node_id(std::size_t cut) const { return fmt::format("{}@{}", name_, cut); }
+
+  NetPlanSettings settings_;
+  double merge_ = kMaxCutMerge;
+  double slack_ = kMaxCutMerge;
+  std::vector<Member> members_;
+  Polyline axis_;
+  std::vector<Cut> cuts_;
+  std::vector<std::pair<std::size_t, std::size_t>> continuations_;  // (before, after) member indices
+  std::string name_;
+};
+
+}  // namespace
+
+std::string sumo_safe_id(const std::string& id) {
+  std::string out = id.empty() ? std::string("route") : id;
+  for (char& c : out)
+    if (std::string_view(" \t\n\r|\\'\";,<>&").find(c) != std::string_view::npos) c = '_';
+  if (out.front() == ':') out.front() = '_';  // a leading ':' marks SUMO's internal edges
+  return out;
+}
+
+NetPlan plan_net(const WaypointFile& waypoints, const NetPlanSettings& settings) {
+  // A lane cannot close on itself: its two ends would meet in one junction, through which
+  // netconvert then cuts the lane. Say so instead of building a broken net.
+  for (const WaypointRoute& r : waypoints.routes) {
+    const double gap = (r.line.points().back() - r.line.point(0)).norm();
+    if (gap < kMaxLaneSpacing && r.line.length() > 4 * kMaxLaneSpacing)
+      throw MapError(fmt::format("route \"{}\" is a closed loop (its last waypoint is {:.2f} m from its first); "
+                                 "map build does not support loops", r.id, gap));
+  }
+  NetPlan plan;
+  const auto corridors = find_corridors(waypoints, plan.notes);
+  plan.corridors = static_cast<int>(corridors.size());
+  std::set<std::string> used_names;
+  for (const auto& corridor : corridors) CorridorPlanner(waypoints, corridor, settings).plan(used_names, plan);
+  // Remarks repeat per stretch of road; keep the first of each.
+  std::vector<std::string> unique_notes;
+  for (auto& note : plan.notes)
+    if (std::find(unique_notes.begin(), unique_notes.end(), note) == unique_notes.end()) unique_notes.push_back(std::move(note));
+  plan.notes = std::move(unique_notes);
+  return plan;
+}
+
+}  // namespace orch

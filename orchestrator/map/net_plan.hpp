@@ -1,0 +1,101 @@
+#pragma once
+// Second step of `map build`: the SUMO network as plain values (nodes, edges with custom
+// lane shapes, connections), computed from the waypoint routes alone. Pure geometry, no
+// files and no SUMO, so that the algorithm can be tested on its own; net_builder.cpp
+// writes it as netconvert's plain XML.
+//
+// Per corridor (route_corridors.hpp) the road is cut wherever a route starts or ends, so
+// each stretch has a constant set of routes; each stretch becomes one edge whose lanes are
+// those routes ordered right to left (lane 0 = rightmost relative to the direction of
+// travel). Lane shapes are the routes themselves, extended straight by `lane_extension`
+// beyond their first and last waypoint, except where one lane is drawn as consecutive
+// routes: those meet halfway between the last and first waypoint and are connected.
+//
+// Naming scheme (readable in sumo-gui and TraCI; characters SUMO forbids in ids become '_'):
+//   corridor name  the corridor's route ids, right to left, joined with '+'
+//                  ("Waypoint03+Waypoint02+Waypoint01"); "<rightmost>..<leftmost>" when
+//                  that would exceed 60 characters; "~2", "~3" appended if two corridors
+//                  would share a name.
+//   edge           <corridor name>#<n>, n = 0, 1, ... in driving order
+//   lane           SUMO's own: <edge>_<index>, index 0 = rightmost
+//   node           <corridor name>@<k>, k = 0, 1, ... the cuts in driving order
+//
+// What it does not model, and what happens instead:
+//   - lanes that branch off or merge (exit/entry ramps, tapers): a route whose spacing to
+//     its neighbour drifts by more than 1 m is not "parallel", so it becomes a road of its
+//     own, overlapping the other; vehicles on the two do not see each other;
+//   - routes drawn along the same lane over the same stretch (coincident routes): each gets
+//     a lane of its own, on top of the other (a note names them);
+//   - junctions, turns and crossings between corridors: corridors are never connected;
+//   - closed loops (a route ending where it starts): refused with an error;
+//   - heights: lanes are planar (the file's y is dropped);
+//   - left-hand traffic: lane 0 is always the rightmost lane (SUMO's right-hand default).
+#include <string>
+#include <vector>
+
+#include "core/polyline.hpp"
+#include "map/waypoint_file.hpp"
+
+namespace orch {
+
+inline constexpr double kDefaultLaneWidth = 3.5;     // m, a lane with no neighbour
+inline constexpr double kFallbackLaneSpeed = 13.89;  // m/s (50 km/h) when a route has no v
+// Cuts closer than this along a corridor are merged into one, so that routes that start or
+// end "together" (a few metres apart on a curve) do not produce a string of tiny edges.
+inline constexpr double kMaxCutMerge = 10.0;  // m
+
+struct NetPlanSettings {
+  double lane_extension = 20.0;     // m beyond the first and last waypoint of each route
+  double simplify_tolerance = 0.02; // m, Douglas-Peucker on the lane shapes
+};
+
+struct PlannedLane {
+  std::string route_id;  // the waypoint route the lane lies under
+  double width = kDefaultLaneWidth;
+  double speed = kFallbackLaneSpeed;  // m/s
+  Polyline shape;
+};
+
+struct PlannedNode {
+  std::string id;
+  Vec2 position;
+  // Custom junction shape: a line across the road through the exact lane ends (there and
+  // back, so that the polygon netconvert closes it into has no other edges). netconvert
+  // cuts every lane shape, custom ones included, where it enters the junction shape; with
+  // its own junction shapes (or any shape with an area) that cuts 0.1-0.3 m off the lanes
+  // and leaves waypoints beside no lane. A shape that touches the lanes only at their ends
+  // leaves them exactly as planned.
+  std::vector<Vec2> shape;
+};
+
+struct PlannedEdge {
+  std::string id;
+  std::string from;
+  std::string to;
+  std::vector<PlannedLane> lanes;  // index 0 = rightmost
+  // Centre line of the road: SUMO derives the directions of connections from it.
+  std::vector<Vec2> shape;
+};
+
+struct PlannedConnection {
+  std::string from;
+  std::string to;
+  int from_lane = 0;
+  int to_lane = 0;
+};
+
+struct NetPlan {
+  int corridors = 0;
+  std::vector<PlannedNode> nodes;
+  std::vector<PlannedEdge> edges;  // corridor by corridor, each in driving order
+  std::vector<PlannedConnection> connections;
+  std::vector<std::string> notes;  // remarks for the user (single routes, fallbacks, ...)
+};
+
+// Throws MapError when the routes cannot be cut consistently (see the notes in the text).
+NetPlan plan_net(const WaypointFile& waypoints, const NetPlanSettings& settings);
+
+// `id` with the characters SUMO does not accept in ids replaced by '_'.
+std::string sumo_safe_id(const std::string& id);
+
+}  // namespace orch

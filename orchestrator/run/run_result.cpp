@@ -1,0 +1,64 @@
+#include "run/run_result.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include "core/files.hpp"
+
+namespace orch {
+
+namespace {
+const char* kind_name(engine::EventKind k) {
+  switch (k) {
+    case engine::EventKind::Scene: return "scene";
+    case engine::EventKind::Action: return "action";
+    case engine::EventKind::Warning: return "warning";
+    case engine::EventKind::Info: return "info";
+  }
+  return "info";
+}
+
+nlohmann::ordered_json file_json(const InputFile& f) {
+  return {{"path", f.path}, {"sha256", f.sha256}};
+}
+}  // namespace
+
+std::string to_json(const RunResult& r) {
+  nlohmann::ordered_json j;
+  j["verdict"] = r.verdict;
+  j["reason"] = r.reason;
+  j["sim_time"] = r.sim_time;
+  j["steps"] = r.steps;
+  j["title"] = r.title;
+  j["description"] = r.description;
+  j["scenes"] = nlohmann::ordered_json::array();
+  for (const auto& s : r.scenes)
+    j["scenes"].push_back({{"scene_id", s.id}, {"description", s.description}, {"enter_time", s.enter_time}});
+  j["ending_scene"] = r.ending_scene ? nlohmann::ordered_json(*r.ending_scene) : nlohmann::ordered_json(nullptr);
+  j["seed"] = r.seed;
+  j["step"] = r.step;
+  j["max_time"] = r.max_time ? nlohmann::ordered_json(*r.max_time) : nlohmann::ordered_json(nullptr);
+  j["backend"] = r.backend;
+  j["sumo_version"] = r.sumo_version;
+  j["orchestrator_version"] = ORCH_VERSION;
+  j["map_id"] = r.map_id;
+  j["inputs"] = {{"scenario", file_json(r.scenario)}, {"waypoints", file_json(r.waypoints)}, {"net", file_json(r.net)}};
+  j["events"] = nlohmann::ordered_json::array();
+  for (const auto& e : r.events) j["events"].push_back({{"time", e.time}, {"kind", kind_name(e.kind)}, {"text", e.text}});
+  j["warnings"] = r.warnings;
+  j["trace_rows"] = r.trace_rows;
+  j["wall_time_s"] = r.wall_time_s;
+  j["outputs"] = {{"trace", "trace.csv"}, {"log", "run.log"}, {"sumo_log", "sumo.log"}};
+  return j.dump(2) + "\n";
+}
+
+void write_result(const std::filesystem::path& dir, const RunResult& r) {
+  write_file_atomically(dir / "result.json", to_json(r));
+}
+
+int exit_code_for(const RunResult& r) {
+  if (r.verdict == "success") return 0;
+  if (r.verdict == "failure") return 1;
+  return 2;
+}
+
+}  // namespace orch

@@ -1,0 +1,47 @@
+#pragma once
+// result.json: the verdict of one run and everything needed to trace it back to its inputs
+// (README "Outputs"). Written atomically at the end of every run, whatever ended it.
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "engine/engine.hpp"
+
+namespace orch {
+
+struct InputFile {
+  std::string path;
+  std::string sha256;
+};
+
+struct RunResult {
+  std::string verdict = "error";  // success | failure | error
+  std::string reason;
+  double sim_time = 0;
+  long long steps = 0;
+  double step = 0;
+  long long seed = 0;
+  std::optional<double> max_time;
+  std::string backend;
+  std::string sumo_version;
+  std::string title;
+  std::string description;
+  std::string map_id;
+  InputFile scenario;
+  InputFile waypoints;
+  InputFile net;
+  std::vector<engine::SceneVisit> scenes;
+  std::optional<int> ending_scene;
+  std::vector<engine::Event> events;
+  std::vector<std::string> warnings;  // validation warnings
+  double wall_time_s = 0;
+  long long trace_rows = 0;
+};
+
+std::string to_json(const RunResult& r);
+void write_result(const std::filesystem::path& dir, const RunResult& r);
+// 0 success, 1 failure, 2 error: a script can tell a failed test from a broken run.
+int exit_code_for(const RunResult& r);
+
+}  // namespace orch

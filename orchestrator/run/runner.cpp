@@ -1,0 +1,186 @@
+#include "run/runner.hpp"
+
+#include <fmt/format.h>
+
+#include <chrono>
+
+#include "core/errors.hpp"
+#include "core/files.hpp"
+#include "engine/engine.hpp"
+#include "map/lane_map.hpp"
+#include "map/map_registry.hpp"
+#include "map/waypoint_file.hpp"
+#include "run/run_log.hpp"
+#include "run/trace_writer.hpp"
+#include "scenario/catalog.hpp"
+#include "scenario/loader.hpp"
+#include "scenario/validator.hpp"
+
+namespace orch {
+
+namespace {
+
+// Everything a run needs from disk, loaded and checked before SUMO starts.
+struct Inputs {
+  scenario::Scenario scenario;
+  MapManifest map;
+  WaypointFile waypoints;
+  Catalog catalog;
+};
+
+Inputs load_inputs(const RunRequest& req, RunResult& result, RunLog& log) {
+  LoadedScenario loaded = load_scenario(req.scenario_file);
+  result.scenario = {req.scenario_file, sha256_of_file(req.scenario_file)};
+  if (!loaded.scenario) throw ScenarioError(loaded.diagnostics);
+  scenario::Scenario s = std::move(*loaded.scenario);
+  result.title = s.title;
+  result.description = s.description;
+  result.map_id = s.map_id;
+
+  const auto dirs = req.map_dirs.empty() ? MapRegistry::default_search_dirs() : req.map_dirs;
+  const MapRegistry registry(dirs);
+  const MapManifest* map = registry.find(s.map_id);
+  if (!map) throw MapError(fmt::format("no map \"{}\" (scenario map_id) in {} map folder(s)", s.map_id, dirs.size()));
+  WaypointFile waypoints = load_waypoint_file(map->waypoint_path().string());
+  result.waypoints = {map->waypoint_path().string(), sha256_of_file(map->waypoint_path())};
+  result.net = {map->net_path().string(), sha256_of_file(map->net_path())};
+  Catalog catalog = req.catalog_file.empty() ? Catalog::embedded() : Catalog::load(req.catalog_file);
+
+  Diagnostics diags = loaded.diagnostics;
+  diags.append(check_scenario(s, waypoints, catalog, ValidationOptions{req.strict}));
+  for (const auto& d : diags.items()) {
+    if (d.severity == Severity::Warning) result.warnings.push_back(d.format());
+    log.note(d.format());
+  }
+  if (diags.has_errors()) throw ScenarioError(diags);
+  if (req.strict && diags.warning_count() > 0)
+    throw ScenarioError(SourceLocation{req.scenario_file, "", 0},
+                        fmt::format("{} validation warning(s) and --strict", diags.warning_count()));
+  return Inputs{std::move(s), *map, std::move(waypoints), std::move(catalog)};
+}
+
+void log_events(RunLog& log, RunResult& result, const std::vector<engine::Event>& events) {
+  for (const auto& e : events) {
+    log.at(e.time, e.text);
+    result.events.push_back(e);
+  }
+}
+
+std::string first_line(const std::string& text) { return text.substr(0, text.find('\n')); }
+
+}  // namespace
+
+RunResult run_scenario(const RunRequest& req, Simulator& sim) {
+  const auto wall_start = std::chrono::steady_clock::now();
+  std::filesystem::create_directories(req.out_dir);
+  RunLog log(req.out_dir / "run.log", req.echo);
+  RunResult result;
+  result.step = req.step;
+  result.seed = req.seed;
+  result.max_time = req.max_time;
+  result.backend = sim.backend();
+  log.note(fmt::format("orchestrator {} | scenario {} | step {} s | seed {} | backend {}", ORCH_VERSION,
+                       req.scenario_file, req.step, req.seed, sim.backend()));
+
+  // Declared in this order so that the engine and the trace, which refer to the inputs and
+  // lanes, go first.
+  std::optional<Inputs> in;
+  std::optional<LaneMap> lanes;
+  std::optional<engine::Engine> engine;
+  std::optional<TraceWriter> trace;
+  try {
+    in.emplace(load_inputs(req, result, log));
+    lanes.emplace(LaneMap::build(in->map.net_path().string(), in->waypoints));
+    engine.emplace(in->scenario, engine::MapContext{in->waypoints, *lanes, in->map.lane_extension}, in->catalog,
+                   engine::EngineOptions{req.step});
+    log.note(fmt::format("map {} ({}) | {} actors", in->map.id, in->map.net_path().string(),
+                         engine->actors().slots().size()));
+
+    SimulatorConfig config;
+    config.net_file = in->map.net_path().string();
+    config.step = req.step;
+    config.seed = req.seed;
+    config.log_file = (req.out_dir / "sumo.log").string();
+    sim.start(config);
+    result.sumo_version = sim.version();
+    trace.emplace(req.out_dir / "trace.csv", *lanes);
+
+    auto out = engine->start();
+    log_events(log, result, out.events);
+    sim.apply(out.commands);
+    const auto tracked = engine->tracked();
+    while (true) {
+      sim.advance();
+      ++result.steps;
+      const engine::WorldSnapshot snap = sim.read(tracked);
+      out = engine->step(snap);
+      result.sim_time = snap.time;
+      log_events(log, result, out.events);
+      trace->record(*engine);
+      if (engine->state() != engine::RunState::Running) break;
+      if (req.max_time && snap.time >= *req.max_time - 1e-9) {
+        result.verdict = "failure";
+        result.reason = fmt::format("--max-time {} s reached in scene {}", *req.max_time, engine->scene());
+        log.at(snap.time, result.reason);
+        break;
+      }
+      if (req.interrupted && req.interrupted->load()) {
+        result.verdict = "error";
+        result.reason = fmt::format("interrupted at t={:.3f} s", snap.time);
+        log.at(snap.time, result.reason);
+        break;
+      }
+      sim.apply(out.commands);
+    }
+    switch (engine->state()) {
+      case engine::RunState::EndingReached:
+        result.verdict = "success";
+        result.reason = engine->end_reason();
+        result.ending_scene = engine->scene();
+        break;
+      case engine::RunState::StopConditionMet:
+        result.verdict = "failure";
+        result.reason = engine->end_reason();
+        break;
+      case engine::RunState::Error:
+        result.verdict = "error";
+        result.reason = engine->end_reason();
+        break;
+      case engine::RunState::Running:
+        break;  // max time or interrupted: already set
+    }
+  } catch (const ScenarioError& e) {
+    result.verdict = "error";
+    result.reason = fmt::format("invalid scenario: {} error(s); first: {}", e.diagnostics().error_count(),
+                                first_line(e.what()));
+    for (const auto& d : e.diagnostics().items())
+      if (d.severity == Severity::Error) log.note(d.format());
+  } catch (const MapError& e) {
+    result.verdict = "error";
+    result.reason = std::string("map: ") + e.what();
+  } catch (const SimulationError& e) {
+    result.verdict = "error";
+    result.reason = e.what();
+  } catch (const OrchError& e) {
+    result.verdict = "error";
+    result.reason = e.what();
+  } catch (const std::exception& e) {
+    // A bug of ours must still leave a result behind, clearly marked as such.
+    result.verdict = "error";
+    result.reason = std::string("internal error: ") + e.what();
+  }
+  if (engine) result.scenes = engine->visits();
+  if (trace) {
+    trace->flush();
+    result.trace_rows = trace->rows();
+  }
+  sim.close();
+  result.wall_time_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+  log.note(fmt::format("verdict {}: {} (simulated {:.2f} s in {} steps, {:.2f} s wall)", result.verdict,
+                       result.reason, result.sim_time, result.steps, result.wall_time_s));
+  write_result(req.out_dir, result);
+  return result;
+}
+
+}  // namespace orch

@@ -1,0 +1,31 @@
+#pragma once
+// One scenario run from files to verdict. Every way a run can end goes through here and
+// ends with result.json written: success, failure, or error with a reason. Typed errors
+// are caught once, in run_scenario, and never reported as a test failure.
+#include <atomic>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "run/run_result.hpp"
+#include "run/simulator.hpp"
+
+namespace orch {
+
+struct RunRequest {
+  std::string scenario_file;
+  std::filesystem::path out_dir = "out";
+  double step = 0.05;
+  long long seed = 42;
+  std::optional<double> max_time;
+  bool strict = false;  // validation warnings stop the run
+  bool echo = true;     // run log to the terminal too
+  std::vector<std::filesystem::path> map_dirs;  // empty: MapRegistry::default_search_dirs()
+  std::string catalog_file;                     // empty: the compiled-in catalog
+  const std::atomic<bool>* interrupted = nullptr;  // set by a signal handler to end the run
+};
+
+RunResult run_scenario(const RunRequest& request, Simulator& simulator);
+
+}  // namespace orch

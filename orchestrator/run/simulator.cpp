@@ -1,0 +1,31 @@
+#include "run/simulator.hpp"
+
+#include <fmt/format.h>
+
+namespace orch {
+
+std::vector<std::string> sumo_arguments(const SimulatorConfig& c) {
+  std::vector<std::string> args = {
+      "-n", c.net_file,
+      "--step-length", fmt::format("{:g}", c.step),
+      "--seed", std::to_string(c.seed),
+      // Sublane model: actors' lateral offsets (lane changes, lane_offset) are seen by SUMO.
+      "--lateral-resolution", "0.8",
+      // Report every physical contact; never teleport or remove a vehicle, which would
+      // silently change the scenario (an ego waiting behind an obstacle must keep waiting).
+      "--collision.action", "warn",
+      "--collision.check-junctions", "true",
+      "--collision.mingap-factor", "0",
+      "--time-to-teleport", "-1",
+      "--no-step-log", "true",
+      "--duration-log.disable", "true",
+  };
+  if (!c.log_file.empty()) {
+    args.push_back("--log");
+    args.push_back(c.log_file);
+  }
+  args.insert(args.end(), c.extra_args.begin(), c.extra_args.end());
+  return args;
+}
+
+}  // namespace orch

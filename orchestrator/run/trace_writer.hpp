@@ -1,0 +1,37 @@
+#pragma once
+// trace.csv: one row per present actor per step, a contract users script against
+// (README "Outputs"). Rows are written with fixed precision so the same run gives the
+// same bytes, and flushed regularly so a crash keeps what was simulated.
+#include <cstdio>
+#include <filesystem>
+#include <string>
+
+#include "engine/engine.hpp"
+#include "map/lane_map.hpp"
+
+namespace orch {
+
+class TraceWriter {
+ public:
+  static constexpr const char* kHeader =
+      "time,scene_id,actor_id,x,y,heading,speed,accel,edge,lane,lane_pos,lat_offset,signals,siren,driver";
+
+  TraceWriter(const std::filesystem::path& path, const LaneMap& lanes);
+  ~TraceWriter();
+  TraceWriter(const TraceWriter&) = delete;
+  TraceWriter& operator=(const TraceWriter&) = delete;
+
+  void record(const engine::Engine& engine);
+  void flush();
+  [[nodiscard]] long long rows() const { return rows_; }
+
+ private:
+  [[nodiscard]] double lateral_offset(const engine::ActorState& a) const;
+
+  std::FILE* file_ = nullptr;
+  const LaneMap& lanes_;
+  long long rows_ = 0;
+  int steps_since_flush_ = 0;
+};
+
+}  // namespace orch

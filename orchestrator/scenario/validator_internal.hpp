@@ -1,0 +1,49 @@
+#pragma once
+// Pieces check_scenario's source files share (validator*.cpp).
+//
+// Messages point at the element a model value came from (an action, a condition, a start
+// position): the model keeps one SourceLocation per element, so a problem with its
+// "wp_idx" is reported at the object that holds it, and the message names the key.
+#include <optional>
+#include <string>
+
+#include "core/diagnostics.hpp"
+#include "map/waypoint_file.hpp"
+#include "scenario/catalog.hpp"
+#include "scenario/model.hpp"
+#include "scenario/validator.hpp"
+
+namespace orch::scenario_checks {
+
+struct CheckContext {
+  const scenario::Scenario& s;
+  const WaypointFile& waypoints;
+  const Catalog& catalog;
+  const ValidationOptions& options;
+  Diagnostics& diags;
+
+  // The catalog entry of an actor's model; nullptr for unknown actors and models (both
+  // reported on their own), so kind checks are skipped rather than repeated.
+  [[nodiscard]] const ModelInfo* model_of(scenario::ActorId id) const {
+    const auto* actor = s.find_actor(id);
+    return actor ? catalog.find(actor->model_id) : nullptr;
+  }
+};
+
+// validator.cpp: actor ids, models, one opening entry per actor.
+void check_actors(CheckContext& ctx);
+
+// validator_references.cpp: actor ids, waypoints, actor kinds and value ranges used by
+// start positions, conditions and actions.
+void check_opening(CheckContext& ctx);
+void check_scene_contents(CheckContext& ctx);
+
+// validator_graph.cpp: scene ids and next_scenes, reachability, start positions relative
+// to actors that form a cycle.
+void check_scene_graph(CheckContext& ctx);
+void check_start_cycles(CheckContext& ctx);
+
+// Text "0, 1 and 2" of the actor ids defined, for "no such actor" messages.
+std::string defined_actor_ids(const scenario::Scenario& s);
+
+}  // namespace orch::scenario_checks

@@ -1,0 +1,9 @@
+#!/usr/bin/env bash
+# The main job on the embedded default: installs what is missing, builds, and runs the
+# sample cut-in scenario on the shipped highway map with libsumo.
+# Results land in out/highway_cut_in/ (result.json, trace.csv, run.log).
+set -euo pipefail
+root=$(cd "$(dirname "$0")/.." && pwd)
+"$root/scripts/setup.sh"
+"$root/scripts/build.sh" "$root/build" >/dev/null
+exec "$root/build/bin/orchestrator" run "$root/scenarios/highway_cut_in.json" --out "$root/out/highway_cut_in" "$@"
