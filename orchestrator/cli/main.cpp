@@ -7,7 +7,9 @@
 namespace {
 
 void add_common(CLI::App* app, orch::cli::CommonOptions& c) {
-  app->add_option("--maps", c.map_dirs, "Folder holding map folders (repeatable; default: $ORCH_MAPS, then sumo_nets/)");
+  // One value per --maps, so that `--maps DIR a.json b.json` keeps both files as files.
+  app->add_option("--maps", c.map_dirs, "Folder holding map folders (repeatable; default: $ORCH_MAPS, then sumo_nets/)")
+      ->allow_extra_args(false);
   app->add_option("--catalog", c.catalog, "Model catalog JSON replacing the built-in one");
 }
 

@@ -80,7 +80,9 @@ StepOutput Engine::step(const WorldSnapshot& snapshot) {
                                       fired.empty() ? std::string(" (no conditions)") : ": " + join(fired))});
     if (to.ending) {
       state_ = RunState::EndingReached;
-      end_reason_ = fmt::format("ending scene {} reached", to.id);
+      end_reason_ = fmt::format("ending scene {}{} reached{}", to.id,
+                                to.description.empty() ? "" : " \"" + to.description + "\"",
+                                fired.empty() ? std::string{} : ": " + join(fired));
       return out;
     }
     enter_scene(to, t, out);

@@ -97,7 +97,7 @@ Catalog Catalog::load(const std::string& path) {
   return catalog;
 }
 
-Catalog Catalog::embedded() {
+const Catalog& Catalog::embedded() {
   // Parsed once; a broken built-in catalog is a build defect that the unit tests catch.
   static const Catalog built_in = parse(std::string(embedded::catalog_json()), "<built-in catalog>");
   return built_in;

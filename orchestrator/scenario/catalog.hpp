@@ -24,7 +24,8 @@ struct ModelInfo {
 
 class Catalog {
  public:
-  static Catalog embedded();
+  // The compiled-in catalog, parsed once; references to its models stay valid.
+  static const Catalog& embedded();
   // Throws ScenarioError naming file, line and pointer on a malformed catalog.
   static Catalog load(const std::string& path);
   static Catalog parse(const std::string& text, const std::string& path_for_messages);

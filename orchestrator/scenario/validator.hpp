@@ -16,6 +16,8 @@ struct ValidationOptions {
   bool strict = false;
 };
 
+// A WaypointFile without routes stands for "the map is unknown": the waypoint checks are
+// skipped and everything else is still checked (validate reports the unknown map itself).
 Diagnostics check_scenario(const scenario::Scenario& s, const WaypointFile& waypoints, const Catalog& catalog,
                            const ValidationOptions& options = {});
 
