@@ -52,10 +52,22 @@ struct SimCollision {
   double pos = 0;
 };
 
+// A SUMO vehicle that is not a scenario actor (background traffic), near an actor: what the
+// collision test checks against and what --trace-background writes.
+struct NearbyVehicle {
+  std::string sumo_id;
+  Vec2 position{0, 0};  // centre, map frame
+  double heading = 0;   // rad, counter-clockwise from +x
+  double speed = 0;
+  double length = 0;
+  double width = 0;
+};
+
 struct WorldSnapshot {
   double time = 0;
   std::vector<ActorState> actors;  // same order as the tracked actors
   std::vector<SimCollision> collisions;
+  std::vector<NearbyVehicle> nearby;  // background vehicles close to any actor
   int other_vehicles = 0;  // SUMO vehicles that are not scenario actors
 
   [[nodiscard]] const ActorState* find(ActorId id) const {
