@@ -12,6 +12,8 @@ packages=(
   libyaml-cpp-dev libpugixml-dev libssl-dev
   libgtest-dev libgmock-dev googletest libbenchmark-dev
   python3 xvfb xauth
+  slurm-wlm munge                       # the nightly batch's Slurm test runs a single-node cluster
+  clang libclang-rt-14-dev               # libFuzzer target of the ego TraCI server (tests/fuzz)
 )
 
 missing=()

@@ -1,23 +1,30 @@
 // SUMO adapter, compiled once per client library: ORCH_SUMO_NS is libsumo or libtraci and
 // ORCH_SUMO_HEADER its header (see adapters/CMakeLists.txt). SUMO's exceptions and sentinel
-// values stop here.
+// values stop here and become SimulationError with SUMO's own message. Reading goes
+// through subscriptions (sumo_reader.hpp); commands are plain API calls.
 #include "sumo_simulator.hpp"
 
 #include <fmt/format.h>
+#include <signal.h>
 
+#include <chrono>
 #include <cmath>
 #include <numbers>
+#include <string_view>
+#include <thread>
 #include <unordered_map>
-#include ORCH_SUMO_HEADER
 
+#include "console_silencer.hpp"
 #include "core/errors.hpp"
+#include "sumo_api.hpp"
+#include "sumo_process.hpp"
+#include "sumo_reader.hpp"
 
-namespace sumo = ORCH_SUMO_NS;
+namespace sumo = orch_sumo;
 
 namespace orch {
 namespace {
 
-using engine::ActorState;
 using engine::TrackedActor;
 
 constexpr double kForever = 1e7;  // s; "until the end of the run" for waits and stops
@@ -29,7 +36,6 @@ double to_sumo_angle(double heading) {
   deg = std::fmod(deg, 360.0);
   return deg < 0 ? deg + 360.0 : deg;
 }
-double from_sumo_angle(double angle_deg) { return wrap_angle((90.0 - angle_deg) * std::numbers::pi / 180.0); }
 
 sumo::TraCIColor parse_color(const std::string& rrggbb) {
   if (rrggbb.size() != 6) return sumo::TraCIColor(255, 255, 0, 255);
@@ -41,16 +47,28 @@ sumo::TraCIColor parse_color(const std::string& rrggbb) {
   }
 }
 
+// Messages that say only that something failed; SUMO's own words are in its log instead.
+bool says_nothing(std::string_view message) {
+  return message.empty() || message == "Process Error" || message.find("tcpip::Socket") != std::string_view::npos ||
+         message == "Not connected." || message.find("connection closed") != std::string_view::npos;
+}
+
 class SumoSimulator final : public Simulator {
  public:
+  explicit SumoSimulator(SumoBackendOptions options) : options_(std::move(options)) {}
   ~SumoSimulator() override { close(); }
+  SumoSimulator(const SumoSimulator&) = delete;
+  SumoSimulator& operator=(const SumoSimulator&) = delete;
 
   void start(const SimulatorConfig& config) override {
-    std::vector<std::string> cmd{"sumo"};
-    const auto args = sumo_arguments(config);
-    cmd.insert(cmd.end(), args.begin(), args.end());
-    guard("starting SUMO", [&] { sumo::Simulation::start(cmd); });
-    started_ = true;
+    log_file_ = config.log_file;
+    const std::vector<std::string> args = sumo_arguments(config);
+#ifdef LIBTRACI
+    start_traci(args);
+#else
+    start_libsumo(args);
+#endif
+    guard("subscribing to the simulation", [&] { reader_.start(); });
   }
 
   void apply(const std::vector<engine::Command>& commands) override {
@@ -58,30 +76,19 @@ class SumoSimulator final : public Simulator {
   }
 
   void advance() override {
-    guard("simulation step", [] { sumo::Simulation::step(); });
+    guard("simulation step", [this] {
+      sumo::Simulation::step();
+      reader_.after_step();
+    });
   }
 
   engine::WorldSnapshot read(const std::vector<TrackedActor>& actors) override {
     engine::WorldSnapshot snap;
-    guard("reading the simulation", [&] {
-      snap.time = sumo::Simulation::getTime();
-      int vehicles_tracked = 0;
-      for (const auto& a : actors) {
-        snap.actors.push_back(a.kind == ActorKind::Pedestrian ? read_person(a) : read_vehicle(a));
-        if (a.kind != ActorKind::Pedestrian && snap.actors.back().present) ++vehicles_tracked;
-      }
-      snap.other_vehicles = sumo::Vehicle::getIDCount() - vehicles_tracked;
-      for (const auto& c : sumo::Simulation::getCollisions())
-        snap.collisions.push_back({c.collider, c.victim, c.type, c.lane, c.pos});
-    });
+    guard("reading the simulation", [&] { snap = reader_.read(actors); });
     return snap;
   }
 
-  double time() override {
-    double t = 0;
-    guard("reading the time", [&] { t = sumo::Simulation::getTime(); });
-    return t;
-  }
+  double time() override { return reader_.time(); }
 
   [[nodiscard]] std::string backend() const override { return ORCH_SUMO_BACKEND; }
 
@@ -92,70 +99,163 @@ class SumoSimulator final : public Simulator {
   }
 
   void close() override {
-    if (!started_) return;
-    started_ = false;
-    try {
-      sumo::Simulation::close();
-    } catch (const std::exception&) {
-      // Closing after SUMO already failed: nothing left to release.
+    if (started_) {
+      started_ = false;
+      try {
+        // After a lost connection there is nobody to say goodbye to.
+        if (!broken_) sumo::Simulation::close();
+      } catch (const std::exception&) {
+        // Closing after SUMO already failed: nothing left to release.
+      }
     }
+#ifdef LIBTRACI
+    // SUMO quits after the close command; give it a moment to finish its logs.
+    process_.stop(broken_ ? 0.0 : 5.0);
+#endif
+    silencer_.release();
   }
 
  private:
+#ifndef LIBTRACI
+  void start_libsumo(const std::vector<std::string>& args) {
+    std::vector<std::string> cmd{"sumo"};
+    cmd.insert(cmd.end(), args.begin(), args.end());
+    StderrCapture printed;  // a broken net is reported on stderr only, as "Process Error"
+    try {
+      sumo::Simulation::start(cmd);
+    } catch (const std::exception& e) {
+      throw SimulationError("SUMO could not start: " + sumo_message(e.what(), printed.release()));
+    }
+    printed.release();
+    started_ = true;
+    silencer_.engage();
+  }
+#else
+  void start_traci(const std::vector<std::string>& args) {
+    // Writing to a SUMO that died must fail with EPIPE, not kill the orchestrator.
+    ::signal(SIGPIPE, SIG_IGN);
+    if (!options_.connect.empty()) {
+      const auto colon = options_.connect.rfind(':');
+      int port = -1;
+      try {
+        port = std::stoi(options_.connect.substr(colon + 1));
+      } catch (const std::exception&) {
+      }
+      if (colon == std::string::npos || colon == 0 || port <= 0 || port > 65535)
+        throw SimulationError(fmt::format("--connect {}: expected HOST:PORT", options_.connect));
+      connect(options_.connect.substr(0, colon), port);
+      // The running SUMO loads this run's net, traffic and settings, so that a run is the
+      // same whoever started SUMO.
+      guard("loading the scenario's simulation into the running SUMO", [&] { sumo::Simulation::load(args); });
+      return;
+    }
+    const int port = free_loopback_port();
+    std::vector<std::string> cmd{options_.gui ? "sumo-gui" : "sumo"};
+    cmd.insert(cmd.end(), args.begin(), args.end());
+    cmd.insert(cmd.end(), {"--remote-port", std::to_string(port)});
+    if (options_.gui) cmd.insert(cmd.end(), {"--start", "true", "--quit-on-end", "true"});
+    process_.spawn(cmd);
+    connect("127.0.0.1", port);
+  }
+
+  // libtraci retries once a second and prints each try. Here a SUMO that exits at once (a
+  // broken net) is noticed at once, and the connection is made as soon as SUMO listens.
+  void connect(const std::string& host, int port) {
+    const auto before = open_socket_fds();
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(options_.startup_timeout);
+    for (int attempt = 0;; ++attempt) {
+      if (process_.started() && !process_.running()) {
+        const std::string why = sumo_message("", "");
+        throw SimulationError(fmt::format("SUMO {} before accepting the TraCI connection{}{}", process_.describe_exit(),
+                                          why.empty() ? "" : ": ", why));
+      }
+      std::string failure;
+      // Knock only once SUMO listens (when it runs on this machine): an early connect to a
+      // closed port could be given that port as its own and talk to itself.
+      const bool local = process_.started() || host == "127.0.0.1" || host == "localhost";
+      if (!local || port_is_listening(port)) {
+        try {
+          // A fresh label per attempt: a failed attempt may leave its connection registered.
+          sumo::Simulation::init(port, 0, host, fmt::format("orch{}", attempt));
+          break;
+        } catch (const std::exception& e) {
+          failure = e.what();
+        }
+      }
+      if (std::chrono::steady_clock::now() > deadline) {
+        process_.stop(0.0);
+        throw SimulationError(fmt::format("SUMO did not accept a TraCI connection on {}:{} within {:g} s{}{}", host,
+                                          port, options_.startup_timeout, failure.empty() ? "" : ": ", failure));
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    started_ = true;
+    if (options_.reply_timeout > 0) set_socket_deadline(before, port, options_.reply_timeout);
+  }
+#endif
+
+  // SUMO's own words for a failure: the exception's message when it says something, else
+  // the errors SUMO printed (libsumo) or wrote to its log.
+  std::string sumo_message(const std::string& raw, const std::string& printed) const {
+    std::string errors = sumo_errors_in(printed);
+    if (errors.empty() && !log_file_.empty()) errors = sumo_errors_in_file(log_file_);
+    // One line: SUMO continues its messages on indented lines.
+    std::string message;
+    for (const char c : raw) {
+      if (c == '\n') {
+        message += ' ';
+      } else if (c != ' ' || message.empty() || message.back() != ' ') {
+        message += c;
+      }
+    }
+    if (says_nothing(message)) return errors.empty() ? message : errors;
+    if (!errors.empty() && errors.find(message) == std::string::npos && message.find(errors) == std::string::npos)
+      return message + " (SUMO: " + errors + ")";
+    return message;
+  }
+
+  // Every SUMO call goes through here: its exceptions become SimulationError. On the traci
+  // backend a lost or silent connection is told apart from a SUMO error.
   template <typename F>
-  static void guard(const char* what, F&& f) {
+  void guard(const char* what, F&& f) {
+    const auto t0 = std::chrono::steady_clock::now();
     try {
       f();
     } catch (const sumo::TraCIException& e) {
-      throw SimulationError(fmt::format("SUMO error while {}: {}", what, e.what()));
+      throw SimulationError(fmt::format("SUMO error while {}: {}", what, sumo_message(e.what(), "")));
     } catch (const SimulationError&) {
       throw;
     } catch (const std::exception& e) {
-      throw SimulationError(fmt::format("SUMO failed while {}: {}", what, e.what()));
+      // FatalTraCIError, tcpip::SocketException: the connection is gone or SUMO is silent.
+      broken_ = true;
+      const double waited = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      throw SimulationError(connection_failure(what, e.what(), waited));
     }
   }
 
-  ActorState read_vehicle(const TrackedActor& a) {
-    ActorState s;
-    s.id = a.id;
-    try {
-      const auto front = sumo::Vehicle::getPosition(a.sumo_id);
-      s.heading = from_sumo_angle(sumo::Vehicle::getAngle(a.sumo_id));
-      // SUMO's vehicle position is the middle of the front bumper; actors are judged by
-      // their centre.
-      s.position = Vec2(front.x, front.y) - (a.length / 2) * Vec2(std::cos(s.heading), std::sin(s.heading));
-      s.speed = sumo::Vehicle::getSpeed(a.sumo_id);
-      s.accel = sumo::Vehicle::getAcceleration(a.sumo_id);
-      s.edge = sumo::Vehicle::getRoadID(a.sumo_id);
-      s.lane = sumo::Vehicle::getLaneIndex(a.sumo_id);
-      s.lane_pos = sumo::Vehicle::getLanePosition(a.sumo_id) - a.length / 2;
-      s.lat_offset = sumo::Vehicle::getLateralLanePosition(a.sumo_id);
-      s.signals = sumo::Vehicle::getSignals(a.sumo_id);
-      s.present = true;
-    } catch (const sumo::TraCIException&) {
-      s.present = false;  // not inserted yet, or gone
+  std::string connection_failure(const char* what, const std::string& message, double waited) {
+#ifdef LIBTRACI
+    const bool timed_out = options_.reply_timeout > 0 && waited >= options_.reply_timeout * 0.9;
+    if (process_.started()) {
+      // A SUMO that quits on an error closes the connection first and exits a moment
+      // later, its log complete.
+      if (process_.wait_exit(timed_out ? 0.0 : 2.0)) {
+        const std::string why = sumo_message("", "");
+        return fmt::format("SUMO {} during {}{}{}", process_.describe_exit(), what, why.empty() ? "" : ": ", why);
+      }
+      if (timed_out) {
+        process_.stop(0.0);
+        return fmt::format("SUMO did not answer within {:g} s during {} (hung; it was stopped)", options_.reply_timeout,
+                           what);
+      }
+    } else if (timed_out) {
+      return fmt::format("SUMO at {} did not answer within {:g} s during {}", options_.connect, options_.reply_timeout,
+                         what);
     }
-    return s;
-  }
-
-  ActorState read_person(const TrackedActor& a) {
-    ActorState s;
-    s.id = a.id;
-    try {
-      const auto p = sumo::Person::getPosition(a.sumo_id);
-      s.position = Vec2(p.x, p.y);
-      s.heading = from_sumo_angle(sumo::Person::getAngle(a.sumo_id));
-      s.speed = sumo::Person::getSpeed(a.sumo_id);
-      s.edge = sumo::Person::getRoadID(a.sumo_id);
-      const std::string lane = sumo::Person::getLaneID(a.sumo_id);
-      const auto underscore = lane.rfind('_');
-      s.lane = underscore == std::string::npos ? -1 : std::stoi(lane.substr(underscore + 1));
-      s.lane_pos = sumo::Person::getLanePosition(a.sumo_id);
-      s.present = true;
-    } catch (const sumo::TraCIException&) {
-      s.present = false;
-    }
-    return s;
+#else
+    (void)waited;
+#endif
+    return fmt::format("SUMO failed while {}: {}", what, sumo_message(message, ""));
   }
 
   std::string make_type(const std::string& base, const std::string& sumo_id, const ModelInfo& m,
@@ -170,14 +270,18 @@ class SumoSimulator final : public Simulator {
   }
 
   void execute(const engine::SpawnVehicle& c) {
+    reader_.expect(c.actor);
     guard("inserting a vehicle", [&] {
       const std::string type = make_type("DEFAULT_VEHTYPE", c.actor.sumo_id, c.model, c.color);
       sumo::VehicleType::setVehicleClass(type, c.model.vclass);
       sumo::VehicleType::setShapeClass(type, c.model.gui_shape);
       // Deterministic driver: no dawdling, no speed deviation.
       sumo::VehicleType::setImperfection(type, 0.0);
-      sumo::VehicleType::setSpeedFactor(type, 1.0);
+      // A scripted actor may be faster than the road allows (the scenario says so); SUMO
+      // refuses to insert a vehicle above speed limit x speed factor.
+      sumo::VehicleType::setSpeedFactor(type, c.scripted ? 10.0 : 1.0);
       sumo::VehicleType::setSpeedDeviation(type, 0.0);
+      if (c.scripted) sumo::VehicleType::setMaxSpeed(type, 300.0 / 3.6 * 2);
       const std::string route = "orch.route." + c.actor.sumo_id;
       sumo::Route::add(route, c.route);
       const std::string lane_id = c.edge + "_" + std::to_string(c.lane);
@@ -199,9 +303,10 @@ class SumoSimulator final : public Simulator {
   }
 
   void execute(const engine::SpawnPerson& c) {
+    reader_.expect(c.actor);
     guard("inserting a pedestrian", [&] {
       const std::string type = make_type("DEFAULT_PEDTYPE", c.actor.sumo_id, c.model, c.color);
-      sumo::Person::add(c.actor.sumo_id, c.edge, c.lane_pos, sumo::DEPARTFLAG_NOW, type);
+      sumo::Person::add(c.actor.sumo_id, c.edge, c.lane_pos, libsumo::DEPARTFLAG_NOW, type);
       // Stands until placed elsewhere; poses come from the orchestrator every step.
       sumo::Person::appendWaitingStage(c.actor.sumo_id, kForever, "scenario actor");
     });
@@ -248,12 +353,22 @@ class SumoSimulator final : public Simulator {
     guard("setting a parameter", [&] { sumo::Vehicle::setParameter(c.sumo_id, c.key, c.value); });
   }
 
+  SumoBackendOptions options_;
+  std::string log_file_;
   bool started_ = false;
+  bool broken_ = false;  // the connection to SUMO is lost: no more calls
+  sumo_reading::WorldReader reader_;
+  ConsoleSilencer silencer_;
+#ifdef LIBTRACI
+  SumoProcess process_;
+#endif
   std::unordered_map<std::string, int> signals_sent_;
 };
 
 }  // namespace
 
-std::unique_ptr<Simulator> ORCH_SUMO_FACTORY() { return std::make_unique<SumoSimulator>(); }
+std::unique_ptr<Simulator> ORCH_SUMO_FACTORY(const SumoBackendOptions& options) {
+  return std::make_unique<SumoSimulator>(options);
+}
 
 }  // namespace orch

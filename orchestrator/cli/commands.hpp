@@ -1,10 +1,24 @@
 #pragma once
 // One function per subcommand; main.cpp only parses arguments. Each returns the exit code.
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
+namespace CLI {
+class App;
+}
+
 namespace orch::cli {
+
+// `sample`, `batch` and `batch merge` (cli/batch_commands.cpp): added to the app before
+// parsing; run() afterwards returns the exit code of the one chosen, or nullopt.
+class BatchCommands {
+ public:
+  virtual ~BatchCommands() = default;
+  [[nodiscard]] virtual std::optional<int> run() const = 0;
+};
+std::unique_ptr<BatchCommands> add_batch_commands(CLI::App& app);
 
 // Options every command that needs maps or models shares.
 struct CommonOptions {
@@ -46,7 +60,45 @@ struct RunOptions {
   std::optional<double> max_time;
   bool strict = false;
   bool quiet = false;
+  // External ego plug-in (README "External ego plug-in"): with a port, a TraCI client drives
+  // the ego in lockstep.
+  std::optional<int> ego_port;           // --ego-port (0: any free port)
+  std::string ego_address = "127.0.0.1";  // --ego-address: loopback unless asked otherwise
+  double ego_wait = 60;                  // --ego-wait, s to wait for the plug-in to connect
+  double ego_timeout = 30;               // --ego-timeout, s to wait for its next message
+  // Background traffic and backends (README "Background traffic", "Backends").
+  std::string traffic;            // --traffic LEVEL|VEH_PER_H_PER_LANE|FILE; empty: the scenario's own
+  bool trace_background = false;  // --trace-background
+  std::string backend;            // --backend libsumo|traci; empty: libsumo, traci with --gui/--connect
+  bool gui = false;               // --gui: sumo-gui (traci backend)
+  std::string connect;            // --connect HOST:PORT: a running SUMO (traci backend)
+  std::optional<double> realtime; // --realtime FACTOR
+  double sumo_timeout = 10;       // --sumo-timeout, s (traci backend; 0: wait forever)
 };
 int run_command(const RunOptions& o);
+
+// `orchestrator baseline`: a map's background traffic in SUMO alone, no scenario; what
+// the benchmark measures the orchestrator against (README "Performance").
+struct BaselineOptions {
+  CommonOptions common;
+  std::string map;
+  std::string traffic = "dense";
+  int steps = 1000;
+  double step = 0.05;
+  long long seed = 42;
+  std::string backend = "libsumo";
+  std::string out = "out/baseline";
+};
+int baseline_command(const BaselineOptions& o);
+
+// `orchestrator map traffic`: writes the maps' background traffic files.
+struct MapTrafficOptions {
+  CommonOptions common;
+  std::vector<std::string> maps;  // empty: every map found
+  std::optional<double> rate;     // --rate: one file at this many vehicles/hour/lane (needs --out)
+  double fill_per_km = -1;        // --fill-per-km: vehicles per km and lane at the start (with --rate)
+  std::string out;                // --out FILE for --rate
+};
+int map_traffic_command(const MapTrafficOptions& o);
 
 }  // namespace orch::cli

@@ -37,7 +37,40 @@ int main(int argc, char** argv) {
       ->check(CLI::PositiveNumber);
   r->add_flag("--strict", run.strict, "Refuse to run a scenario with validation warnings");
   r->add_flag("-q,--quiet", run.quiet, "Do not echo the run log to the terminal");
+  r->add_option("--ego-port", run.ego_port,
+                "An external plug-in drives the ego over TraCI: listen on this port (0: any free port)")
+      ->check(CLI::Range(0, 65535));
+  r->add_option("--ego-address", run.ego_address, "Address the ego TraCI server listens on")->capture_default_str();
+  r->add_option("--ego-wait", run.ego_wait, "Seconds to wait for the ego plug-in to connect")
+      ->capture_default_str()->check(CLI::PositiveNumber);
+  r->add_option("--ego-timeout", run.ego_timeout, "Seconds the world waits for the ego plug-in's next message")
+      ->capture_default_str()->check(CLI::PositiveNumber);
+  r->add_option("--traffic", run.traffic,
+                "Background traffic: none, light, medium, dense, vehicles per hour and lane, or a SUMO route file "
+                "(default: the scenario's own \"traffic\", else none)");
+  r->add_flag("--trace-background", run.trace_background, "Write background.csv: background vehicles near the actors");
+  r->add_option("--backend", run.backend, "SUMO client library: libsumo (in-process, default) or traci")
+      ->check(CLI::IsMember({"libsumo", "traci"}));
+  r->add_flag("--gui", run.gui, "Watch the run in sumo-gui (traci backend)");
+  r->add_option("--connect", run.connect, "Use a SUMO already running with --remote-port, at HOST:PORT (traci backend)");
+  r->add_option("--realtime", run.realtime, "Advance at most FACTOR times as fast as wall-clock time (1 = real time)")
+      ->check(CLI::PositiveNumber);
+  r->add_option("--sumo-timeout", run.sumo_timeout,
+                "Seconds without an answer from SUMO before the run ends as an error (traci backend; 0: no limit)")
+      ->capture_default_str()->check(CLI::NonNegativeNumber);
   add_common(r, run.common);
+
+  orch::cli::BaselineOptions baseline;
+  auto* bl = app.add_subcommand("baseline", "Run a map's background traffic in SUMO alone, without a scenario");
+  bl->add_option("map", baseline.map, "Map id or folder")->required();
+  bl->add_option("--traffic", baseline.traffic, "Background traffic, as for run")->capture_default_str();
+  bl->add_option("--steps", baseline.steps, "Simulation steps")->capture_default_str()->check(CLI::PositiveNumber);
+  bl->add_option("--step", baseline.step, "Simulation step, s")->capture_default_str()->check(CLI::Range(0.001, 1.0));
+  bl->add_option("--seed", baseline.seed, "Random seed for SUMO")->capture_default_str();
+  bl->add_option("--backend", baseline.backend, "libsumo or traci")->capture_default_str()
+      ->check(CLI::IsMember({"libsumo", "traci"}));
+  bl->add_option("--out", baseline.out, "Folder for sumo.log")->capture_default_str();
+  add_common(bl, baseline.common);
 
   auto* map = app.add_subcommand("map", "Build and check SUMO networks for RoadEditor maps");
   map->require_subcommand(1);
@@ -55,6 +88,17 @@ int main(int argc, char** argv) {
   mc->add_option("maps", check.maps, "Map ids or folders (default: all)");
   mc->add_option("--tolerance", check.tolerance, "Largest acceptable distance, m")->capture_default_str();
   add_common(mc, check.common);
+  orch::cli::MapTrafficOptions traffic;
+  auto* mt = map->add_subcommand("traffic", "Generate the background traffic files of maps (traffic/<level>.rou.xml)");
+  mt->add_option("maps", traffic.maps, "Map ids or folders (default: all)");
+  mt->add_option("--rate", traffic.rate, "Write one file at this many vehicles per hour and lane (with --out)")
+      ->check(CLI::NonNegativeNumber);
+  mt->add_option("--fill-per-km", traffic.fill_per_km,
+                 "With --rate: vehicles per km and lane placed at the start (default: the rate's steady state)");
+  mt->add_option("--out", traffic.out, "File for --rate");
+  add_common(mt, traffic.common);
+
+  const auto batch_commands = orch::cli::add_batch_commands(app);
 
   try {
     app.parse(argc, argv);
@@ -67,6 +111,9 @@ int main(int argc, char** argv) {
     if (*r) return orch::cli::run_command(run);
     if (*mb) return orch::cli::map_build_command(build);
     if (*mc) return orch::cli::map_check_command(check);
+    if (*mt) return orch::cli::map_traffic_command(traffic);
+    if (*bl) return orch::cli::baseline_command(baseline);
+    if (const auto code = batch_commands->run()) return *code;
   } catch (const std::exception& e) {
     std::cerr << "orchestrator: " << e.what() << "\n";
     return 2;

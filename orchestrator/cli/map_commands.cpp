@@ -8,6 +8,7 @@
 #include "cli/commands.hpp"
 #include "cli/common.hpp"
 #include "core/errors.hpp"
+#include "map/background_traffic.hpp"
 #include "map/lane_map.hpp"
 #include "map/net_builder.hpp"
 #include "map/waypoint_file.hpp"
@@ -65,6 +66,9 @@ bool build_map(const MapManifest& m) {
              waypoints.routes.size(), report.corridors, report.edges, report.lanes, worst.distance, worst_route,
              worst.wp_idx);
   for (const std::string& note : report.notes) fmt::print("  note: {}\n", note);
+  // The background traffic is made from the net: a new net needs new traffic files.
+  const auto traffic = write_map_traffic(m);
+  fmt::print("  background traffic: {} levels in {}\n", traffic.size(), (m.dir / "traffic").string());
   if (worst.distance <= kBuildTolerance) return true;
   fmt::print("  ERROR: waypoints lie up to {:.2f} m from their lanes (limit {:.2f} m); `orchestrator map check {}` "
              "lists them. The waypoint file has geometry map build does not handle.\n",
@@ -91,6 +95,7 @@ MapManifest create_map_folder(const MapBuildOptions& o, const MapRegistry& regis
     throw MapError(fmt::format("a map named \"{}\" already exists in {}; choose another --id", id, other->dir.string()));
 
   MapManifest m;
+  m.max_edge_length = kDefaultMaxEdgeLength;
   if (std::filesystem::exists(dir / "map.json")) m = load_map_manifest(dir);  // keep its settings and aliases
   const std::filesystem::path source(o.waypoints);
   m.id = id;

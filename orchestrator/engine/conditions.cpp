@@ -19,6 +19,9 @@ const ActorState* present(const WorldSnapshot& snap, ActorId id) {
   return (a && a->present) ? a : nullptr;
 }
 
+// Along-road measures count in the actor's direction of travel.
+int direction(const ConditionContext& ctx, ActorId id) { return ctx.direction_of ? ctx.direction_of(id) : 1; }
+
 double half_length(const ActorTable& actors, ActorId id) {
   const ActorSlot* s = actors.find(id);
   return s ? s->model.length / 2 : 0.0;
@@ -94,7 +97,7 @@ std::optional<double> distance_measure(const DistanceCondition& c, const WorldSn
   } else {
     const WaypointRoute* route = ctx.route_of(c.actor);
     if (!route) return std::nullopt;
-    gap = along_road(*route, a->position, t->position);
+    gap = direction(ctx, c.actor) * along_road(*route, a->position, t->position);
   }
   if (c.measure == MeasureType::Surface) {
     const double halves = half_length(ctx.actors, c.actor) + half_length(ctx.actors, c.target);
@@ -120,7 +123,7 @@ std::optional<double> headway(const TimeHeadwayCondition& c, const WorldSnapshot
   const ActorState* a = present(snap, c.actor);
   const WaypointRoute* route = ctx.route_of(c.actor);
   if (!a || !route) return std::nullopt;
-  const double gap = along_road(*route, a->position, waypoint_point(ctx.waypoints, c.waypoint)) -
+  const double gap = direction(ctx, c.actor) * along_road(*route, a->position, waypoint_point(ctx.waypoints, c.waypoint)) -
                      half_length(ctx.actors, c.actor);
   if (gap < 0) return std::nullopt;
   if (a->speed <= 1e-6) return std::numeric_limits<double>::infinity();

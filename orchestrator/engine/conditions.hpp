@@ -31,6 +31,9 @@ struct ConditionContext {
   std::function<const WaypointRoute*(ActorId)> route_of;
   // True when the actor was in a collision during the last step.
   std::function<bool(ActorId)> collided;
+  // +1 when the actor drives its route as drawn, -1 against it (in a lane of the opposite
+  // side); empty = always +1.
+  std::function<int(ActorId)> direction_of;
 };
 
 struct ConditionOutcome {

@@ -17,7 +17,7 @@ std::string join(const std::vector<std::string>& parts) {
 }  // namespace
 
 Engine::Engine(const Scenario& s, MapContext map, const Catalog& catalog, EngineOptions options)
-    : scenario_(s), map_(map), options_(options), actors_(s, catalog), machine_(s) {}
+    : scenario_(s), map_(map), options_(options), actors_(s, catalog), machine_(s), collisions_(actors_) {}
 
 const WaypointRoute* Engine::route_of(ActorId id) const {
   if (auto it = motions_.find(id); it != motions_.end()) return &it->second.route();
@@ -25,12 +25,12 @@ const WaypointRoute* Engine::route_of(ActorId id) const {
   return nullptr;
 }
 
-bool Engine::collided(ActorId id) const {
-  const ActorSlot* slot = actors_.find(id);
-  if (!slot) return false;
-  for (const auto& c : current_.collisions)
-    if (c.collider == slot->tracked.sumo_id || c.victim == slot->tracked.sumo_id) return true;
-  return false;
+bool Engine::collided(ActorId id) const { return collisions_.touching(id); }
+
+std::string Engine::describe_body(const std::string& name) const {
+  for (const auto& a : actors_.slots())
+    if (std::to_string(a.spec.id) == name) return "actor " + name + (a.is_ego() ? " (ego)" : "");
+  return "vehicle " + name;
 }
 
 bool Engine::siren(ActorId id) const {
@@ -62,11 +62,30 @@ StepOutput Engine::step(const WorldSnapshot& snapshot) {
     // own value is exact, and conditions must see exactly what the scenario commanded.
     a.speed = it->second.speed();
     a.accel = it->second.accel();
+    // Likewise the lights: SUMO recomputes some signals itself (it blinks an emergency
+    // vehicle's blue light on its own); the scenario's lights are what was commanded.
+    auto lights = signals_.find(a.id);
+    a.signals = lights == signals_.end() ? 0 : lights->second;
+    a.siren = siren(a.id);
   }
   update_ego(out);
+  for (const Contact& c : collisions_.step(current_)) {
+    out.events.push_back({t, EventKind::Warning,
+                          fmt::format("collision ({}): {} at ({:.2f}, {:.2f}) and {} at ({:.2f}, {:.2f})",
+                                      c.source == "geometry" ? "bodies touch"
+                                      : c.counted            ? "reported by SUMO"
+                                                             : "reported by SUMO, for information",
+                                      describe_body(c.a),
+                                      c.position_a.x(), c.position_a.y(), describe_body(c.b), c.position_b.x(),
+                                      c.position_b.y())});
+  }
 
   ConditionContext ctx{current_, previous_ ? &*previous_ : nullptr, actors_, map_.waypoints,
-                       [this](ActorId id) { return route_of(id); }, [this](ActorId id) { return collided(id); }};
+                       [this](ActorId id) { return route_of(id); }, [this](ActorId id) { return collided(id); },
+                       [this](ActorId id) {
+                         auto it = motions_.find(id);
+                         return it == motions_.end() ? 1 : it->second.direction();
+                       }};
   std::vector<std::string> fired;
   const auto transition = machine_.step(t, [&](const Scene& scene) {
     fired.clear();
@@ -144,7 +163,7 @@ SetPose Engine::pose_command(const ActorSlot& slot, const ScriptedMotion& m) con
   p.speed = m.speed();
   if (auto it = signals_.find(slot.spec.id); it != signals_.end()) p.signals = it->second;
   if (!m.walking()) {
-    const LanePlace place = map_.lanes.place_on_route(m.route(), m.s(), m.lateral());
+    const LanePlace place = map_.lanes.place_on_route(m.route(), m.s(), m.route_lateral());
     if (place.lane >= 0) {
       p.edge = map_.lanes.lane(place.lane).edge;
       p.lane = map_.lanes.lane(place.lane).index;

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "engine/actor_table.hpp"
+#include "engine/collision.hpp"
 #include "engine/motion.hpp"
 #include "engine/scene_machine.hpp"
 #include "engine/world.hpp"
@@ -74,6 +75,10 @@ class Engine {
   [[nodiscard]] bool siren(ActorId id) const;
   [[nodiscard]] bool scripted(ActorId id) const { return motions_.count(id) > 0; }
   [[nodiscard]] const std::vector<HandOverRecord>& hand_overs() const { return hand_overs_; }
+  // Every contact so far (own geometry test and SUMO's reports), in the order they began.
+  [[nodiscard]] const std::vector<Contact>& contacts() const { return collisions_.all(); }
+  // "actor 1", "actor 0 (ego)" or "vehicle <SUMO id>" for a contact's body name.
+  [[nodiscard]] std::string describe_body(const std::string& name) const;
 
  private:
   // Longitudinal behaviour of a scripted actor (the latest action on that axis wins).
@@ -83,7 +88,8 @@ class Engine {
   struct KeepGap {
     scenario::TraveledDistanceAction action;
   };
-  using Longitudinal = std::variant<HoldSpeed, KeepGap>;
+  struct KeepSpeed {};  // after a route_move: go on at the speed the last leg ended with
+  using Longitudinal = std::variant<HoldSpeed, KeepGap, KeepSpeed>;
 
   void place_opening_actors(StepOutput& out);
   void place_other(const scenario::OtherOpening& o);
@@ -92,12 +98,14 @@ class Engine {
 
   void enter_scene(const scenario::Scene& scene, double t, StepOutput& out);
   void start_action(const scenario::Action& a, double t, StepOutput& out);
+  void start_route_move(const scenario::RouteMoveAction& a, ScriptedMotion& m, double t, StepOutput& out);
   void move_scripted_actors(double t, StepOutput& out);
   void resolve_longitudinal(ActorId id, ScriptedMotion& m);
   void update_ego(StepOutput& out);
   [[nodiscard]] SetPose pose_command(const ActorSlot& slot, const ScriptedMotion& m) const;
   [[nodiscard]] const WaypointRoute* route_of(ActorId id) const;
   [[nodiscard]] bool collided(ActorId id) const;
+
   void fail(const std::string& reason, double t, StepOutput& out);
 
   const scenario::Scenario& scenario_;
@@ -105,6 +113,7 @@ class Engine {
   EngineOptions options_;
   ActorTable actors_;
   SceneMachine machine_;
+  CollisionMonitor collisions_;
 
   std::map<ActorId, ScriptedMotion> motions_;
   std::map<ActorId, Longitudinal> longitudinal_;

@@ -48,16 +48,47 @@ void Engine::resolve_longitudinal(ActorId id, ScriptedMotion& m) {
     m.set_desired(std::max(0.0, v), a.accel.type == AccelType::Specify ? a.accel.value : 0.0);
     return;
   }
+  if (std::holds_alternative<KeepSpeed>(it->second)) {
+    m.set_desired(m.speed(), 0.0);
+    return;
+  }
   const auto& gap = std::get<KeepGap>(it->second).action;
   const ActorState* target = current_.find(gap.target);
   if (!target || !target->present) return;
-  double now_gap = along_road(m.route(), target->position, m.position());
+  double now_gap = m.direction() * along_road(m.route(), target->position, m.position());
   if (gap.measure == MeasureType::Surface) {
     const double halves = (actors_.find(id)->model.length + actors_.find(gap.target)->model.length) / 2;
     now_gap += now_gap >= 0 ? -halves : halves;
   }
   const double error = now_gap - gap.value;  // > 0: too far ahead of the wanted place
   m.set_desired(std::max(0.0, target->speed - kGapGain * error), kGapAccel);
+}
+
+void Engine::start_route_move(const RouteMoveAction& a, ScriptedMotion& m, double t, StepOutput& out) {
+  auto event = [&](const std::string& text) { out.events.push_back({t, EventKind::Action, text}); };
+  if (a.type == RouteMoveType::WpOffset) {
+    std::vector<LateralLeg> legs;
+    for (const auto& leg : a.legs) legs.push_back({leg.wp_offset.value_or(0.0), leg.time});
+    event(fmt::format("route_move: actor {} through {} lateral offsets", a.actor, legs.size()));
+    m.plan_lateral(legs, t);  // lateral axis only: the speed stays as it is
+    return;
+  }
+  const bool pedestrian = actors_.find(a.actor)->tracked.kind == ActorKind::Pedestrian;
+  std::vector<std::pair<Vec2, double>> walk;
+  std::vector<RouteLegTarget> drive;
+  for (const auto& leg : a.legs) {
+    const WaypointRoute* r = map_.waypoints.find(leg.waypoint->wp_id);
+    const double s = r->s_of(std::min(leg.waypoint->wp_idx, r->last_index()));
+    walk.emplace_back(r->line.offset_point(s, leg.wp_offset.value_or(0.0)), leg.time);
+    drive.push_back({r, s, leg.wp_offset.value_or(0.0), leg.time});
+  }
+  event(fmt::format("route_move: actor {} through {} waypoint(s), {}", a.actor, a.legs.size(),
+                    pedestrian ? "walking straight to each" : "along the road, arriving on time"));
+  // The route axis owns position and speed until the last leg ends; then the actor keeps
+  // the speed it arrived with.
+  longitudinal_[a.actor] = KeepSpeed{};
+  if (pedestrian) m.plan_walk(walk, t);
+  else m.plan_route_legs(drive, t);
 }
 
 void Engine::start_action(const Action& action, double t, StepOutput& out) {
@@ -83,15 +114,24 @@ void Engine::start_action(const Action& action, double t, StepOutput& out) {
         if constexpr (std::is_same_v<T, SpeedAction>) {
           if (!require_present(a.actor)) return;
           event(describe_speed(a));
-          if (motion(a.actor)) longitudinal_[a.actor] = HoldSpeed{a};
-          else if (a.type == SpeedType::Absolute) out.commands.push_back(SetMaxSpeed{"ego", a.value});
-          else ego_only(a.actor, "a relative speed action");
+          if (ScriptedMotion* m = motion(a.actor)) {
+            m->cancel_moves();  // a longitudinal action replaces a running route_move
+            longitudinal_[a.actor] = HoldSpeed{a};
+          } else if (a.type == SpeedType::Absolute) {
+            out.commands.push_back(SetMaxSpeed{"ego", a.value});
+          } else {
+            ego_only(a.actor, "a relative speed action");
+          }
         } else if constexpr (std::is_same_v<T, TraveledDistanceAction>) {
           if (!require_present(a.actor) || !require_present(a.target)) return;
           event(fmt::format("traveled_distance: actor {} keeps {:+.1f} m ({}) from actor {}", a.actor, a.value,
                             a.measure == MeasureType::Surface ? "surface" : "center", a.target));
-          if (motion(a.actor)) longitudinal_[a.actor] = KeepGap{a};
-          else ego_only(a.actor, "traveled_distance");
+          if (ScriptedMotion* m = motion(a.actor)) {
+            m->cancel_moves();
+            longitudinal_[a.actor] = KeepGap{a};
+          } else {
+            ego_only(a.actor, "traveled_distance");
+          }
         } else if constexpr (std::is_same_v<T, LaneChangeAction>) {
           if (!require_present(a.actor)) return;
           event(fmt::format("lane_change: actor {} to the lane of {} over {:g} s", a.actor, a.wp_id, a.time));
@@ -108,21 +148,7 @@ void Engine::start_action(const Action& action, double t, StepOutput& out) {
           if (!require_present(a.actor)) return;
           ScriptedMotion* m = motion(a.actor);
           if (!m) return ego_only(a.actor, "route_move");
-          if (a.type == RouteMoveType::WpOffset) {
-            std::vector<LateralLeg> legs;
-            for (const auto& leg : a.legs) legs.push_back({leg.wp_offset.value_or(0.0), leg.time});
-            event(fmt::format("route_move: actor {} through {} lateral offsets", a.actor, legs.size()));
-            m->plan_lateral(legs, t);
-          } else {
-            std::vector<std::pair<Vec2, double>> legs;
-            for (const auto& leg : a.legs) {
-              const WaypointRoute* r = map_.waypoints.find(leg.waypoint->wp_id);
-              const double s = r->s_of(std::min(leg.waypoint->wp_idx, r->last_index()));
-              legs.emplace_back(r->line.offset_point(s, leg.wp_offset.value_or(0.0)), leg.time);
-            }
-            event(fmt::format("route_move: actor {} through {} waypoints", a.actor, legs.size()));
-            m->plan_walk(legs, t);
-          }
+          start_route_move(a, *m, t, out);
         } else if constexpr (std::is_same_v<T, LightStateAction>) {
           if (!require_present(a.actor)) return;
           int& bits = signals_[a.actor];

@@ -173,7 +173,7 @@ StepOutput Engine::start() {
     const auto& pose = std::get<SetPose>(cmd);
     const ActorSlot& slot = *actors_.find_sumo(pose.sumo_id);
     const ScriptedMotion& m = motions_.at(slot.spec.id);
-    const LanePlace place = map_.lanes.place_on_route(m.route(), m.s(), m.lateral());
+    const LanePlace place = map_.lanes.place_on_route(m.route(), m.s(), m.route_lateral());
     if (place.lane < 0) throw MapError(fmt::format("actor {} does not start on a lane of the map", slot.spec.id));
     const LaneInfo& lane = map_.lanes.lane(place.lane);
     if (slot.tracked.kind == ActorKind::Pedestrian) {

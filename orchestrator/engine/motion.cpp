@@ -2,11 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 namespace orch::engine {
 
 double LateralMove::value_at(double t) const {
-  if (duration <= 0 || t >= start + duration) return to;
+  // Same end as done_at: times built from summed steps may miss the exact end by rounding.
+  if (duration <= 0 || t >= start + duration - 1e-9) return to;
   if (t <= start) return from;
   const double u = (t - start) / duration;
   const double shape = u * u * u * (10 - 15 * u + 6 * u * u);
@@ -25,16 +27,16 @@ ScriptedMotion::ScriptedMotion(const WaypointRoute& route, double s, double late
     : route_(&route), s_(s), lateral_(lateral), speed_(speed), heading_offset_(heading_offset),
       length_(length), lane_extension_(lane_extension), desired_speed_(speed) {}
 
-double ScriptedMotion::s_max() const {
-  // The front may reach the end of the lane, which runs lane_extension past the last point.
-  return route_->line.length() + std::max(0.0, lane_extension_ - length_ / 2);
-}
+// The front may reach the end of the lane, which runs lane_extension past the route's ends.
+double ScriptedMotion::s_max() const { return route_->line.length() + std::max(0.0, lane_extension_ - length_ / 2); }
 double ScriptedMotion::s_min() const { return -std::max(0.0, lane_extension_ - length_ / 2); }
+double ScriptedMotion::room_ahead() const { return direction_ > 0 ? s_max() - s_ : s_ - s_min(); }
 
 void ScriptedMotion::plan_lateral(const std::vector<LateralLeg>& legs, double t) {
+  route_leg_.reset();
+  pending_route_legs_.clear();
   active_lateral_.reset();
-  pending_lateral_ = legs;
-  std::reverse(pending_lateral_.begin(), pending_lateral_.end());  // pop from the back
+  pending_lateral_.assign(legs.rbegin(), legs.rend());
   if (!pending_lateral_.empty()) {
     const LateralLeg leg = pending_lateral_.back();
     pending_lateral_.pop_back();
@@ -42,27 +44,62 @@ void ScriptedMotion::plan_lateral(const std::vector<LateralLeg>& legs, double t)
   }
 }
 
-void ScriptedMotion::change_route(const WaypointRoute& route, double target_offset, double t, double duration) {
+void ScriptedMotion::switch_route(const WaypointRoute& route) {
   const Vec2 here = position();
+  const Vec2 travel(std::cos(heading() - heading_offset_), std::sin(heading() - heading_offset_));
   const auto p = route.line.project(here);
   route_ = &route;
   s_ = p.s;
-  lateral_ = p.lateral;
+  direction_ = route.line.tangent_at(p.s).dot(travel) >= 0 ? 1 : -1;
+  lateral_ = direction_ * p.lateral;
   at_end_ = false;
+}
+
+void ScriptedMotion::change_route(const WaypointRoute& route, double target_offset, double t, double duration) {
+  switch_route(route);
   plan_lateral({{target_offset, duration}}, t);
 }
 
-void ScriptedMotion::plan_walk(const std::vector<std::pair<Vec2, double>>& legs, double t) {
-  walk_pending_.assign(legs.rbegin(), legs.rend());
-  walk_active_.reset();
-  if (!free_position_) {
-    free_position_ = position();
-    free_heading_ = heading();
+void ScriptedMotion::plan_route_legs(const std::vector<RouteLegTarget>& legs, double t) {
+  active_lateral_.reset();
+  pending_lateral_.clear();
+  route_leg_.reset();
+  pending_route_legs_.assign(legs.rbegin(), legs.rend());
+  if (!pending_route_legs_.empty()) {
+    const RouteLegTarget leg = pending_route_legs_.back();
+    pending_route_legs_.pop_back();
+    start_route_leg(leg, t);
   }
+}
+
+void ScriptedMotion::start_route_leg(const RouteLegTarget& leg, double t) {
+  if (leg.route != route_) switch_route(*leg.route);
+  route_leg_ = ActiveRouteLeg{s_, leg.s, t, leg.duration};
+  active_lateral_ = LateralMove{lateral_, direction_ * leg.lateral, t, leg.duration};
+}
+
+void ScriptedMotion::plan_walk(const std::vector<std::pair<Vec2, double>>& legs, double t) {
+  if (!free_position_) {
+    free_heading_ = heading();
+    free_position_ = position();
+  }
+  walk_active_.reset();
+  walk_pending_.assign(legs.rbegin(), legs.rend());
   if (!walk_pending_.empty()) {
     auto [target, duration] = walk_pending_.back();
     walk_pending_.pop_back();
     walk_active_ = WalkLeg{*free_position_, target, t, duration};
+  }
+}
+
+void ScriptedMotion::cancel_moves() {
+  walk_active_.reset();
+  walk_pending_.clear();
+  if (route_leg_) {
+    route_leg_.reset();
+    pending_route_legs_.clear();
+    active_lateral_.reset();
+    pending_lateral_.clear();
   }
 }
 
@@ -71,7 +108,8 @@ void ScriptedMotion::advance(double t, double dt) {
     advance_walk(t, dt);
     return;
   }
-  advance_longitudinal(dt);
+  if (route_leg_) advance_route_leg(t + dt, dt);
+  else advance_longitudinal(dt);
   advance_lateral(t + dt, dt);
 }
 
@@ -83,26 +121,51 @@ void ScriptedMotion::advance_longitudinal(double dt) {
     v = std::clamp(v, before - step, before + step);
   }
   if (at_end_) v = 0;
-  // The lane ends: brake so as to stop at its end rather than hit an invisible wall. Braking
-  // starts when the deceleration needed reaches kEndOfLaneDecel.
-  const double remaining = s_max() - s_;
-  if (!at_end_ && before > 0 && remaining > 0) {
-    const double needed = before * before / (2 * remaining);
+  // The lane ends: brake so as to stop at its end rather than hit an invisible wall.
+  // Braking starts when the deceleration needed reaches kEndOfLaneDecel.
+  const double room = room_ahead();
+  if (!at_end_ && before > 0 && room > 0) {
+    const double needed = before * before / (2 * room);
     if (needed >= kEndOfLaneDecel) {
       running_out_ = true;
       v = std::min(v, std::max(0.0, before - needed * dt));
     }
   }
   // Constant acceleration over the step: the distance is the mean speed times dt.
-  double next_s = s_ + 0.5 * (before + v) * dt;
-  if (next_s >= s_max()) {
-    next_s = s_max();
+  double travelled = 0.5 * (before + v) * dt;
+  if (travelled >= room) {
+    travelled = std::max(0.0, room);
     v = 0;
     at_end_ = true;
   }
-  s_ = std::max(next_s, s_min());
+  s_ += direction_ * travelled;
   speed_ = v;
   accel_ = (v - before) / dt;
+}
+
+void ScriptedMotion::advance_route_leg(double t_next, double dt) {
+  const double before_speed = speed_;
+  const double s_before = s_;
+  while (route_leg_ && t_next >= route_leg_->start_time + route_leg_->duration - 1e-9) {
+    const double end = route_leg_->start_time + route_leg_->duration;
+    s_ = route_leg_->end_s;
+    if (active_lateral_) lateral_ = active_lateral_->to;  // the leg arrives exactly
+    route_leg_.reset();
+    if (!pending_route_legs_.empty()) {
+      const RouteLegTarget leg = pending_route_legs_.back();
+      pending_route_legs_.pop_back();
+      start_route_leg(leg, end);
+    }
+  }
+  if (route_leg_) {
+    const double u = route_leg_->duration > 0 ? (t_next - route_leg_->start_time) / route_leg_->duration : 1.0;
+    s_ = route_leg_->start_s + std::clamp(u, 0.0, 1.0) * (route_leg_->end_s - route_leg_->start_s);
+  }
+  speed_ = std::abs(s_ - s_before) / dt;
+  // The last leg's speed carries on after it (see Engine: KeepSpeed).
+  desired_speed_ = speed_;
+  desired_accel_ = 0;
+  accel_ = (speed_ - before_speed) / dt;
 }
 
 void ScriptedMotion::advance_lateral(double t_next, double dt) {
@@ -148,14 +211,15 @@ void ScriptedMotion::advance_walk(double t, double dt) {
 
 Vec2 ScriptedMotion::position() const {
   if (free_position_) return *free_position_;
-  return route_->line.offset_point(s_, lateral_);
+  return route_->line.offset_point(s_, direction_ * lateral_);
 }
 
 double ScriptedMotion::heading() const {
   if (free_position_) return free_heading_;
   // Yaw toward the lateral motion: a car changing lanes points where it is going.
   const double drift = std::atan2(lateral_rate_, std::max(speed_, 1.0));
-  return wrap_angle(route_->line.heading_at(s_) + drift + heading_offset_);
+  const double along = route_->line.heading_at(s_) + (direction_ < 0 ? std::numbers::pi : 0.0);
+  return wrap_angle(along + drift + heading_offset_);
 }
 
 }  // namespace orch::engine

@@ -1,8 +1,11 @@
 #pragma once
-// Kinematics of one scripted actor: where the scenario says it is, step by step. Vehicles
-// follow a waypoint route (arc length s, lateral offset from the route line); a pedestrian
-// doing a waypoint route_move walks straight lines. No SUMO driver model is involved:
-// SUMO is told the resulting pose each step.
+// Kinematics of one scripted actor: where the scenario says it is, step by step. No SUMO
+// driver model is involved: SUMO is told the resulting pose each step.
+//
+// Vehicles follow a waypoint route: arc length s along the route line, a lateral offset
+// (+ = left of the direction of travel), and a direction of travel (+1 along the route as
+// drawn, -1 against it, after a lane change into a lane of the opposite side). A pedestrian
+// doing a waypoint route_move walks straight lines instead.
 #include <optional>
 #include <vector>
 
@@ -30,6 +33,15 @@ struct LateralLeg {
   double duration = 0;
 };
 
+// One leg of a vehicle's waypoint route_move: reach `lateral` metres beside arc length `s`
+// of `route` after `duration` seconds, at constant speed along the road.
+struct RouteLegTarget {
+  const WaypointRoute* route = nullptr;
+  double s = 0;
+  double lateral = 0;  // + = left of the route as drawn
+  double duration = 0;
+};
+
 class ScriptedMotion {
  public:
   ScriptedMotion(const WaypointRoute& route, double s, double lateral, double speed,
@@ -44,39 +56,60 @@ class ScriptedMotion {
   // Replace any lateral plan by these legs, starting at time t from the current offset.
   void plan_lateral(const std::vector<LateralLeg>& legs, double t);
   // Move onto another route (a lane change): continue from the point of the new route
-  // nearest to the actor, drifting from the current lateral distance to the new route's
-  // line (offset `target_offset`) over `duration`.
+  // nearest to the actor, in the same direction of travel (against the route as drawn if
+  // it runs the other way), drifting onto its line plus `target_offset` over `duration`.
   void change_route(const WaypointRoute& route, double target_offset, double t, double duration);
-  // ---- free walking (pedestrian route_move of type waypoint): straight line to `target`
-  // arriving after `duration`; a queue of such legs runs in order.
+  // ---- a vehicle's waypoint route_move: legs along the road, in order. Replaces the
+  // lateral plan; longitudinal wishes are ignored until the last leg ends.
+  void plan_route_legs(const std::vector<RouteLegTarget>& legs, double t);
+  // ---- free walking (a pedestrian's waypoint route_move): straight lines, in order.
   void plan_walk(const std::vector<std::pair<Vec2, double>>& legs, double t);
+  // Stop any route_move (walk or route legs) where the actor is now.
+  void cancel_moves();
 
   // Advances the state from t to t + dt.
   void advance(double t, double dt);
 
   [[nodiscard]] const WaypointRoute& route() const { return *route_; }
   [[nodiscard]] double s() const { return s_; }
-  [[nodiscard]] double lateral() const { return lateral_; }
+  [[nodiscard]] int direction() const { return direction_; }
+  // Offset from the route line, + = left of the route as drawn (what lane lookups need).
+  [[nodiscard]] double route_lateral() const { return direction_ * lateral_; }
+  [[nodiscard]] double lateral() const { return lateral_; }  // + = left of travel
   [[nodiscard]] double speed() const { return speed_; }
   [[nodiscard]] double accel() const { return accel_; }
   [[nodiscard]] Vec2 position() const;
   [[nodiscard]] double heading() const;
   [[nodiscard]] bool lateral_busy() const { return active_lateral_.has_value() || !pending_lateral_.empty(); }
-  // True once the actor has been stopped at the end of its route (reported once by the engine).
   [[nodiscard]] bool at_route_end() const { return at_end_; }
   // True once the actor brakes because its lane ends ahead (reported once by the engine).
   [[nodiscard]] bool running_out_of_road() const { return running_out_; }
+  [[nodiscard]] bool walking() const { return free_position_.has_value(); }
+  [[nodiscard]] bool on_route_legs() const { return route_leg_.has_value() || !pending_route_legs_.empty(); }
+
   static constexpr double kEndOfLaneDecel = 3.0;  // m/s^2
-  [[nodiscard]] bool walking() const { return walk_active_.has_value() || !walk_pending_.empty(); }
 
  private:
+  struct ActiveRouteLeg {
+    double start_s, end_s, start_time, duration;
+  };
+  struct WalkLeg {
+    Vec2 from, to;
+    double start, duration;
+  };
+
   void advance_longitudinal(double dt);
-  void advance_lateral(double t, double dt);
+  void advance_route_leg(double t_next, double dt);
+  void advance_lateral(double t_next, double dt);
   void advance_walk(double t, double dt);
+  void start_route_leg(const RouteLegTarget& leg, double t);
+  void switch_route(const WaypointRoute& route);
   [[nodiscard]] double s_max() const;
   [[nodiscard]] double s_min() const;
+  [[nodiscard]] double room_ahead() const;
 
   const WaypointRoute* route_;
+  int direction_ = 1;
   double s_;
   double lateral_;
   double lateral_rate_ = 0;
@@ -91,14 +124,13 @@ class ScriptedMotion {
   bool running_out_ = false;
 
   std::optional<LateralMove> active_lateral_;
-  std::vector<LateralLeg> pending_lateral_;
+  std::vector<LateralLeg> pending_lateral_;  // back() runs next
 
-  struct WalkLeg {
-    Vec2 from, to;
-    double start, duration;
-  };
+  std::optional<ActiveRouteLeg> route_leg_;
+  std::vector<RouteLegTarget> pending_route_legs_;  // back() runs next
+
   std::optional<WalkLeg> walk_active_;
-  std::vector<std::pair<Vec2, double>> walk_pending_;
+  std::vector<std::pair<Vec2, double>> walk_pending_;  // back() runs next
   std::optional<Vec2> free_position_;  // set once the actor has walked off its route line
   double free_heading_ = 0;
 };

@@ -41,6 +41,7 @@ struct ActorState {
   double lane_pos = 0;   // SUMO lane position of the centre, m
   std::optional<double> lat_offset;  // m from the lane centre, + = left (nullopt: simulator cannot tell)
   int signals = 0;       // SUMO signal bits
+  bool siren = false;    // sound_state (scripted actors)
 };
 
 // A collision SUMO reported in the last step (ids are SUMO ids).

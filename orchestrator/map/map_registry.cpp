@@ -34,6 +34,7 @@ MapManifest load_map_manifest(const std::filesystem::path& dir) {
     ObjectReader b(doc, *build, r.child("build"), diags, "build settings");
     m.lane_extension = b.number("lane_extension_m", Need::Optional).value_or(m.lane_extension);
     m.simplify_tolerance = b.number("simplify_tolerance_m", Need::Optional).value_or(m.simplify_tolerance);
+    m.max_edge_length = b.number("max_edge_length_m", Need::Optional).value_or(m.max_edge_length);
     b.finish();
   }
   // Documentation-only blocks: how map coordinates relate to the waypoint file, provenance.
@@ -52,7 +53,9 @@ void save_map_manifest(const MapManifest& m) {
   j["net_file"] = m.net_file;
   j["transform"] = {{"map_x", "x"}, {"map_y", "-z"}, {"height", "y"},
                     {"note", "SUMO coordinates equal map coordinates (netconvert --offset.disable-normalization)"}};
-  j["build"] = {{"lane_extension_m", m.lane_extension}, {"simplify_tolerance_m", m.simplify_tolerance}};
+  j["build"] = {{"lane_extension_m", m.lane_extension},
+                {"simplify_tolerance_m", m.simplify_tolerance},
+                {"max_edge_length_m", m.max_edge_length}};
   write_file_atomically(m.dir / "map.json", j.dump(2) + "\n");
 }
 

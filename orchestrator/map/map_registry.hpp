@@ -10,6 +10,9 @@
 
 namespace orch {
 
+// Edge length limit of maps created by `map build --waypoints` (net_plan.hpp says why).
+inline constexpr double kDefaultMaxEdgeLength = 250.0;  // m
+
 struct MapManifest {
   std::string id;
   std::vector<std::string> aliases;
@@ -19,6 +22,9 @@ struct MapManifest {
   std::string net_file;             // relative to dir
   double lane_extension = 20.0;     // m the lanes reach beyond the first/last waypoint
   double simplify_tolerance = 0.02; // m, lane shapes vs. waypoints
+  // m, longer stretches become several edges (net_plan.hpp); 0 = never. New map folders get
+  // kDefaultMaxEdgeLength; a map.json without the setting keeps its single long edges.
+  double max_edge_length = 0;
 
   [[nodiscard]] std::filesystem::path waypoint_path() const { return dir / waypoint_file; }
   [[nodiscard]] std::filesystem::path net_path() const { return dir / net_file; }

@@ -111,7 +111,7 @@ std::vector<std::string> lines_starting_with(const std::string& text, std::strin
 }  // namespace
 
 NetBuildReport build_net(const MapManifest& manifest, const WaypointFile& waypoints) {
-  const NetPlan plan = plan_net(waypoints, {manifest.lane_extension, manifest.simplify_tolerance});
+  const NetPlan plan = plan_net(waypoints, {manifest.lane_extension, manifest.simplify_tolerance, manifest.max_edge_length});
 
   // Paths relative to the map folder (netconvert runs there): netconvert copies its
   // arguments into the net's header, which must not depend on where the folder lives.

@@ -59,11 +59,14 @@ struct Member {
   [[nodiscard]] double last_wp_s() const { return first_wp_s + route->line.length(); }
 };
 
+// Cut::member of a cut that only limits the length of edges (no lane ends there).
+constexpr std::size_t kNoMember = std::numeric_limits<std::size_t>::max();
+
 struct Cut {
   Vec2 point;
   Vec2 direction;
   double key = 0;            // position along the corridor
-  std::size_t member = 0;    // the lane end that placed the cut
+  std::size_t member = 0;    // the lane end that placed the cut (kNoMember: a length cut)
   bool at_start = false;     // ... its start (else its end)
 };
 
@@ -204,6 +207,7 @@ class CorridorPlanner {
       if (a.member != b.member) return a.member < b.member;
       return a.is_start > b.is_start;
     });
+    std::vector<bool> open(members_.size(), false);  // lanes running at the current cut
     for (std::size_t first = 0; first < events.size();) {
       std::size_t last = first;
       while (last + 1 < events.size() && events[last + 1].key - events[first].key <= merge_) ++last;
@@ -212,14 +216,35 @@ class CorridorPlanner {
       for (std::size_t k = first; k <= last; ++k) {
         all_start = all_start && events[k].is_start;
         all_end = all_end && !events[k].is_start;
+      }
+      const Event& rep = all_start ? events[first] : all_end ? events[last] : events[(first + last) / 2];
+      add_length_cuts(rep.key, open);
+      for (std::size_t k = first; k <= last; ++k) {
         Member& m = members_[events[k].member];
         (events[k].is_start ? m.start_cut : m.end_cut) = cuts_.size();
       }
-      const Event& rep = all_start ? events[first] : all_end ? events[last] : events[(first + last) / 2];
       const Member& rm = members_[rep.member];
       const double s = rep.is_start ? rm.lane_start : rm.lane_end;
       cuts_.push_back({rm.line.point_at(s), rm.line.tangent_at(s), rep.key, rep.member, rep.is_start});
+      for (std::size_t k = first; k <= last; ++k) open[events[k].member] = events[k].is_start;
       first = last + 1;
+    }
+  }
+
+  // Cuts that split the stretch from the last cut to `key` into equal pieces no longer than
+  // max_edge_length, placed on the first lane running there (the other lanes are cut at
+  // the feet of that point, like at any cut). None across a gap without lanes.
+  void add_length_cuts(double key, const std::vector<bool>& open) {
+    if (settings_.max_edge_length <= 0 || cuts_.empty()) return;
+    const auto on = std::find(open.begin(), open.end(), true);
+    if (on == open.end()) return;
+    const std::size_t ref = static_cast<std::size_t>(on - open.begin());
+    const double from = cuts_.back().key;
+    const auto pieces = static_cast<int>(std::ceil((key - from) / settings_.max_edge_length - 1e-9));
+    for (int j = 1; j < pieces; ++j) {
+      const double k = from + (key - from) * j / pieces;
+      const double s = members_[ref].s_of_key(k);
+      cuts_.push_back({members_[ref].line.point_at(s), members_[ref].line.tangent_at(s), k, kNoMember, false});
     }
   }
 

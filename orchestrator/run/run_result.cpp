@@ -17,6 +17,13 @@ const char* kind_name(engine::EventKind k) {
   return "info";
 }
 
+// A contact's body: scenario actors by their actor id (a number), background vehicles by
+// their SUMO id (a string).
+nlohmann::ordered_json body_json(const std::string& name) {
+  const bool digits = !name.empty() && name.find_first_not_of("0123456789") == std::string::npos;
+  return digits ? nlohmann::ordered_json(std::stoi(name)) : nlohmann::ordered_json(name);
+}
+
 nlohmann::ordered_json file_json(const InputFile& f) {
   return {{"path", f.path}, {"sha256", f.sha256}};
 }
@@ -42,9 +49,41 @@ std::string to_json(const RunResult& r) {
   j["orchestrator_version"] = ORCH_VERSION;
   j["map_id"] = r.map_id;
   j["inputs"] = {{"scenario", file_json(r.scenario)}, {"waypoints", file_json(r.waypoints)}, {"net", file_json(r.net)}};
+  j["inputs"]["traffic"] = r.traffic_file.path.empty() ? nlohmann::ordered_json(nullptr) : file_json(r.traffic_file);
+  j["traffic"] = r.traffic;
+  j["sumo_args"] = r.sumo_args;
   j["events"] = nlohmann::ordered_json::array();
   for (const auto& e : r.events) j["events"].push_back({{"time", e.time}, {"kind", kind_name(e.kind)}, {"text", e.text}});
   j["warnings"] = r.warnings;
+  j["collisions"] = nlohmann::ordered_json::array();
+  for (const auto& c : r.collisions) {
+    j["collisions"].push_back({{"time", c.time},
+                               {"between", {body_json(c.a), body_json(c.b)}},
+                               {"positions", {{c.position_a.x(), c.position_a.y()}, {c.position_b.x(), c.position_b.y()}}},
+                               {"source", c.source},
+                               {"counted", c.counted},
+                               {"sumo_type", c.sumo_type}});
+  }
+  j["hand_overs"] = nlohmann::ordered_json::array();
+  for (const auto& h : r.hand_overs) {
+    nlohmann::ordered_json e{{"time", h.time}, {"hand_over", h.action.hand_over}};
+    if (h.action.throttle) e["throttle"] = *h.action.throttle;
+    if (h.action.brake) e["brake"] = *h.action.brake;
+    if (h.action.steer) e["steer"] = *h.action.steer;
+    j["hand_overs"].push_back(e);
+  }
+  j["ego_plugin"] = nullptr;
+  if (r.ego_plugin) {
+    const EgoLinkReport& e = *r.ego_plugin;
+    j["ego_plugin"] = {{"listen", e.listen},
+                       {"peer", e.peer.empty() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(e.peer)},
+                       {"client", e.client.empty() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(e.client)},
+                       {"order", e.order ? nlohmann::ordered_json(*e.order) : nlohmann::ordered_json(nullptr)},
+                       {"connected_at", e.connected_at ? nlohmann::ordered_json(*e.connected_at) : nlohmann::ordered_json(nullptr)},
+                       {"steps_driven", e.steps_driven},
+                       {"end", e.end},
+                       {"commands", e.commands}};
+  }
   j["trace_rows"] = r.trace_rows;
   j["wall_time_s"] = r.wall_time_s;
   j["outputs"] = {{"trace", "trace.csv"}, {"log", "run.log"}, {"sumo_log", "sumo.log"}};

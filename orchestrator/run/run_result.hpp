@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "engine/engine.hpp"
+#include "run/ego_link.hpp"
 
 namespace orch {
 
@@ -31,10 +32,18 @@ struct RunResult {
   InputFile scenario;
   InputFile waypoints;
   InputFile net;
+  // Background traffic (README "Background traffic"): the --traffic value (or the
+  // scenario's own), its route file (path empty: none), the SUMO command line the run used.
+  std::string traffic = "none";
+  InputFile traffic_file;
+  std::vector<std::string> sumo_args;
   std::vector<engine::SceneVisit> scenes;
   std::optional<int> ending_scene;
   std::vector<engine::Event> events;
   std::vector<std::string> warnings;  // validation warnings
+  std::vector<engine::Contact> collisions;     // every contact, in the order they began
+  std::vector<engine::HandOverRecord> hand_overs;
+  std::optional<EgoLinkReport> ego_plugin;  // the external ego plug-in's connection (--ego-port)
   double wall_time_s = 0;
   long long trace_rows = 0;
 };

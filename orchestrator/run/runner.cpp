@@ -7,11 +7,14 @@
 #include "core/errors.hpp"
 #include "core/files.hpp"
 #include "engine/engine.hpp"
+#include "map/background_traffic.hpp"
 #include "map/lane_map.hpp"
 #include "map/map_registry.hpp"
 #include "map/waypoint_file.hpp"
+#include "run/ego_link.hpp"
 #include "run/run_log.hpp"
 #include "run/trace_writer.hpp"
+#include "run/traffic_trace.hpp"
 #include "scenario/catalog.hpp"
 #include "scenario/loader.hpp"
 #include "scenario/validator.hpp"
@@ -68,6 +71,38 @@ void log_events(RunLog& log, RunResult& result, const std::vector<engine::Event>
 
 std::string first_line(const std::string& text) { return text.substr(0, text.find('\n')); }
 
+// The run's background traffic: --traffic, else the scenario's own "traffic" (a route file
+// beside the scenario file, or a level), else none. Returns its route file (empty: none).
+std::filesystem::path resolve_traffic(const RunRequest& req, const Inputs& in, RunResult& result, RunLog& log) {
+  std::string text = req.traffic;
+  if (text.empty() && !in.scenario.traffic.empty()) {
+    text = in.scenario.traffic;
+    const auto beside = std::filesystem::path(req.scenario_file).parent_path() / text;
+    if (std::filesystem::is_regular_file(beside)) text = beside.string();
+  }
+  const TrafficChoice choice = parse_traffic(text);
+  result.traffic = choice.label;
+  const auto file = traffic_file_for_run(choice, in.map, req.out_dir);
+  if (file.empty()) return file;
+  result.traffic_file = {file.string(), sha256_of_file(file)};
+  log.note(fmt::format("background traffic {} ({})", choice.label, file.string()));
+  return file;
+}
+
+// A collision involving the ego fails the test even when an ending scene was reached
+// afterwards (the run itself went on as scripted). Errors stay errors.
+void judge_collisions(const engine::Engine& engine, scenario::ActorId ego, RunResult& result) {
+  if (result.verdict == "error") return;
+  for (const auto& c : engine.contacts()) {
+    if (!c.counted || (c.a != std::to_string(ego) && c.b != std::to_string(ego))) continue;
+    const std::string other = c.a == std::to_string(ego) ? c.b : c.a;
+    const std::string what = fmt::format("the ego collided with {} at t={:.2f} s", engine.describe_body(other), c.time);
+    result.reason = result.verdict == "success" ? what + " (" + result.reason + " afterwards)" : what + "; " + result.reason;
+    result.verdict = "failure";
+    return;
+  }
+}
+
 }  // namespace
 
 RunResult run_scenario(const RunRequest& req, Simulator& sim) {
@@ -88,6 +123,7 @@ RunResult run_scenario(const RunRequest& req, Simulator& sim) {
   std::optional<LaneMap> lanes;
   std::optional<engine::Engine> engine;
   std::optional<TraceWriter> trace;
+  std::optional<TrafficTrace> traffic_trace;
   try {
     in.emplace(load_inputs(req, result, log));
     lanes.emplace(LaneMap::build(in->map.net_path().string(), in->waypoints));
@@ -97,15 +133,22 @@ RunResult run_scenario(const RunRequest& req, Simulator& sim) {
                          engine->actors().slots().size()));
 
     SimulatorConfig config;
-    config.net_file = in->map.net_path().string();
+    // Absolute paths: a SUMO joined with --connect resolves them in its own folder.
+    config.net_file = std::filesystem::absolute(in->map.net_path()).string();
     config.step = req.step;
     config.seed = req.seed;
-    config.log_file = (req.out_dir / "sumo.log").string();
+    config.log_file = std::filesystem::absolute(req.out_dir / "sumo.log").string();
+    if (const auto traffic = resolve_traffic(req, *in, result, log); !traffic.empty())
+      config.route_files.push_back(traffic.string());
+    result.sumo_args = sumo_arguments(config);
+    if (req.ego_link) log.note(req.ego_link->listen());
     sim.start(config);
     result.sumo_version = sim.version();
     trace.emplace(req.out_dir / "trace.csv", *lanes);
+    traffic_trace.emplace(req.out_dir, req.trace_background);
 
     auto out = engine->start();
+    if (req.ego_link) hand_ego_to_plugin(out.commands);
     log_events(log, result, out.events);
     sim.apply(out.commands);
     const auto tracked = engine->tracked();
@@ -116,7 +159,8 @@ RunResult run_scenario(const RunRequest& req, Simulator& sim) {
       out = engine->step(snap);
       result.sim_time = snap.time;
       log_events(log, result, out.events);
-      trace->record(*engine);
+      trace->record(*engine, plugin_driven_actor(req.ego_link, tracked));
+      traffic_trace->record(snap);
       if (engine->state() != engine::RunState::Running) break;
       if (req.max_time && snap.time >= *req.max_time - 1e-9) {
         result.verdict = "failure";
@@ -130,7 +174,10 @@ RunResult run_scenario(const RunRequest& req, Simulator& sim) {
         log.at(snap.time, result.reason);
         break;
       }
+      if (req.ego_link) hand_ego_to_plugin(out.commands);
       sim.apply(out.commands);
+      // The plug-in sees this step (a hand_over included) and acts before the world advances.
+      if (req.ego_link) req.ego_link->exchange(snap.time);
     }
     switch (engine->state()) {
       case engine::RunState::EndingReached:
@@ -169,10 +216,21 @@ RunResult run_scenario(const RunRequest& req, Simulator& sim) {
     result.verdict = "error";
     result.reason = std::string("internal error: ") + e.what();
   }
-  if (engine) result.scenes = engine->visits();
+  if (engine) {
+    result.scenes = engine->visits();
+    result.collisions = engine->contacts();
+    result.hand_overs = engine->hand_overs();
+    judge_collisions(*engine, in->scenario.ego.id, result);
+  }
+  if (traffic_trace) traffic_trace->flush();
   if (trace) {
     trace->flush();
     result.trace_rows = trace->rows();
+  }
+  if (req.ego_link) {
+    req.ego_link->finish(result.verdict, result.reason);
+    result.ego_plugin = req.ego_link->report();
+    log.note(describe(*result.ego_plugin));
   }
   sim.close();
   result.wall_time_s =

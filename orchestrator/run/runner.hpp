@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "run/ego_link.hpp"
 #include "run/run_result.hpp"
 #include "run/simulator.hpp"
 
@@ -24,6 +25,11 @@ struct RunRequest {
   std::vector<std::filesystem::path> map_dirs;  // empty: MapRegistry::default_search_dirs()
   std::string catalog_file;                     // empty: the compiled-in catalog
   const std::atomic<bool>* interrupted = nullptr;  // set by a signal handler to end the run
+  EgoLink* ego_link = nullptr;  // an external plug-in drives the ego (--ego-port); null: SUMO does
+  // Background traffic (README "Background traffic"): none, light, medium, dense, vehicles
+  // per hour and lane, or a SUMO route file; empty: the scenario's own "traffic", else none.
+  std::string traffic;
+  bool trace_background = false;  // background.csv: the background vehicles near the actors
 };
 
 RunResult run_scenario(const RunRequest& request, Simulator& simulator);

@@ -1,6 +1,7 @@
 #include "run/simulator.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 namespace orch {
 
@@ -20,6 +21,14 @@ std::vector<std::string> sumo_arguments(const SimulatorConfig& c) {
       "--no-step-log", "true",
       "--duration-log.disable", "true",
   };
+  if (!c.route_files.empty()) {
+    args.push_back("-r");
+    args.push_back(fmt::format("{}", fmt::join(c.route_files, ",")));
+    // A background vehicle that finds no room to enter within this time is dropped, so
+    // that a level above the road's capacity cannot pile up waiting vehicles (memory)
+    // during a long run. Scenario actors enter at t=0, before any background traffic.
+    args.insert(args.end(), {"--max-depart-delay", "10"});
+  }
   if (!c.log_file.empty()) {
     args.push_back("--log");
     args.push_back(c.log_file);

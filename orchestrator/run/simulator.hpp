@@ -16,6 +16,8 @@ struct SimulatorConfig {
   double step = 0.05;       // s
   long long seed = 42;
   std::string log_file;     // SUMO's own messages go here, not to the terminal
+  // SUMO route files with background traffic (README "Background traffic"); empty: none.
+  std::vector<std::string> route_files;
   std::vector<std::string> extra_args;  // appended to SUMO's command line
 };
 
@@ -25,7 +27,9 @@ class Simulator {
   virtual void start(const SimulatorConfig& config) = 0;
   virtual void apply(const std::vector<engine::Command>& commands) = 0;
   virtual void advance() = 0;  // one step
-  // The tracked actors' state now (same order); other vehicles are only counted.
+  // The tracked actors' state now (same order); background vehicles near them
+  // (WorldSnapshot::nearby) and the number of all others. Its cost must not grow with the
+  // number of background vehicles (README "Performance").
   virtual engine::WorldSnapshot read(const std::vector<engine::TrackedActor>& actors) = 0;
   virtual double time() = 0;
   [[nodiscard]] virtual std::string backend() const = 0;  // "libsumo", "traci"

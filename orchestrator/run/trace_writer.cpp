@@ -7,6 +7,7 @@
 namespace orch {
 
 TraceWriter::TraceWriter(const std::filesystem::path& path, const LaneMap& lanes) : lanes_(lanes) {
+  for (int i = 0; i < static_cast<int>(lanes.lanes().size()); ++i) lane_index_[lanes.lane(i).id] = i;
   file_ = std::fopen(path.c_str(), "w");
   if (!file_) throw OrchError("cannot write " + path.string());
   fmt::print(file_, "{}\n", kHeader);
@@ -17,23 +18,22 @@ TraceWriter::~TraceWriter() {
 }
 
 double TraceWriter::lateral_offset(const engine::ActorState& a) const {
-  if (a.lat_offset) return *a.lat_offset;
-  // Persons have no lateral lane position in SUMO: measure it on the lane's shape.
-  for (int i = 0; i < static_cast<int>(lanes_.lanes().size()); ++i) {
-    const LaneInfo& lane = lanes_.lane(i);
-    if (lane.edge == a.edge && lane.index == a.lane) return lanes_.place_on_lane(i, a.position).lateral;
-  }
-  return 0.0;
+  // The centre's offset from the centre of the lane SUMO has the actor on, like x and y.
+  // (SUMO's own lateral position is the front's: a car turned 3 degrees to change lanes
+  // would read 0.13 m off. Persons have none.)
+  if (auto it = lane_index_.find(a.edge + "_" + std::to_string(a.lane)); it != lane_index_.end())
+    return lanes_.place_on_lane(it->second, a.position).lateral;
+  return a.lat_offset.value_or(0.0);
 }
 
-void TraceWriter::record(const engine::Engine& engine) {
+void TraceWriter::record(const engine::Engine& engine, std::optional<scenario::ActorId> plugin_driven) {
   const engine::WorldSnapshot& snap = engine.judged();
   for (const auto& a : snap.actors) {
     if (!a.present) continue;
-    const char* driver = engine.scripted(a.id) ? "script" : "sumo";
+    const char* driver = plugin_driven == a.id ? "plugin" : engine.scripted(a.id) ? "script" : "sumo";
     fmt::print(file_, "{:.3f},{},{},{:.3f},{:.3f},{:.4f},{:.3f},{:.3f},{},{},{:.3f},{:.3f},{},{},{}\n", snap.time,
                engine.scene(), a.id, a.position.x(), a.position.y(), a.heading, a.speed, a.accel, a.edge, a.lane,
-               a.lane_pos, lateral_offset(a), a.signals, engine.siren(a.id) ? 1 : 0, driver);
+               a.lane_pos, lateral_offset(a), a.signals, a.siren ? 1 : 0, driver);
     ++rows_;
   }
   // Every 200 steps (10 s at 0.05 s) the rows reach the disk even if the process dies.

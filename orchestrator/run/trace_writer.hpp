@@ -4,7 +4,9 @@
 // same bytes, and flushed regularly so a crash keeps what was simulated.
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 #include <string>
+#include <unordered_map>
 
 #include "engine/engine.hpp"
 #include "map/lane_map.hpp"
@@ -21,7 +23,8 @@ class TraceWriter {
   TraceWriter(const TraceWriter&) = delete;
   TraceWriter& operator=(const TraceWriter&) = delete;
 
-  void record(const engine::Engine& engine);
+  // `plugin_driven`: the actor an external ego plug-in drove in this step (driver "plugin").
+  void record(const engine::Engine& engine, std::optional<scenario::ActorId> plugin_driven = std::nullopt);
   void flush();
   [[nodiscard]] long long rows() const { return rows_; }
 
@@ -30,6 +33,7 @@ class TraceWriter {
 
   std::FILE* file_ = nullptr;
   const LaneMap& lanes_;
+  std::unordered_map<std::string, int> lane_index_;  // SUMO lane id -> LaneMap index
   long long rows_ = 0;
   int steps_since_flush_ = 0;
 };

@@ -136,6 +136,7 @@ ReadScenario read_scenario(const JsonDocument& doc, Diagnostics& diags) {
   s.title = r.string("title", Need::Optional).value_or("");
   s.description = r.string("description", Need::Optional).value_or("");
   s.map_id = read_id_string(r, "map_id", Need::Required).value_or("");
+  s.traffic = r.string("traffic", Need::Optional).value_or("");
   // Actors first: relative speeds and distances without a target refer to the ego's id.
   if (const auto* actors = r.object("actors", Need::Required); ctx.need(actors != nullptr))
     read_actors(ctx, *actors, r.child("actors"), s);

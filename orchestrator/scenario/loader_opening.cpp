@@ -83,11 +83,13 @@ StartPosition read_other_start(LoadContext& ctx, const nlohmann::json& value, co
     start.measure = read_measure_type(r).value_or(MeasureType::Center);
     start.wp_offset = r.number("wp_offset", Need::Optional).value_or(0.0);
     start.heading = read_orientation(ctx, r);
-    for (const char* key : {"wp_id", "wp_idx"})
-      reject_key(r, key,
-                 fmt::format("\"{}\" belongs to start positions of type \"waypoint\"; type \"distance\" places the "
-                             "actor \"distance\" m from \"target_actor_id\"",
-                             key));
+    // The route the actor drives (the reference implementation reads it for every start
+    // position); absent: the target's route.
+    if (const auto wp_id = r.string("wp_id", Need::Optional))
+      start.waypoint = WaypointRef{*wp_id, 0.0, r.where("wp_id")};
+    reject_key(r, "wp_idx",
+               "\"wp_idx\" belongs to start positions of type \"waypoint\"; type \"distance\" places the actor "
+               "\"distance\" m along the road from \"target_actor_id\" (on the route \"wp_id\" when given)");
   } else {
     start.type = StartPositionType::Waypoint;
     read_waypoint_placement(ctx, r, start);

@@ -220,6 +220,10 @@ struct Scenario {
   std::string title;
   std::string description;
   std::string map_id;
+  // "traffic" (an extension of the format): the scenario's own background traffic, a SUMO
+  // route file relative to the scenario file, or a level as `run --traffic` takes it;
+  // `run --traffic` overrides it (README "Background traffic").
+  std::string traffic;
   ActorSpec ego;
   std::vector<ActorSpec> others;
   OpeningScene opening;

@@ -213,6 +213,8 @@ void check_opening(CheckContext& ctx) {
       check_waypoint(ctx, *start.waypoint, WaypointUse::Placement);
     if (start.type == StartPositionType::Distance && start.target)
       check_actor_ref(ctx, *start.target, start.where, "target_actor_id");
+    if (start.type == StartPositionType::Distance && start.waypoint)
+      check_route(ctx, start.waypoint->wp_id, start.waypoint->where);
     if (entry.start_speed) check_speed(ctx, *entry.start_speed, entry.where, "start_speed");
   }
 }

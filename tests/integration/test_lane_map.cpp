@@ -1,5 +1,6 @@
 // LaneMap on the shipped nets and on a split synthetic road: waypoints resolve to the right
 // lanes in SUMO's lane coordinates, and the per-step queries agree with exact placement.
+#include <algorithm>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -34,11 +35,15 @@ const ShippedMap& shipped(const std::string& id) {
   return it->second;
 }
 
-const LaneInfo& lane_of_route(const ShippedMap& m, const std::string& route) {
+// The lanes a route runs on, in driving order: the shipped roads are cut into edges of at
+// most max_edge_length_m, so a route has one lane per piece.
+std::vector<const LaneInfo*> lanes_of_route(const ShippedMap& m, const std::string& route) {
+  std::vector<const LaneInfo*> out;
   const RouteLanes* rl = m.lanes.route(route);
   EXPECT_NE(rl, nullptr) << route;
-  EXPECT_EQ(rl->lanes.size(), 1u) << route;
-  return m.lanes.lane(rl->lanes.front());
+  if (rl == nullptr) return out;
+  for (const auto& id : rl->lanes) out.push_back(&m.lanes.lane(id));
+  return out;
 }
 
 int lanes_on_edge(const LaneMap& lanes, const std::string& edge) {
@@ -71,39 +76,70 @@ TEST(LaneMap, EveryShippedWaypointLiesOnItsLaneCentre) {
 TEST(LaneMap, AlksLanesAreOrderedRightToLeft) {
   for (const char* id : {"ALKS_Road", "ALKS_Road_Different_Curvatures"}) {
     const ShippedMap& m = shipped(id);
-    EXPECT_EQ(lane_of_route(m, "Waypoint03").index, 0) << id;  // rightmost, y = -11.5
-    EXPECT_EQ(lane_of_route(m, "Waypoint02").index, 1) << id;
-    EXPECT_EQ(lane_of_route(m, "Waypoint01").index, 2) << id;  // leftmost, y = -4.5
-    EXPECT_EQ(lane_of_route(m, "Waypoint01").edge, lane_of_route(m, "Waypoint03").edge);
-    EXPECT_NEAR(lane_of_route(m, "Waypoint02").width, 3.5, 0.01);
-    EXPECT_NEAR(lane_of_route(m, "Waypoint02").speed, 80 / 3.6, 1e-3);
+    const auto w1 = lanes_of_route(m, "Waypoint01");  // leftmost, y = -4.5
+    const auto w2 = lanes_of_route(m, "Waypoint02");
+    const auto w3 = lanes_of_route(m, "Waypoint03");  // rightmost, y = -11.5
+    ASSERT_GT(w1.size(), 1u) << id << ": a 10 km road is cut into pieces";
+    ASSERT_EQ(w1.size(), w2.size()) << id;
+    ASSERT_EQ(w1.size(), w3.size()) << id;
+    for (std::size_t i = 0; i < w1.size(); ++i) {
+      EXPECT_EQ(w3[i]->index, 0) << id << " piece " << i;
+      EXPECT_EQ(w2[i]->index, 1) << id << " piece " << i;
+      EXPECT_EQ(w1[i]->index, 2) << id << " piece " << i;
+      EXPECT_EQ(w1[i]->edge, w3[i]->edge) << id << " piece " << i;
+      EXPECT_NEAR(w2[i]->width, 3.5, 0.01);
+      EXPECT_NEAR(w2[i]->speed, 80 / 3.6, 1e-3);
+      // No piece is longer than the manifest's max_edge_length_m (250 m).
+      EXPECT_LE(w2[i]->length * w2[i]->geometry_factor(), 250.0 + 1e-6) << id << " piece " << i;
+    }
   }
 }
 
 TEST(LaneMap, HighwayHasOneEdgePerDirectionWithWaypoint01Leftmost) {
   const ShippedMap& m = shipped("highway");
-  const LaneInfo& w1 = lane_of_route(m, "Waypoint01");  // x = -36 at the start, driving +y
-  const LaneInfo& w3 = lane_of_route(m, "Waypoint03");
-  const LaneInfo& w1r = lane_of_route(m, "Waypoint01R");  // x = -9 at the end, driving -y
-  EXPECT_EQ(w1.edge, w3.edge);
-  EXPECT_NE(w1.edge, w1r.edge);
-  EXPECT_EQ(w1.index, lanes_on_edge(m.lanes, w1.edge) - 1);
-  EXPECT_EQ(w3.index, 0);
-  EXPECT_EQ(w1r.index, lanes_on_edge(m.lanes, w1r.edge) - 1);
-  EXPECT_EQ(lane_of_route(m, "Waypoint03R").index, 0);
-  EXPECT_NEAR(w1.width, 4.0, 0.01);
-  EXPECT_NEAR(w1.speed, 100 / 3.6, 1e-3);
+  const auto w1 = lanes_of_route(m, "Waypoint01");  // x = -36 at the start, driving +y
+  const auto w3 = lanes_of_route(m, "Waypoint03");
+  const auto w1r = lanes_of_route(m, "Waypoint01R");  // x = -9 at the end, driving -y
+  const auto w3r = lanes_of_route(m, "Waypoint03R");
+  ASSERT_EQ(w1.size(), w3.size());
+  ASSERT_EQ(w1r.size(), w3r.size());
+  for (std::size_t i = 0; i < w1.size(); ++i) {
+    EXPECT_EQ(w1[i]->edge, w3[i]->edge);
+    EXPECT_EQ(w1[i]->index, lanes_on_edge(m.lanes, w1[i]->edge) - 1);
+    EXPECT_EQ(w3[i]->index, 0);
+    EXPECT_NEAR(w1[i]->width, 4.0, 0.01);
+    EXPECT_NEAR(w1[i]->speed, 100 / 3.6, 1e-3);
+    for (const auto* r : w1r) EXPECT_NE(w1[i]->edge, r->edge) << "opposite directions share no edge";
+  }
+  for (std::size_t i = 0; i < w1r.size(); ++i) {
+    EXPECT_EQ(w1r[i]->index, lanes_on_edge(m.lanes, w1r[i]->edge) - 1);
+    EXPECT_EQ(w3r[i]->index, 0);
+  }
 }
 
 TEST(LaneMap, LanePositionsIncreaseAlongEveryRoute) {
   for (const char* id : {"highway", "ALKS_Road_Different_Curvatures"}) {
     const ShippedMap& m = shipped(id);
     for (const auto& r : m.waypoints.routes) {
-      const auto& pts = m.lanes.route(r.id)->points;
+      const RouteLanes& rl = *m.lanes.route(r.id);
+      const auto& pts = rl.points;
       // The first waypoint lies lane_extension (20 m) into the lane.
       EXPECT_NEAR(pts.front().lane_pos * m.lanes.lane(pts.front().lane).geometry_factor(), 20.0, 0.05);
-      for (std::size_t i = 1; i < pts.size(); ++i)
-        ASSERT_GT(pts[i].lane_pos, pts[i - 1].lane_pos) << id << " " << r.id << " wp " << i;
+      std::size_t lane_at = 0;  // index into rl.lanes of the current waypoint's lane
+      for (std::size_t i = 1; i < pts.size(); ++i) {
+        if (pts[i].lane == pts[i - 1].lane) {
+          ASSERT_GT(pts[i].lane_pos, pts[i - 1].lane_pos) << id << " " << r.id << " wp " << i;
+          continue;
+        }
+        // A new piece: it is a later lane of the route, and positions restart near 0.
+        const auto next = std::find(rl.lanes.begin() + static_cast<std::ptrdiff_t>(lane_at), rl.lanes.end(), pts[i].lane);
+        ASSERT_NE(next, rl.lanes.end()) << id << " " << r.id << " wp " << i;
+        const auto at = static_cast<std::size_t>(next - rl.lanes.begin());
+        ASSERT_GT(at, lane_at) << id << " " << r.id << " wp " << i;
+        lane_at = at;
+        EXPECT_LT(pts[i].lane_pos, 30.0) << id << " " << r.id << " wp " << i;
+      }
+      EXPECT_EQ(lane_at + 1, rl.lanes.size()) << id << " " << r.id << ": the last waypoint lies on the last lane";
     }
   }
 }

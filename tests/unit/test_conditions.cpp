@@ -44,7 +44,8 @@ class Conditions : public ::testing::Test {
   ConditionOutcome eval(const ConditionKind& k, const WorldSnapshot& now, const WorldSnapshot* before = nullptr) {
     ConditionContext ctx{now, before, actors_, waypoints_,
                          [this](ActorId) { return waypoints_.find("Waypoint02"); },
-                         [this](ActorId id) { return id == collided_; }};
+                         [this](ActorId id) { return id == collided_; },
+                         {}};
     return evaluate(Condition{k, "", {}}, ctx);
   }
   Scenario scenario_;
@@ -111,6 +112,18 @@ TEST_F(Conditions, TraveledDistanceSignAndSurface) {
   EXPECT_FALSE(eval(DistanceCondition{1, 0, DistanceType::Traveled, Comparison::Less, 31, MeasureType::Center}, now).holds);
 }
 
+TEST_F(Conditions, TraveledDistanceCountsInTheActorsDirectionOfTravel) {
+  // An actor driving its route against the drawn direction (in a lane of the opposite side):
+  // a target at smaller x is ahead of it.
+  const auto now = snap(1, {car(0, 40, -8, 0), car(1, 10, -8, 0)});
+  ConditionContext ctx{now, nullptr, actors_, waypoints_, [this](ActorId) { return waypoints_.find("Waypoint02"); },
+                       [](ActorId) { return false; }, [](ActorId id) { return id == 0 ? -1 : 1; }};
+  DistanceCondition ahead{0, 1, DistanceType::Traveled, Comparison::Greater, 29.9, MeasureType::Center};
+  EXPECT_TRUE(evaluate(Condition{ahead, "", {}}, ctx).holds);
+  ctx.direction_of = nullptr;  // the same pair seen along the route as drawn: target behind
+  EXPECT_FALSE(evaluate(Condition{ahead, "", {}}, ctx).holds);
+}
+
 TEST_F(Conditions, SurfaceDistanceOfOverlappingActorsIsZero) {
   const auto now = snap(1, {car(0, 10, -8, 0), car(1, 12, -8, 0)});
   EXPECT_TRUE(eval(DistanceCondition{0, 1, DistanceType::Traveled, Comparison::Equal, 0, MeasureType::Surface}, now).holds);
@@ -164,7 +177,7 @@ TEST(ConditionGroups, AndOrAndNesting) {
     ego.present = true;
     ego.speed = speed;
     now.actors = {ego};
-    ConditionContext ctx{now, nullptr, actors, wps, [](ActorId) { return nullptr; }, [](ActorId) { return false; }};
+    ConditionContext ctx{now, nullptr, actors, wps, [](ActorId) { return nullptr; }, [](ActorId) { return false; }, {}};
     std::vector<std::string> fired;
     return evaluate(s.find_scene(1)->conditions, ctx, &fired);
   };

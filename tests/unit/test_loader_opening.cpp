@@ -115,13 +115,14 @@ TEST(LoaderOpening, KeysOfTheOtherStartType) {
   const auto d = load_text(with_opening(R"({
 "ego": {"start_position": {"type": "distance", "wp_id": "Waypoint02", "wp_idx": 5, "distance": 3}},
 "others": [{"actor_id": 1, "start_position": {"type": "waypoint", "wp_id": "Waypoint01", "wp_idx": 1, "target_actor_id": 0}},
-           {"actor_id": 2, "start_position": {"type": "distance", "wp_id": "Waypoint01", "distance": 3}}],
+           {"actor_id": 2, "start_position": {"type": "distance", "wp_id": "Waypoint01", "wp_idx": 7, "distance": 3}}],
 "next_scenes": [1]})")).diagnostics;
   EXPECT_TRUE(has_error(d, "/scenario/opening_scene/ego/start_position/type", 5, "may only be \"waypoint\""));
   EXPECT_TRUE(has_error(d, "/scenario/opening_scene/ego/start_position/distance", 5, "only others may use"));
   EXPECT_TRUE(has_error(d, "/scenario/opening_scene/others/0/start_position/target_actor_id", 6,
                         "belongs to start positions of type \"distance\""));
-  EXPECT_TRUE(has_error(d, "/scenario/opening_scene/others/1/start_position/wp_id", 7,
+  // A distance start may name the route the actor drives (wp_id), not a point on it.
+  EXPECT_TRUE(has_error(d, "/scenario/opening_scene/others/1/start_position/wp_idx", 7,
                         "belongs to start positions of type \"waypoint\""));
   EXPECT_EQ(d.error_count(), 4) << d.format();
 }

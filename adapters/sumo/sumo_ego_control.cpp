@@ -1,0 +1,244 @@
+// SUMO side of the ego plug-in, compiled once per SUMO client library: ORCH_SUMO_NS is
+// libsumo or libtraci (see adapters/CMakeLists.txt). SUMO's exceptions stop here and become
+// WorldError (an error status for the plug-in, the run goes on).
+//
+// Reads are cached until the world advances: a plug-in asking for the same value twice, and
+// the context subscription that looks at every vehicle's position, cost one SUMO call per
+// value and step (a socket round trip each on libtraci).
+#include "sumo_ego_control.hpp"
+
+#include <libsumo/TraCIConstants.h>
+
+#include <algorithm>
+#include <unordered_map>
+#include <unordered_set>
+#include ORCH_SUMO_HEADER
+
+#include "run/ego_link.hpp"
+
+#include "sumo_api.hpp"
+
+// Classes from ORCH_SUMO_NS, shared types and exceptions from libsumo (sumo_api.hpp).
+namespace sumo = orch_sumo;
+
+#define ORCH_CONCAT_INNER(a, b) a##b
+#define ORCH_CONCAT(a, b) ORCH_CONCAT_INNER(a, b)
+
+namespace orch {
+namespace {
+
+namespace tc = libsumo;
+using traci::Domain;
+using traci::Value;
+
+Value pos2(const sumo::TraCIPosition& p) { return traci::Pos2{p.x, p.y}; }
+Value pos3(const sumo::TraCIPosition& p) { return traci::Pos3{p.x, p.y, p.z}; }
+
+class SumoEgoControl final : public traci::EgoWorld {
+ public:
+  void new_step() override { cache_.clear(); }
+
+  void take_over_ego() override {
+    guard([] { sumo::Vehicle::setLaneChangeMode(kEgoSumoId, kPluginEgoLaneChangeMode); });
+  }
+
+  [[nodiscard]] bool supports(Domain domain, int variable) const override {
+    static const std::unordered_set<int> simulation = {
+        tc::VAR_TIME, tc::VAR_TIME_STEP, tc::VAR_DELTA_T, tc::VAR_DEPARTED_VEHICLES_IDS,
+        tc::VAR_DEPARTED_VEHICLES_NUMBER, tc::VAR_ARRIVED_VEHICLES_IDS, tc::VAR_ARRIVED_VEHICLES_NUMBER,
+        tc::VAR_MIN_EXPECTED_VEHICLES};
+    static const std::unordered_set<int> vehicle = {
+        tc::TRACI_ID_LIST, tc::ID_COUNT, tc::VAR_POSITION, tc::VAR_POSITION3D, tc::VAR_SPEED, tc::VAR_ACCELERATION,
+        tc::VAR_ANGLE, tc::VAR_ROAD_ID, tc::VAR_LANE_ID, tc::VAR_LANE_INDEX, tc::VAR_LANEPOSITION,
+        tc::VAR_LANEPOSITION_LAT, tc::VAR_LENGTH, tc::VAR_WIDTH, tc::VAR_TYPE, tc::VAR_SIGNALS, tc::VAR_LEADER,
+        tc::VAR_PARAMETER, tc::VAR_SPEEDSETMODE, tc::VAR_LANECHANGE_MODE};
+    static const std::unordered_set<int> person = {
+        tc::TRACI_ID_LIST, tc::ID_COUNT, tc::VAR_POSITION, tc::VAR_POSITION3D, tc::VAR_SPEED, tc::VAR_ANGLE,
+        tc::VAR_ROAD_ID, tc::VAR_LANE_ID, tc::VAR_LANEPOSITION, tc::VAR_LENGTH, tc::VAR_WIDTH, tc::VAR_TYPE};
+    switch (domain) {
+      case Domain::Simulation: return simulation.count(variable) > 0;
+      case Domain::Vehicle: return vehicle.count(variable) > 0;
+      case Domain::Person: return person.count(variable) > 0;
+    }
+    return false;
+  }
+
+  bool exists(Domain domain, const std::string& id) override {
+    if (domain == Domain::Simulation) return true;
+    // One cheap getter per object and step, not the whole id list (thousands of vehicles
+    // with background traffic): SUMO throws for an unknown id.
+    try {
+      read(domain, tc::VAR_TYPE, id, std::nullopt);
+      return true;
+    } catch (const traci::WorldError&) {
+      return false;
+    }
+  }
+
+  Value read(Domain domain, int variable, const std::string& id, const std::optional<Value>& parameter) override {
+    if (!supports(domain, variable))
+      throw traci::NotImplemented(std::string(domain == Domain::Vehicle  ? "vehicle"
+                                              : domain == Domain::Person ? "person"
+                                                                         : "simulation") +
+                                  " variable " + std::to_string(variable) +
+                                  " is not implemented by the orchestrator's ego TraCI server");
+    std::string key;
+    key += static_cast<char>(domain);
+    key += static_cast<char>(variable);
+    key += id;
+    if (parameter) key += '\0' + parameter_text(*parameter);
+    if (const auto it = cache_.find(key); it != cache_.end()) return it->second;
+    Value v;
+    guard([&] {
+      switch (domain) {
+        case Domain::Simulation: v = read_simulation(variable); break;
+        case Domain::Vehicle: v = read_vehicle(variable, id, parameter); break;
+        case Domain::Person: v = read_person(variable, id); break;
+      }
+    });
+    cache_.emplace(std::move(key), v);
+    return v;
+  }
+
+  void command(const std::string& vehicle, const traci::EgoCommand& command) override {
+    guard([&] {
+      std::visit(
+          [&](const auto& c) {
+            using T = std::decay_t<decltype(c)>;
+            if constexpr (std::is_same_v<T, traci::SetSpeed>) {
+              sumo::Vehicle::setSpeed(vehicle, c.speed);
+            } else if constexpr (std::is_same_v<T, traci::SlowDown>) {
+              sumo::Vehicle::slowDown(vehicle, c.speed, c.duration);
+            } else if constexpr (std::is_same_v<T, traci::ChangeLane>) {
+              change_lane(vehicle, c.lane);
+            } else if constexpr (std::is_same_v<T, traci::MoveToXY>) {
+              sumo::Vehicle::moveToXY(vehicle, c.edge, c.lane, c.x, c.y, c.angle, c.keep_route, c.match_threshold);
+            } else if constexpr (std::is_same_v<T, traci::SetSignals>) {
+              sumo::Vehicle::setSignals(vehicle, c.signals);
+            } else if constexpr (std::is_same_v<T, traci::SetSpeedMode>) {
+              sumo::Vehicle::setSpeedMode(vehicle, c.mode);
+            } else {
+              sumo::Vehicle::setLaneChangeMode(vehicle, c.mode);
+            }
+          },
+          command);
+    });
+    // Some values change at once (signals, modes): read them again.
+    cache_.clear();
+  }
+
+ private:
+  template <typename F>
+  static void guard(F&& f) {
+    try {
+      f();
+    } catch (const sumo::TraCIException& e) {
+      throw traci::WorldError(e.what());
+    }
+  }
+
+  // changeLane as a lateral move to the target lane's centre. SUMO 1.15 with the sublane
+  // model (which the orchestrator runs) leaves changeLane requests of vehicles inserted at run
+  // time pending forever (observed: lane change state "TraCI, urgent, left", no movement);
+  // changeSublane moves them. The ego then stays there: SUMO makes no lane change of its own.
+  static void change_lane(const std::string& vehicle, int target) {
+    const std::string edge = sumo::Vehicle::getRoadID(vehicle);
+    const int current = sumo::Vehicle::getLaneIndex(vehicle);
+    const int lanes = sumo::Edge::getLaneNumber(edge);
+    if (target < 0 || target >= lanes)
+      throw traci::WorldError("No lane with index " + std::to_string(target) + " on edge '" + edge + "'");
+    const auto width = [&](int lane) { return sumo::Lane::getWidth(edge + "_" + std::to_string(lane)); };
+    double distance = -sumo::Vehicle::getLateralLanePosition(vehicle);
+    for (int lane = current; lane < target; ++lane) distance += (width(lane) + width(lane + 1)) / 2;
+    for (int lane = current; lane > target; --lane) distance -= (width(lane) + width(lane - 1)) / 2;
+    sumo::Vehicle::changeSublane(vehicle, distance);
+  }
+
+  static std::string parameter_text(const Value& v) {
+    if (const auto* s = std::get_if<std::string>(&v)) return *s;
+    if (const auto* d = std::get_if<double>(&v)) return std::to_string(*d);
+    if (const auto* i = std::get_if<std::int32_t>(&v)) return std::to_string(*i);
+    return "?";
+  }
+
+  static double number(const std::optional<Value>& v) {
+    if (!v) return 0.0;
+    if (const auto* d = std::get_if<double>(&*v)) return *d;
+    if (const auto* i = std::get_if<std::int32_t>(&*v)) return *i;
+    throw traci::WorldError("the distance must be a number");
+  }
+
+  static Value read_simulation(int variable) {
+    switch (variable) {
+      case tc::VAR_TIME: return sumo::Simulation::getTime();
+      case tc::VAR_TIME_STEP: return static_cast<std::int32_t>(sumo::Simulation::getCurrentTime());
+      case tc::VAR_DELTA_T: return sumo::Simulation::getDeltaT();
+      case tc::VAR_DEPARTED_VEHICLES_IDS: return sumo::Simulation::getDepartedIDList();
+      case tc::VAR_DEPARTED_VEHICLES_NUMBER: return static_cast<std::int32_t>(sumo::Simulation::getDepartedNumber());
+      case tc::VAR_ARRIVED_VEHICLES_IDS: return sumo::Simulation::getArrivedIDList();
+      case tc::VAR_ARRIVED_VEHICLES_NUMBER: return static_cast<std::int32_t>(sumo::Simulation::getArrivedNumber());
+      default: return static_cast<std::int32_t>(sumo::Simulation::getMinExpectedNumber());
+    }
+  }
+
+  static Value read_vehicle(int variable, const std::string& id, const std::optional<Value>& parameter) {
+    using V = sumo::Vehicle;
+    switch (variable) {
+      case tc::TRACI_ID_LIST: return V::getIDList();
+      case tc::ID_COUNT: return static_cast<std::int32_t>(V::getIDCount());
+      case tc::VAR_POSITION: return pos2(V::getPosition(id));
+      case tc::VAR_POSITION3D: return pos3(V::getPosition3D(id));
+      case tc::VAR_SPEED: return V::getSpeed(id);
+      case tc::VAR_ACCELERATION: return V::getAcceleration(id);
+      case tc::VAR_ANGLE: return V::getAngle(id);
+      case tc::VAR_ROAD_ID: return V::getRoadID(id);
+      case tc::VAR_LANE_ID: return V::getLaneID(id);
+      case tc::VAR_LANE_INDEX: return static_cast<std::int32_t>(V::getLaneIndex(id));
+      case tc::VAR_LANEPOSITION: return V::getLanePosition(id);
+      case tc::VAR_LANEPOSITION_LAT: return V::getLateralLanePosition(id);
+      case tc::VAR_LENGTH: return V::getLength(id);
+      case tc::VAR_WIDTH: return V::getWidth(id);
+      case tc::VAR_TYPE: return V::getTypeID(id);
+      case tc::VAR_SIGNALS: return static_cast<std::int32_t>(V::getSignals(id));
+      case tc::VAR_LEADER: {
+        const auto [leader, gap] = V::getLeader(id, number(parameter));
+        return traci::Leader{leader, gap};
+      }
+      case tc::VAR_PARAMETER: {
+        const auto* key = parameter ? std::get_if<std::string>(&*parameter) : nullptr;
+        if (!key) throw traci::WorldError("getParameter needs the key as a string");
+        return V::getParameter(id, *key);
+      }
+      case tc::VAR_SPEEDSETMODE: return static_cast<std::int32_t>(V::getSpeedMode(id));
+      default: return static_cast<std::int32_t>(V::getLaneChangeMode(id));
+    }
+  }
+
+  static Value read_person(int variable, const std::string& id) {
+    using P = sumo::Person;
+    switch (variable) {
+      case tc::TRACI_ID_LIST: return P::getIDList();
+      case tc::ID_COUNT: return static_cast<std::int32_t>(P::getIDCount());
+      case tc::VAR_POSITION: return pos2(P::getPosition(id));
+      case tc::VAR_POSITION3D: return pos3(P::getPosition3D(id));
+      case tc::VAR_SPEED: return P::getSpeed(id);
+      case tc::VAR_ANGLE: return P::getAngle(id);
+      case tc::VAR_ROAD_ID: return P::getRoadID(id);
+      case tc::VAR_LANE_ID: return P::getLaneID(id);
+      case tc::VAR_LANEPOSITION: return P::getLanePosition(id);
+      case tc::VAR_LENGTH: return P::getLength(id);
+      case tc::VAR_WIDTH: return P::getWidth(id);
+      default: return P::getTypeID(id);
+    }
+  }
+
+  std::unordered_map<std::string, Value> cache_;
+};
+
+}  // namespace
+
+std::unique_ptr<traci::EgoWorld> ORCH_CONCAT(make_ego_control_, ORCH_SUMO_NS)() {
+  return std::make_unique<SumoEgoControl>();
+}
+
+}  // namespace orch

@@ -1,0 +1,228 @@
+#pragma once
+// What the orchestrator reads from SUMO each step, through subscriptions only, so that its
+// cost does not grow with the background traffic (README "Performance"):
+//   - the simulation: time, the vehicles and persons that departed, how many arrived and
+//     whether any collided (the running count is kept from departures and arrivals:
+//     Vehicle::getIDCount builds the list of every vehicle id, O(n) each step);
+//   - each scenario actor, once SUMO has inserted it: its pose and lane;
+//   - around each actor, a context subscription: the vehicles within kNearbyRange of it
+//     (SUMO finds them through its lane tree, looking only at lanes near the actor).
+// On libsumo subscription results are computed in-process after each step; on libtraci
+// they arrive with the answer to the step command, so reading costs no extra round trip.
+//
+// Included by sumo_simulator.cpp only (compiled once per SUMO client library).
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <numbers>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+#include "engine/world.hpp"
+#include "sumo_api.hpp"
+
+namespace orch::sumo_reading {
+// Internal linkage: this header is compiled once per client library, and the libsumo and
+// libtraci versions of these functions must not be merged by the linker.
+namespace {
+
+namespace sumo = orch_sumo;
+namespace tc = libsumo;
+
+// m between an actor's and a background vehicle's reference points (front bumpers) within
+// which the vehicle is "nearby": engine collision tests and --trace-background see it.
+constexpr double kNearbyRange = 75.0;
+
+// SUMO angles: degrees clockwise from north. Orchestrator headings: radians
+// counter-clockwise from +x.
+double from_sumo_angle(double angle_deg) { return wrap_angle((90.0 - angle_deg) * std::numbers::pi / 180.0); }
+
+double number(const sumo::TraCIResults& r, int var) {
+  const auto it = r.find(var);
+  if (it == r.end()) {
+    std::string have;
+    for (const auto& [k, v] : r) have += " " + std::to_string(k);
+    throw sumo::TraCIException("subscription result without variable " + std::to_string(var) + " (has:" + have + ")");
+  }
+  if (const auto* d = dynamic_cast<const sumo::TraCIDouble*>(it->second.get())) return d->value;
+  if (const auto* i = dynamic_cast<const sumo::TraCIInt*>(it->second.get())) return i->value;
+  throw sumo::TraCIException("subscription variable " + std::to_string(var) + " is not a number");
+}
+int integer(const sumo::TraCIResults& r, int var) { return static_cast<int>(std::lround(number(r, var))); }
+std::string text(const sumo::TraCIResults& r, int var) {
+  const auto it = r.find(var);
+  if (it == r.end()) return "";
+  if (const auto* s = dynamic_cast<const sumo::TraCIString*>(it->second.get())) return s->value;
+  return it->second->getString();
+}
+std::vector<std::string> strings(const sumo::TraCIResults& r, int var) {
+  const auto it = r.find(var);
+  if (it == r.end()) return {};
+  if (const auto* l = dynamic_cast<const sumo::TraCIStringList*>(it->second.get())) return l->value;
+  return {};
+}
+Vec2 position(const sumo::TraCIResults& r) {
+  const auto it = r.find(tc::VAR_POSITION);
+  const auto* p = it == r.end() ? nullptr : dynamic_cast<const sumo::TraCIPosition*>(it->second.get());
+  if (!p) throw sumo::TraCIException("subscription result without a position");
+  return {p->x, p->y};
+}
+// SUMO's vehicle position is the middle of the front bumper; the orchestrator's is the centre.
+Vec2 centre_of(const Vec2& front, double heading, double length) {
+  return front - (length / 2) * Vec2(std::cos(heading), std::sin(heading));
+}
+
+class WorldReader {
+ public:
+  // Once, after SUMO started and before the first step.
+  void start() {
+    const std::vector<int> vars = {tc::VAR_TIME, tc::VAR_DEPARTED_VEHICLES_IDS, tc::VAR_ARRIVED_VEHICLES_NUMBER,
+                                   tc::VAR_COLLIDING_VEHICLES_NUMBER};
+    sumo::Simulation::subscribe(vars);
+  }
+
+  [[nodiscard]] double time() const { return time_; }
+  [[nodiscard]] long long running_vehicles() const { return running_; }
+
+  // After every step (whether or not the step is read): departures and arrivals are only
+  // reported for the step that just ran.
+  void after_step() {
+    const sumo::TraCIResults simulation = sumo::Simulation::getSubscriptionResults();
+    time_ = number(simulation, tc::VAR_TIME);
+    const auto departed = strings(simulation, tc::VAR_DEPARTED_VEHICLES_IDS);
+    running_ += static_cast<long long>(departed.size()) - integer(simulation, tc::VAR_ARRIVED_VEHICLES_NUMBER);
+    colliding_ = integer(simulation, tc::VAR_COLLIDING_VEHICLES_NUMBER);
+    for (const auto& id : departed)
+      if (actor_kind_.count(id)) follow(id, false);
+    // libsumo (1.15) leaves VAR_DEPARTED_PERSONS_IDS out of its simulation subscription
+    // results, so scenario pedestrians are looked for by id: they depart in the step after
+    // they were added, and there are only a few of them.
+    for (auto it = pending_persons_.begin(); it != pending_persons_.end();) {
+      if (person_departed(*it)) {
+        follow(*it, true);
+        it = pending_persons_.erase(it);
+      } else {
+        ++it;
+      }
+    }
+  }
+
+  // A scenario actor SUMO is about to insert (spawned): followed once it departs.
+  void expect(const engine::TrackedActor& actor) {
+    actor_kind_[actor.sumo_id] = actor.kind;
+    if (actor.kind == ActorKind::Pedestrian) pending_persons_.push_back(actor.sumo_id);
+  }
+
+  engine::WorldSnapshot read(const std::vector<engine::TrackedActor>& actors) {
+    engine::WorldSnapshot snap;
+    snap.time = time_;
+    int vehicles_present = 0;
+    for (const auto& a : actors) {
+      snap.actors.push_back(read_actor(a));
+      if (a.kind != ActorKind::Pedestrian && snap.actors.back().present) ++vehicles_present;
+    }
+    snap.other_vehicles = static_cast<int>(running_) - vehicles_present;
+    read_nearby(actors, snap);
+    if (colliding_ > 0)
+      for (const auto& c : sumo::Simulation::getCollisions())
+        snap.collisions.push_back({c.collider, c.victim, c.type, c.lane, c.pos});
+    return snap;
+  }
+
+ private:
+  // Subscribes to an actor that SUMO has just inserted; its results are there at once.
+  void follow(const std::string& id, bool person) {
+    static const std::vector<int> vehicle_vars = {tc::VAR_POSITION,     tc::VAR_ANGLE,        tc::VAR_SPEED,
+                                                  tc::VAR_ACCELERATION, tc::VAR_ROAD_ID,      tc::VAR_LANE_INDEX,
+                                                  tc::VAR_LANEPOSITION, tc::VAR_LANEPOSITION_LAT, tc::VAR_SIGNALS};
+    static const std::vector<int> person_vars = {tc::VAR_POSITION, tc::VAR_ANGLE,   tc::VAR_SPEED,
+                                                 tc::VAR_ROAD_ID,  tc::VAR_LANE_ID, tc::VAR_LANEPOSITION};
+    static const std::vector<int> neighbour_vars = {tc::VAR_POSITION, tc::VAR_ANGLE, tc::VAR_SPEED, tc::VAR_LENGTH,
+                                                    tc::VAR_WIDTH};
+    if (person) {
+      sumo::Person::subscribe(id, person_vars);
+      sumo::Person::subscribeContext(id, tc::CMD_GET_VEHICLE_VARIABLE, kNearbyRange, neighbour_vars);
+    } else {
+      sumo::Vehicle::subscribe(id, vehicle_vars);
+      sumo::Vehicle::subscribeContext(id, tc::CMD_GET_VEHICLE_VARIABLE, kNearbyRange, neighbour_vars);
+    }
+    followed_[id] = person;
+  }
+
+  // A person added with DEPARTFLAG_NOW is in the id list once it departed; asking for one id
+  // costs the same whatever the traffic.
+  static bool person_departed(const std::string& id) {
+    try {
+      (void)sumo::Person::getRoadID(id);
+      return true;
+    } catch (const sumo::TraCIException&) {
+      return false;  // not (yet) in the simulation
+    }
+  }
+
+  engine::ActorState read_actor(const engine::TrackedActor& a) {
+    engine::ActorState s;
+    s.id = a.id;
+    const auto it = followed_.find(a.sumo_id);
+    if (it == followed_.end()) return s;  // not inserted yet
+    const bool person = it->second;
+    const sumo::TraCIResults r =
+        person ? sumo::Person::getSubscriptionResults(a.sumo_id) : sumo::Vehicle::getSubscriptionResults(a.sumo_id);
+    if (r.empty()) return s;  // gone: SUMO drops the subscription of a vehicle that left
+    s.heading = from_sumo_angle(number(r, tc::VAR_ANGLE));
+    s.speed = number(r, tc::VAR_SPEED);
+    s.edge = text(r, tc::VAR_ROAD_ID);
+    if (person) {
+      s.position = position(r);
+      const std::string lane = text(r, tc::VAR_LANE_ID);
+      const auto underscore = lane.rfind('_');
+      s.lane = underscore == std::string::npos ? -1 : std::stoi(lane.substr(underscore + 1));
+      s.lane_pos = number(r, tc::VAR_LANEPOSITION);
+    } else {
+      s.position = centre_of(position(r), s.heading, a.length);
+      s.accel = number(r, tc::VAR_ACCELERATION);
+      s.lane = integer(r, tc::VAR_LANE_INDEX);
+      s.lane_pos = number(r, tc::VAR_LANEPOSITION) - a.length / 2;
+      s.lat_offset = number(r, tc::VAR_LANEPOSITION_LAT);
+      s.signals = integer(r, tc::VAR_SIGNALS);
+    }
+    s.present = true;
+    return s;
+  }
+
+  // Background vehicles around any actor, once each, in id order (the same bytes on every
+  // backend).
+  void read_nearby(const std::vector<engine::TrackedActor>& actors, engine::WorldSnapshot& snap) {
+    std::map<std::string, engine::NearbyVehicle> found;
+    for (const auto& a : actors) {
+      const auto it = followed_.find(a.sumo_id);
+      if (it == followed_.end()) continue;
+      const sumo::SubscriptionResults around = it->second ? sumo::Person::getContextSubscriptionResults(a.sumo_id)
+                                                          : sumo::Vehicle::getContextSubscriptionResults(a.sumo_id);
+      for (const auto& [id, r] : around) {
+        if (actor_kind_.count(id) || found.count(id) || r.empty()) continue;
+        engine::NearbyVehicle v;
+        v.sumo_id = id;
+        v.heading = from_sumo_angle(number(r, tc::VAR_ANGLE));
+        v.length = number(r, tc::VAR_LENGTH);
+        v.width = number(r, tc::VAR_WIDTH);
+        v.position = centre_of(position(r), v.heading, v.length);
+        v.speed = number(r, tc::VAR_SPEED);
+        found.emplace(id, std::move(v));
+      }
+    }
+    snap.nearby.reserve(found.size());
+    for (auto& [id, v] : found) snap.nearby.push_back(std::move(v));
+  }
+
+  std::unordered_map<std::string, ActorKind> actor_kind_;  // scenario actors by SUMO id
+  std::unordered_map<std::string, bool> followed_;         // subscribed actors: true = person
+  std::vector<std::string> pending_persons_;               // scenario pedestrians not yet departed
+  long long running_ = 0;                                  // SUMO vehicles on the road
+  int colliding_ = 0;                                      // vehicles in a collision in the last step
+  double time_ = 0;
+};
+
+}  // namespace
+}  // namespace orch::sumo_reading

@@ -1,0 +1,282 @@
+#include "traci_server/traci_ego_link.hpp"
+
+#include <fmt/format.h>
+
+#include <array>
+#include <chrono>
+#include <optional>
+#include <utility>  // before Asio: Boost 1.74's awaitable.hpp uses std::exchange without it
+
+#include <boost/asio.hpp>
+
+#include "traci_server/traci_session.hpp"
+
+namespace orch::traci {
+
+namespace {
+
+namespace asio = boost::asio;
+using tcp = asio::ip::tcp;
+using Clock = std::chrono::steady_clock;
+
+constexpr auto kPollSlice = std::chrono::milliseconds(100);  // how often a wait looks at Ctrl-C
+
+Clock::duration seconds(double s) {
+  return std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(s));
+}
+
+std::string endpoint_text(const tcp::endpoint& e) { return fmt::format("{}:{}", e.address().to_string(), e.port()); }
+
+// How a wait ended.
+enum class Wait { Done, TimedOut, Interrupted };
+
+class TraciEgoLink final : public EgoLink {
+ public:
+  TraciEgoLink(const EgoServerOptions& options, std::unique_ptr<EgoWorld> world)
+      : options_(options),
+        world_(std::move(world)),
+        session_(*world_, fmt::format("SUMO scenario orchestrator {} (ego TraCI server)", ORCH_VERSION)) {}
+
+  std::string listen() override {
+    boost::system::error_code ec;
+    const auto address = asio::ip::make_address(options_.address, ec);
+    if (ec) throw EgoError(fmt::format("--ego-address {}: not an IP address", options_.address));
+    const tcp::endpoint where(address, static_cast<unsigned short>(options_.port));
+    acceptor_.open(where.protocol(), ec);
+    if (!ec) acceptor_.set_option(tcp::acceptor::reuse_address(true), ec);
+    if (!ec) acceptor_.bind(where, ec);
+    if (!ec) acceptor_.listen(1, ec);
+    if (ec) throw EgoError(fmt::format("cannot listen for the ego plug-in on {}: {}", endpoint_text(where), ec.message()));
+    report_.listen = endpoint_text(acceptor_.local_endpoint());
+    return fmt::format("ego plug-in: TraCI server (API {}) on {}; waiting up to {:g} s for it after SUMO starts", 20,
+                       report_.listen, options_.wait_s);
+  }
+
+  void exchange(double time) override {
+    now_ = time;
+    if (!socket_) connect();
+    world_->new_step();
+    Session::Next next;
+    if (session_.stepping()) {
+      if (time + 1e-6 < session_.target()) {  // simulationStep to a later time: keep going
+        ++report_.steps_driven;
+        return;
+      }
+      next = session_.resume();
+    } else {
+      next = read_and_handle();
+    }
+    while (true) {
+      switch (next) {
+        case Session::Next::Step: ++report_.steps_driven; return;
+        case Session::Next::Reply:
+          send(session_.take_reply());
+          next = read_and_handle();
+          break;
+        case Session::Next::Close:
+          send(session_.take_reply());
+          drop("closed by the plug-in");
+          throw EgoError(fmt::format("ego disconnected at t={:.3f} s: the plug-in closed the connection", now_));
+      }
+    }
+  }
+
+  void finish(const std::string& verdict, const std::string& reason) noexcept override {
+    try {
+      if (socket_ && session_.stepping()) {
+        session_.end_run(fmt::format("the scenario run has ended: verdict {} ({})", verdict, reason));
+        world_->new_step();
+        const auto deadline = Clock::now() + seconds(std::min(options_.close_grace_s, options_.timeout_s));
+        Session::Next next = session_.resume();
+        // The plug-in sees the last step, then may ask a few more things and close.
+        while (socket_ && next != Session::Next::Step) {
+          write_all(session_.take_reply(), deadline);
+          if (next == Session::Next::Close) {
+            drop("closed by the plug-in at the end of the run");
+            break;
+          }
+          const auto body = read_message(deadline);
+          if (!body) break;
+          next = session_.handle(*body);
+        }
+      }
+    } catch (const std::exception&) {
+      // The run is over either way; whatever the plug-in does now cannot change the verdict.
+    }
+    if (socket_) drop(report_.end.empty() ? "closed by the orchestrator at the end of the run" : report_.end);
+    boost::system::error_code ignored;
+    acceptor_.close(ignored);
+  }
+
+  [[nodiscard]] bool driving() const override { return socket_.has_value(); }
+
+  [[nodiscard]] EgoLinkReport report() const override {
+    EgoLinkReport r = report_;
+    const traci::SessionStats stats = session_.stats();
+    r.commands = stats.commands;
+    r.client = stats.client;
+    r.order = stats.order;
+    return r;
+  }
+
+ private:
+  // Runs the io_context until the started operation completes, the deadline passes or
+  // Ctrl-C; then cancels it with `cancel` and lets the cancelled handler run.
+  template <typename Cancel>
+  Wait run_until(const bool& done, Clock::time_point deadline, Cancel cancel) {
+    while (!done) {
+      const auto now = Clock::now();
+      const bool interrupted = options_.interrupted && options_.interrupted->load();
+      if (now >= deadline || interrupted) {
+        cancel();
+        io_.restart();
+        io_.run();
+        return interrupted ? Wait::Interrupted : Wait::TimedOut;
+      }
+      io_.restart();
+      io_.run_for(std::min<Clock::duration>(deadline - now, kPollSlice));
+    }
+    return Wait::Done;
+  }
+
+  void connect() {
+    tcp::socket socket(io_);
+    tcp::endpoint peer;
+    bool done = false;
+    boost::system::error_code ec;
+    acceptor_.async_accept(socket, peer, [&](const boost::system::error_code& e) {
+      ec = e;
+      done = true;
+    });
+    const Wait w = run_until(done, Clock::now() + seconds(options_.wait_s), [&] { acceptor_.cancel(); });
+    if (w == Wait::Interrupted) throw EgoError("interrupted while waiting for the ego plug-in to connect");
+    if (w == Wait::TimedOut)
+      throw EgoError(fmt::format("no ego plug-in connected to {} within {:g} s (--ego-wait)", report_.listen,
+                                 options_.wait_s));
+    if (ec) throw EgoError(fmt::format("accepting the ego plug-in on {} failed: {}", report_.listen, ec.message()));
+    socket.set_option(tcp::no_delay(true), ec);  // lockstep: every reply is awaited
+    socket_.emplace(std::move(socket));
+    report_.peer = endpoint_text(peer);
+    report_.connected_at = now_;
+    // Only one plug-in drives the ego: nobody else gets in.
+    boost::system::error_code ignored;
+    acceptor_.close(ignored);
+    world_->take_over_ego();
+  }
+
+  // Reads exactly buffer.size() bytes; the error names what went wrong, "" on success.
+  std::string read_exact(asio::mutable_buffer buffer, Clock::time_point deadline) {
+    bool done = false;
+    boost::system::error_code ec;
+    asio::async_read(*socket_, buffer, [&](const boost::system::error_code& e, std::size_t) {
+      ec = e;
+      done = true;
+    });
+    const Wait w = run_until(done, deadline, [&] { socket_->cancel(); });
+    if (w == Wait::Interrupted) return "interrupted";
+    if (w == Wait::TimedOut) return "timeout";
+    if (ec) return ec == asio::error::eof ? "connection closed by the plug-in" : ec.message();
+    return {};
+  }
+
+  // One message body, or nullopt at end of connection (`problem_` says why).
+  std::optional<std::string> read_message(Clock::time_point deadline) {
+    std::array<std::uint8_t, 4> header{};
+    problem_ = read_exact(asio::buffer(header), deadline);
+    if (!problem_.empty()) return std::nullopt;
+    std::size_t length = 0;
+    try {
+      length = message_body_length(header);
+    } catch (const DecodeError& e) {
+      std::string reply;
+      append_status(reply, 0, 0xFF, std::string("malformed message: ") + e.what());
+      protocol_error(frame_message(reply), e.what());
+    }
+    std::string body(length, '\0');
+    problem_ = read_exact(asio::buffer(body), deadline);
+    if (!problem_.empty()) return std::nullopt;
+    return body;
+  }
+
+  Session::Next read_and_handle() {
+    const auto body = read_message(Clock::now() + seconds(options_.timeout_s));
+    if (!body) lost();
+    try {
+      return session_.handle(*body);
+    } catch (const DecodeError& e) {
+      protocol_error(session_.take_reply(), e.what());
+    }
+  }
+
+  void write_all(const std::string& bytes, Clock::time_point deadline) {
+    bool done = false;
+    boost::system::error_code ec;
+    asio::async_write(*socket_, asio::buffer(bytes), [&](const boost::system::error_code& e, std::size_t) {
+      ec = e;
+      done = true;
+    });
+    const Wait w = run_until(done, deadline, [&] { socket_->cancel(); });
+    problem_ = w == Wait::Interrupted ? "interrupted" : w == Wait::TimedOut ? "timeout" : ec ? ec.message() : "";
+    if (!problem_.empty()) throw EgoError(problem_);
+  }
+
+  void send(const std::string& bytes) {
+    try {
+      write_all(bytes, Clock::now() + seconds(options_.timeout_s));
+    } catch (const EgoError&) {
+      lost();
+    }
+  }
+
+  // The connection is gone or silent: the run cannot go on without its driver.
+  [[noreturn]] void lost() {
+    if (problem_ == "interrupted") {
+      drop("interrupted");
+      throw EgoError(fmt::format("interrupted at t={:.3f} s while waiting for the ego plug-in", now_));
+    }
+    if (problem_ == "timeout") {
+      drop("timeout");
+      throw EgoError(fmt::format("ego timeout at t={:.3f} s: no message from the plug-in for {:g} s (--ego-timeout)",
+                                 now_, options_.timeout_s));
+    }
+    drop("disconnected: " + problem_);
+    throw EgoError(fmt::format("ego disconnected at t={:.3f} s: {}", now_, problem_));
+  }
+
+  [[noreturn]] void protocol_error(const std::string& reply, const std::string& what) {
+    try {
+      write_all(reply, Clock::now() + std::chrono::seconds(1));
+    } catch (const EgoError&) {
+      // It may already be gone; the error is the plug-in's either way.
+    }
+    drop("protocol error: " + what);
+    throw EgoError(fmt::format("ego protocol error at t={:.3f} s: {}; connection closed", now_, what));
+  }
+
+  void drop(const std::string& how) {
+    if (report_.end.empty()) report_.end = how;
+    if (!socket_) return;
+    boost::system::error_code ignored;
+    socket_->shutdown(tcp::socket::shutdown_both, ignored);
+    socket_->close(ignored);
+    socket_.reset();
+  }
+
+  EgoServerOptions options_;
+  std::unique_ptr<EgoWorld> world_;
+  Session session_;
+  asio::io_context io_;
+  tcp::acceptor acceptor_{io_};
+  std::optional<tcp::socket> socket_;
+  EgoLinkReport report_;
+  std::string problem_;
+  double now_ = 0;
+};
+
+}  // namespace
+
+std::unique_ptr<EgoLink> make_traci_ego_link(const EgoServerOptions& options, std::unique_ptr<EgoWorld> world) {
+  return std::make_unique<TraciEgoLink>(options, std::move(world));
+}
+
+}  // namespace orch::traci

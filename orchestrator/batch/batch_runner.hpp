@@ -1,0 +1,58 @@
+#pragma once
+// `orchestrator batch`: every planned run as one child `orchestrator run` (libsumo allows
+// one simulation per process), `jobs` at a time, with timeouts and retries of errors.
+//
+// Folder of a batch (--out):
+//   batch.json                       the plan (manifest.hpp), written first
+//   runs/{L}_{P}/                    scenario.json (bound template), result.json, trace.csv,
+//                                    run.log, sumo.log, child.log (the child's terminal)
+//   executions/execution_{L}_{P}.json  the execution trace, written atomically and last
+//   summary.json, junit.xml, summary.txt  at the end, from the execution traces
+//
+// A run is done exactly when its execution trace exists. Killed at any moment (even the
+// batch by SIGKILL: its children die with it), `--resume DIR` wipes the folders of runs
+// without a trace and runs exactly those again.
+#include <filesystem>
+#include <optional>
+#include <ostream>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "batch/batch_plan.hpp"
+
+namespace orch::batch {
+
+struct BatchOptions {
+  std::vector<std::string> inputs;  // logical scenarios and/or parameter files
+  std::filesystem::path out;
+  bool resume = false;  // inputs, shard and defaults come from out/batch.json
+  std::optional<int> jobs;            // default: the number of cores
+  std::optional<double> timeout_s;    // per attempt; default 1800 s
+  std::optional<int> retries;         // extra attempts for errors; default 1
+  std::optional<Shard> shard;
+  std::vector<std::string> map_dirs;  // passed to each run as --maps
+  std::string catalog;                // passed to each run as --catalog
+  std::string wrapper;                // program each run is started through (nice, a test double)
+  std::filesystem::path orchestrator; // the binary to run children with
+  // Flags `orchestrator run` offers; a sumo_config value (traffic, backend) is passed only
+  // through a flag the binary has, and is an error otherwise.
+  std::set<std::string> run_flags;
+  std::ostream* out_stream = nullptr;
+  bool terminal = false;
+};
+
+// Returns the exit status: 0 all success, 1 some failure, 2 any error, 3 interrupted
+// (SIGINT/SIGTERM: runs left to --resume). Throws ScenarioError / OrchError for bad inputs
+// before any run starts.
+int run_batch(const BatchOptions& options);
+
+// Adds run flags for the pass-through settings of a sumo_config: {"--traffic", value}, ...
+// Throws OrchError naming the setting when `run_flags` lacks its flag.
+std::vector<std::string> pass_through_flags(const SumoConfig& config, const std::set<std::string>& run_flags);
+
+// The child's command line for one run (without a wrapper).
+std::vector<std::string> run_command_line(const BatchOptions& options, const PlannedRun& run,
+                                          const std::filesystem::path& run_dir);
+
+}  // namespace orch::batch

@@ -1,0 +1,196 @@
+// `orchestrator sample`, `orchestrator batch` and `orchestrator batch merge`: nightly
+// batches of logical scenarios (README "Nightly batches", orchestrator/batch/).
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include <boost/process.hpp>
+#include <cstdlib>
+#include <iostream>
+#include <regex>
+
+#include "batch/batch_plan.hpp"
+#include "batch/batch_report.hpp"
+#include "batch/batch_runner.hpp"
+#include "batch/sampling.hpp"
+#include "cli/commands.hpp"
+#include "core/errors.hpp"
+#include "core/files.hpp"
+
+namespace orch::cli {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct SampleOptions {
+  std::string logical;
+  int count = 1;
+  long long seed = 1;
+  std::optional<double> step;
+  std::optional<double> max_time;
+  std::optional<std::string> traffic;
+  std::optional<std::string> backend;
+};
+
+struct BatchCliOptions {
+  std::vector<std::string> inputs;
+  std::string out = "batch_out";
+  std::string resume;
+  std::optional<int> jobs;
+  std::optional<double> timeout;
+  std::optional<int> retries;
+  std::string shard;
+  std::string wrapper;
+  CommonOptions common;
+};
+
+struct MergeOptions {
+  std::vector<std::string> dirs;
+  std::string out;
+};
+
+// Bad input files are reported like `validate` does: every problem, file:line: pointer.
+int report_input_error(const ScenarioError& e) {
+  std::cerr << e.diagnostics().format();
+  return 1;
+}
+
+int sample_command(const SampleOptions& o) {
+  try {
+    const batch::LogicalScenario logical = batch::load_logical_scenario(o.logical);
+    batch::SampleRequest req{o.count, o.seed, o.step, o.max_time, o.traffic, o.backend};
+    const batch::SampleOutcome outcome = batch::sample_parameter_sets(logical, req);
+    write_file_atomically(outcome.file.file, batch::to_json_text(outcome.file));
+    std::cout << fmt::format("{}: {} new parameter set(s), {} in all\n", outcome.file.file.string(),
+                             outcome.new_set_ids.size(), outcome.file.sets.size());
+    for (const auto& id : outcome.new_set_ids) {
+      const batch::ParameterSet* set = outcome.file.find(id);
+      std::cout << fmt::format("  {} seed {}: {}\n", id, set->seed.value_or(0), set->sampled_values.dump());
+    }
+    return 0;
+  } catch (const ScenarioError& e) {
+    return report_input_error(e);
+  }
+}
+
+// Flags `orchestrator run` offers, read from its --help: the batch passes sumo_config
+// settings (traffic, backend) only through flags that exist, whoever adds them.
+std::set<std::string> run_flags_of(const fs::path& exe) {
+  namespace bp = boost::process;
+  bp::ipstream out;
+  bp::child child(exe.string(), "run", "--help", (bp::std_out & bp::std_err) > out);
+  std::string text, line;
+  while (std::getline(out, line)) text += line + "\n";
+  child.wait();
+  std::set<std::string> flags;
+  const std::regex flag("--[a-z][a-z0-9-]*");
+  for (auto it = std::sregex_iterator(text.begin(), text.end(), flag); it != std::sregex_iterator(); ++it)
+    flags.insert(it->str());
+  return flags;
+}
+
+std::string resolve_program(const std::string& program) {
+  if (program.empty() || program.find('/') != std::string::npos) return program.empty() ? "" : fs::absolute(program).string();
+  const auto found = boost::process::search_path(program);
+  if (found.empty()) throw OrchError(fmt::format("--wrapper: cannot find \"{}\" in PATH", program));
+  return found.string();
+}
+
+int batch_command(const BatchCliOptions& o, const CLI::App& app) {
+  batch::BatchOptions b;
+  b.inputs = o.inputs;
+  b.resume = !o.resume.empty();
+  if (b.resume && app.count("--out") && fs::absolute(o.out) != fs::absolute(o.resume))
+    throw OrchError("--resume DIR continues the batch in DIR: give no other --out");
+  b.out = b.resume ? o.resume : o.out;
+  if (!b.resume && b.inputs.empty()) throw OrchError("batch: give logical scenarios or parameter files, or --resume DIR");
+  b.jobs = o.jobs;
+  b.timeout_s = o.timeout;
+  b.retries = o.retries;
+  if (!o.shard.empty()) b.shard = batch::parse_shard(o.shard);
+  b.map_dirs = o.common.map_dirs;
+  for (auto& d : b.map_dirs) d = fs::absolute(d).string();  // the children run elsewhere
+  b.catalog = o.common.catalog.empty() ? "" : fs::absolute(o.common.catalog).string();
+  b.wrapper = resolve_program(o.wrapper);
+  b.orchestrator = fs::read_symlink("/proc/self/exe");
+  b.run_flags = run_flags_of(b.orchestrator);
+  b.out_stream = &std::cout;
+  b.terminal = ::isatty(STDOUT_FILENO) == 1;
+  try {
+    return batch::run_batch(b);
+  } catch (const ScenarioError& e) {
+    std::cerr << e.diagnostics().format();
+    return 2;
+  }
+}
+
+int merge_command(const MergeOptions& o) {
+  std::vector<fs::path> dirs(o.dirs.begin(), o.dirs.end());
+  const batch::BatchReport report = batch::collect_report(dirs);
+  std::cout << batch::write_reports(report, o.out);
+  std::cout << fmt::format("\nmerged {} folder(s) into {} (summary.json, junit.xml, summary.txt)\n", dirs.size(), o.out);
+  return batch::batch_exit_code(report.totals());
+}
+
+class BatchCommandsImpl : public BatchCommands {
+ public:
+  explicit BatchCommandsImpl(CLI::App& app) {
+    sample_ = app.add_subcommand("sample", "Add seeded parameter sets to a logical scenario's parameter file");
+    sample_->add_option("logical", sample_opts_.logical, "Logical scenario (logical_{uuid}.json)")
+        ->required()
+        ->check(CLI::ExistingFile);
+    sample_->add_option("--count", sample_opts_.count, "Parameter sets to add")->required()->check(CLI::Range(1, 1000000));
+    sample_->add_option("--seed", sample_opts_.seed, "Seed of the first new set; the next take seed+1, ... (skipping used ones)")
+        ->capture_default_str()
+        ->check(CLI::Range(0LL, 2147483647LL));
+    sample_->add_option("--step", sample_opts_.step, "sumo_config.step of the new sets, s")->check(CLI::Range(0.001, 1.0));
+    sample_->add_option("--max-time", sample_opts_.max_time, "sumo_config.max_time of the new sets, s")
+        ->check(CLI::PositiveNumber);
+    sample_->add_option("--traffic", sample_opts_.traffic, "sumo_config.traffic of the new sets (passed to run --traffic)");
+    sample_->add_option("--backend", sample_opts_.backend, "sumo_config.backend of the new sets (passed to run --backend)");
+
+    batch_ = app.add_subcommand("batch", "Run every parameter set of logical scenarios, in parallel child processes");
+    batch_->require_subcommand(0, 1);
+    batch_->add_option("inputs", batch_opts_.inputs, "Logical scenarios and/or parameter files")->check(CLI::ExistingFile);
+    batch_->add_option("--out", batch_opts_.out, "Output folder of the batch")->capture_default_str();
+    batch_->add_option("--resume", batch_opts_.resume, "Continue the batch in this folder: run exactly the runs not done")
+        ->check(CLI::ExistingDirectory);
+    batch_->add_option("--jobs,-j", batch_opts_.jobs, "Runs at a time (default: the number of cores)")
+        ->check(CLI::Range(1, 1024));
+    batch_->add_option("--timeout", batch_opts_.timeout, "Wall-clock limit per run, s; its process tree is then killed (default 1800)")
+        ->check(CLI::PositiveNumber);
+    batch_->add_option("--retries", batch_opts_.retries, "Extra attempts for runs ending in error (default 1); failures are never retried")
+        ->check(CLI::Range(0, 100));
+    batch_->add_option("--shard", batch_opts_.shard, "Run only shard K of N (K/N, 1-based): a deterministic 1/N of the runs");
+    batch_->add_option("--wrapper", batch_opts_.wrapper, "Start each run through this program (e.g. nice)");
+    batch_->add_option("--maps", batch_opts_.common.map_dirs, "Folder holding map folders (repeatable), passed to every run")
+        ->allow_extra_args(false);
+    batch_->add_option("--catalog", batch_opts_.common.catalog, "Model catalog JSON, passed to every run");
+
+    merge_ = batch_->add_subcommand("merge", "Combine batch (shard) folders into one summary and JUnit file");
+    merge_->add_option("dirs", merge_opts_.dirs, "Batch folders (e.g. one per shard)")->required()->check(CLI::ExistingDirectory);
+    merge_->add_option("--out", merge_opts_.out, "Folder for the merged summary.json, junit.xml, summary.txt")->required();
+  }
+
+  [[nodiscard]] std::optional<int> run() const override {
+    if (*sample_) return sample_command(sample_opts_);
+    if (*merge_) return merge_command(merge_opts_);
+    if (*batch_) return batch_command(batch_opts_, *batch_);
+    return std::nullopt;
+  }
+
+ private:
+  CLI::App* sample_ = nullptr;
+  CLI::App* batch_ = nullptr;
+  CLI::App* merge_ = nullptr;
+  SampleOptions sample_opts_;
+  BatchCliOptions batch_opts_;
+  MergeOptions merge_opts_;
+};
+
+}  // namespace
+
+std::unique_ptr<BatchCommands> add_batch_commands(CLI::App& app) { return std::make_unique<BatchCommandsImpl>(app); }
+
+}  // namespace orch::cli

@@ -1,0 +1,38 @@
+#pragma once
+// The background traffic's part of a run's outputs (README "Outputs"), beside trace.csv
+// whose rows stay the scenario actors':
+//   counts.csv      always: per step, how many background vehicles SUMO runs and how many
+//                   of them are near an actor;
+//   background.csv  with --trace-background only: one row per nearby background vehicle
+//                   per step (the ones the engine sees, within 75 m of an actor), so that
+//                   traces of dense runs stay small.
+// Fixed precision, like trace.csv: the same run gives the same bytes.
+#include <cstdio>
+#include <filesystem>
+
+#include "engine/world.hpp"
+
+namespace orch {
+
+class TrafficTrace {
+ public:
+  static constexpr const char* kCountsHeader = "time,background_vehicles,nearby_vehicles";
+  static constexpr const char* kBackgroundHeader = "time,vehicle_id,x,y,heading,speed,length,width";
+
+  TrafficTrace(const std::filesystem::path& dir, bool background_rows);
+  ~TrafficTrace();
+  TrafficTrace(const TrafficTrace&) = delete;
+  TrafficTrace& operator=(const TrafficTrace&) = delete;
+
+  void record(const engine::WorldSnapshot& snapshot);
+  void flush();
+  [[nodiscard]] long long background_rows() const { return background_rows_; }
+
+ private:
+  std::FILE* counts_ = nullptr;
+  std::FILE* background_ = nullptr;
+  long long background_rows_ = 0;
+  int steps_since_flush_ = 0;
+};
+
+}  // namespace orch

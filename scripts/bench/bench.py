@@ -1,0 +1,196 @@
+#!/usr/bin/python3
+"""The orchestrator's speed against bare SUMO, itself on the other backend, and a plain
+Python traci loop, on the same network, traffic, seed, step length and number of steps.
+Prints a Markdown table (README "Performance"). See scripts/bench/README.md.
+
+Usage: scripts/bench/run.sh [--quick] [--hour]   (builds first; or call this with --binary)
+"""
+import argparse
+import json
+import os
+import platform
+import subprocess
+import sys
+import tempfile
+import threading
+import time
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.dirname(os.path.dirname(HERE))
+SCENARIO = os.path.join(HERE, "bench_scenario.json")
+PYTHON_LOOP = os.path.join(HERE, "python_loop.py")
+MAP = "ALKS_Road"  # 10 km, 3 lanes, 41 edges: room for 3,000 vehicles
+WAYPOINTS = os.path.join(ROOT, "sumo_nets", MAP, "ALKS.Road.waypoint.json")
+STEP = 0.05
+
+# name, vehicles/hour/lane entering, vehicles per km and lane at the start, steps
+SIZES = [("~200", 300, 6.5, 600), ("~1,000", 1800, 33, 400), ("~3,000", 1800, 100, 200)]
+
+
+def descendants(pid):
+    """pid and every process below it (Linux /proc)."""
+    children = {}
+    for name in os.listdir("/proc"):
+        if name.isdigit():
+            try:
+                with open("/proc/%s/stat" % name) as f:
+                    ppid = int(f.read().rsplit(")", 1)[1].split()[1])
+                children.setdefault(ppid, []).append(int(name))
+            except (OSError, IndexError, ValueError):
+                pass
+    out, todo = [], [pid]
+    while todo:
+        p = todo.pop()
+        out.append(p)
+        todo.extend(children.get(p, []))
+    return out
+
+
+def status_kb(pid, key):
+    try:
+        with open("/proc/%d/status" % pid) as f:
+            for line in f:
+                if line.startswith(key + ":"):
+                    return int(line.split()[1])
+    except OSError:
+        pass
+    return 0
+
+
+def measure(cmd, log):
+    """Runs cmd; returns (wall s, peak RSS in MB summed over its process tree, samples of
+    the tree's RSS over time [(s, MB)])."""
+    start = time.monotonic()
+    with open(log, "w") as out:
+        proc = subprocess.Popen(cmd, stdout=out, stderr=subprocess.STDOUT)
+    peaks, samples, done = {}, [], threading.Event()
+
+    def watch():
+        while not done.is_set():
+            rss = 0
+            for p in descendants(proc.pid):
+                peaks[p] = max(peaks.get(p, 0), status_kb(p, "VmHWM"))
+                rss += status_kb(p, "VmRSS")
+            samples.append((time.monotonic() - start, rss / 1024))
+            done.wait(0.1)
+
+    watcher = threading.Thread(target=watch)
+    watcher.start()
+    code = proc.wait()
+    wall = time.monotonic() - start
+    done.set()
+    watcher.join()
+    if code not in (0, 1):
+        sys.exit("failed (%d): %s\n%s" % (code, " ".join(cmd), open(log).read()[-2000:]))
+    return wall, sum(peaks.values()) / 1024, samples
+
+
+def orchestrator(binary, out, traffic, steps, backend):
+    return [binary, "run", SCENARIO, "--out", out, "-q", "--traffic", traffic, "--backend", backend,
+            "--max-time", "%g" % (steps * STEP), "--step", "%g" % STEP]
+
+
+def machine():
+    cpu = "unknown CPU"
+    with open("/proc/cpuinfo") as f:
+        for line in f:
+            if line.startswith("model name"):
+                cpu = line.split(":", 1)[1].strip()
+                break
+    load = os.getloadavg()[0]
+    with open("/proc/meminfo") as f:
+        mem = int(f.readline().split()[1]) / 1024 / 1024
+    sumo = subprocess.run(["sumo", "--version"], capture_output=True, text=True).stdout.splitlines()[0]
+    return "%s, %d cores, %.0f GB RAM, %s, %s; load average %.1f at the start" % (
+        cpu, os.cpu_count(), mem, platform.platform(), sumo, load)
+
+
+def vehicles(counts_csv):
+    with open(counts_csv) as f:
+        rows = [line.split(",") for line in f.read().splitlines()[1:]]
+    values = [int(r[1]) for r in rows]
+    return sum(values) / len(values), values[-1]
+
+
+def bench(binary, quick, work):
+    rows = []
+    for name, rate, fill, steps in SIZES:
+        if quick:
+            steps = max(40, steps // 5)
+        traffic = os.path.join(work, "traffic_%d.rou.xml" % fill)
+        subprocess.run([binary, "map", "traffic", MAP, "--rate", str(rate), "--fill-per-km", str(fill),
+                        "--out", traffic], check=True, stdout=subprocess.DEVNULL)
+        d = os.path.join(work, "n%d" % fill)
+        runs = {}
+        runs["bare"] = measure([binary, "baseline", MAP, "--traffic", traffic, "--steps", str(steps), "--step",
+                                "%g" % STEP, "--out", d + "_bare"], d + "_bare.log")
+        runs["libsumo"] = measure(orchestrator(binary, d + "_libsumo", traffic, steps, "libsumo"), d + "_libsumo.log")
+        runs["traci"] = measure(orchestrator(binary, d + "_traci", traffic, steps, "traci"), d + "_traci.log")
+        for mode in ("poll", "subscribe"):
+            runs["py_" + mode] = measure(
+                ["/usr/bin/python3", PYTHON_LOOP, "--result", os.path.join(d + "_libsumo", "result.json"),
+                 "--waypoints", WAYPOINTS, "--steps", str(steps), "--out", d + "_py_" + mode, "--neighbours", mode],
+                d + "_py_%s.log" % mode)
+        mean, last = vehicles(os.path.join(d + "_libsumo", "counts.csv"))
+        rows.append((name, mean, steps, runs))
+        print("measured %s: %.0f vehicles on average over %d steps" % (name, mean, steps), file=sys.stderr)
+    return rows
+
+
+def table(rows):
+    lines = [
+        "| vehicles (mean) | steps | bare SUMO (libsumo) | orchestrator libsumo | orch / bare | orchestrator traci "
+        "| traci / libsumo | Python traci loop, polling | loop / orch | Python traci loop, subscriptions "
+        "| loop / orch |",
+        "|---|---|---|---|---|---|---|---|---|---|---|"]
+    for name, mean, steps, r in rows:
+        def cell(key):
+            return "%.2f s, %.0f MB" % (r[key][0], r[key][1])
+        lib = r["libsumo"][0]
+        lines.append("| %s (%.0f) | %d | %s | %s | **%.3f** | %s | **%.2f** | %s | **%.2f** | %s | **%.2f** |" % (
+            name, mean, steps, cell("bare"), cell("libsumo"), lib / r["bare"][0], cell("traci"),
+            r["traci"][0] / lib, cell("py_poll"), r["py_poll"][0] / lib, cell("py_subscribe"),
+            r["py_subscribe"][0] / lib))
+    return "\n".join(lines)
+
+
+def hour(binary, work):
+    """One hour simulated, dense traffic: the orchestrator's memory at the start and end."""
+    d = os.path.join(work, "hour")
+    wall, peak, samples = measure([binary, "run", SCENARIO, "--out", d, "-q", "--traffic", "dense",
+                                   "--max-time", "3600", "--step", "0.1"], d + ".log")
+    result = json.load(open(os.path.join(d, "result.json")))
+    early = [mb for t, mb in samples if t > 0.05 * wall][:10]
+    late = [mb for t, mb in samples if t > 0.95 * wall][-10:]
+    mean, last = vehicles(os.path.join(d, "counts.csv"))
+    return ("One hour simulated (%s, step 0.1 s, %d steps, dense traffic: %.0f vehicles on average, %d at the end) "
+            "in %.0f s wall: resident memory %.1f MB at 5%% of the run, %.1f MB at the end (peak %.1f MB)." % (
+                result["verdict"], result["steps"], mean, last, wall, early[0] if early else 0,
+                late[-1] if late else 0, peak))
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--binary", default=os.path.join(ROOT, "build-bench", "bin", "orchestrator"))
+    ap.add_argument("--quick", action="store_true", help="a fifth of the steps (a smoke test)")
+    ap.add_argument("--hour", action="store_true", help="also the one-hour dense run (memory; ~10 min)")
+    ap.add_argument("--keep", help="keep outputs in this folder")
+    a = ap.parse_args()
+    work = a.keep or tempfile.mkdtemp(prefix="orch_bench_")
+    os.makedirs(work, exist_ok=True)
+    header = machine()
+    rows = bench(a.binary, a.quick, work)
+    print("Machine: " + header)
+    print("Map %s, bench_scenario.json (ego + 3 scripted cars; scene conditions, a collision stop condition and "
+          "speed, relative-speed, blinker and lane-change actions active), step %g s, seed 42. Wall time of each "
+          "process from start to exit (loading included); peak RSS summed over its processes (orchestrator + "
+          "sumo on traci; Python + sumo for the loops).\n" % (MAP, STEP))
+    print(table(rows))
+    if a.hour:
+        print()
+        print(hour(a.binary, work))
+    print("\noutputs in " + work, file=sys.stderr)
+
+
+if __name__ == "__main__":
+    main()

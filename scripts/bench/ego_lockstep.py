@@ -1,0 +1,123 @@
+#!/usr/bin/env python3
+"""Lockstep benchmark of the external ego plug-in server.
+
+The same loop -- simulationStep, read one subscription, send one command -- runs with SUMO's
+Python client against `orchestrator run --ego-port` and against a plain `sumo --remote-port`
+on the same net with the same step and SUMO options. Prints steps per second of both and
+their ratio (orchestrator / plain SUMO): the figure README "External ego plug-in" quotes.
+
+  ego_lockstep.py --orchestrator build/bin/orchestrator [--steps 2000]
+(run with /usr/bin/python3 and PYTHONPATH=/usr/share/sumo/tools; ego_bench.sh does that)
+"""
+import argparse
+import json
+import os
+import re
+import socket
+import subprocess
+import sys
+import tempfile
+import time
+
+import traci
+import traci.constants as tc
+
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+NET = os.path.join(ROOT, "sumo_nets", "ALKS_Road", "ALKS_Road.net.xml")
+
+
+# The ego alone on the 10 km ALKS road; nothing ends the run before the bench does.
+SCENARIO = {
+    "map_id": "ALKS_Road",
+    "actors": {"ego": {"actor_id": 0, "model_id": "vehicle.toyota.prius"}, "others": []},
+    "scenario": {
+        "opening_scene": {"ego": {"start_position": {"wp_id": "Waypoint02", "wp_idx": 5},
+                                  "end_position": {"wp_id": "Waypoint02", "wp_idx": 9000}},
+                          "others": [], "next_scenes": [1]},
+        "scenes": [],
+        "ending_scenes": [{"scene_id": 1, "conditions": {"and": [{"simulation_time": {"comparison": ">=", "value": 3000}}]}}],
+    },
+}
+
+
+def free_port():
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
+
+
+def loop(conn, steps):
+    """The plug-in's step: advance, read the ego's speed from its subscription, command."""
+    conn.vehicle.subscribe("ego", [tc.VAR_SPEED])
+    start = time.perf_counter()
+    for _ in range(steps):
+        conn.simulationStep()
+        conn.vehicle.getSubscriptionResults("ego")[tc.VAR_SPEED]
+        conn.vehicle.setSpeed("ego", 20.0)
+    return steps / (time.perf_counter() - start)
+
+
+def bench_orchestrator(binary, steps, tmp):
+    scenario = os.path.join(tmp, "bench.json")
+    with open(scenario, "w") as f:
+        json.dump(SCENARIO, f)
+    port = free_port()
+    proc = subprocess.Popen([binary, "run", scenario, "--out", os.path.join(tmp, "out"), "-q",
+                             "--ego-port", str(port)], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    try:
+        conn = traci.connect(port, numRetries=60)
+        rate = loop(conn, steps)
+        conn.close()
+        proc.wait(timeout=60)
+        return rate
+    finally:
+        if proc.poll() is None:
+            proc.kill()
+
+
+def bench_plain_sumo(steps, tmp):
+    # The road's edges in order (the map may split it where lanes start or end); SUMO routes
+    # the trip from the first to the last.
+    with open(NET) as f:
+        edges = [e for e in re.findall(r'<edge id="([^":][^"]*)"', f.read())]
+    edges.sort(key=lambda e: int(e.rsplit("#", 1)[1]) if "#" in e else 0)
+    routes = os.path.join(tmp, "ego.rou.xml")
+    with open(routes, "w") as f:
+        f.write('<routes><trip id="ego" from="%s" to="%s" depart="0" departLane="1" departPos="10"/></routes>'
+                % (edges[0], edges[-1]))
+    port = free_port()
+    # The orchestrator's SUMO options (orchestrator/run/simulator.cpp), so both simulate alike.
+    proc = subprocess.Popen(["sumo", "-n", NET, "-r", routes, "--remote-port", str(port), "--step-length", "0.05",
+                             "--seed", "42", "--lateral-resolution", "0.8", "--collision.action", "warn",
+                             "--collision.check-junctions", "true", "--time-to-teleport", "-1", "--no-step-log",
+                             "true", "--duration-log.disable", "true"],
+                            stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    try:
+        conn = traci.connect(port, numRetries=60)
+        conn.simulationStep()  # the ego departs in the first step
+        rate = loop(conn, steps)
+        conn.close()
+        proc.wait(timeout=60)
+        return rate
+    finally:
+        if proc.poll() is None:
+            proc.kill()
+
+
+def main():
+    p = argparse.ArgumentParser()
+    p.add_argument("--orchestrator", default=os.path.join(ROOT, "build", "bin", "orchestrator"))
+    p.add_argument("--steps", type=int, default=2000)
+    p.add_argument("--repeat", type=int, default=3, help="best of N runs each")
+    a = p.parse_args()
+    with tempfile.TemporaryDirectory() as tmp:
+        orch = max(bench_orchestrator(a.orchestrator, a.steps, tmp) for _ in range(a.repeat))
+        plain = max(bench_plain_sumo(a.steps, tmp) for _ in range(a.repeat))
+    print("lockstep, %d steps, Python traci, 1 subscription + 1 command per step (best of %d)" % (a.steps, a.repeat))
+    print("  orchestrator --ego-port : %8.0f steps/s" % orch)
+    print("  plain sumo --remote-port: %8.0f steps/s" % plain)
+    print("  ratio                   : %8.2f" % (orch / plain))
+
+
+if __name__ == "__main__":
+    sys.exit(main())
