@@ -80,6 +80,14 @@ StepOutput Engine::step(const WorldSnapshot& snapshot) {
                                       c.position_b.y())});
   }
 
+  for (const LaneChangeConflict& c : conflicts_.step(current_)) {
+    out.events.push_back({t, EventKind::Warning,
+                          fmt::format("lane change conflict: actor {} changing to {} has vehicle {} {:.1f} m {} it in "
+                                      "the target lane (time gap {:.2f} s)",
+                                      c.actor, c.target_route, c.vehicle, c.gap, c.vehicle_ahead ? "ahead of" : "behind",
+                                      c.time_gap)});
+  }
+
   ConditionContext ctx{current_, previous_ ? &*previous_ : nullptr, actors_, map_.waypoints,
                        [this](ActorId id) { return route_of(id); }, [this](ActorId id) { return collided(id); },
                        [this](ActorId id) {

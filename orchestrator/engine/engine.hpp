@@ -15,6 +15,7 @@
 
 #include "engine/actor_table.hpp"
 #include "engine/collision.hpp"
+#include "engine/lane_change_conflicts.hpp"
 #include "engine/motion.hpp"
 #include "engine/scene_machine.hpp"
 #include "engine/world.hpp"
@@ -77,6 +78,8 @@ class Engine {
   [[nodiscard]] const std::vector<HandOverRecord>& hand_overs() const { return hand_overs_; }
   // Every contact so far (own geometry test and SUMO's reports), in the order they began.
   [[nodiscard]] const std::vector<Contact>& contacts() const { return collisions_.all(); }
+  // Background vehicles that were in the way of a scripted lane change.
+  [[nodiscard]] const std::vector<LaneChangeConflict>& lane_change_conflicts() const { return conflicts_.all(); }
   // "actor 1", "actor 0 (ego)" or "vehicle <SUMO id>" for a contact's body name.
   [[nodiscard]] std::string describe_body(const std::string& name) const;
 
@@ -114,6 +117,7 @@ class Engine {
   ActorTable actors_;
   SceneMachine machine_;
   CollisionMonitor collisions_;
+  LaneChangeConflicts conflicts_;
 
   std::map<ActorId, ScriptedMotion> motions_;
   std::map<ActorId, Longitudinal> longitudinal_;

@@ -137,7 +137,11 @@ void Engine::start_action(const Action& action, double t, StepOutput& out) {
           event(fmt::format("lane_change: actor {} to the lane of {} over {:g} s", a.actor, a.wp_id, a.time));
           ScriptedMotion* m = motion(a.actor);
           if (!m) return ego_only(a.actor, "lane_change");
-          m->change_route(*map_.waypoints.find(a.wp_id), 0.0, t, a.time);
+          const WaypointRoute& target = *map_.waypoints.find(a.wp_id);
+          m->change_route(target, 0.0, t, a.time);
+          const RouteLanes* lanes = map_.lanes.route(a.wp_id);
+          const double width = lanes && !lanes->lanes.empty() ? map_.lanes.lane(lanes->lanes.front()).width : 3.5;
+          conflicts_.watch(a.actor, actors_.find(a.actor)->tracked.length, target, m->direction(), width, t + a.time);
         } else if constexpr (std::is_same_v<T, LaneOffsetAction>) {
           if (!require_present(a.actor)) return;
           event(fmt::format("lane_offset: actor {} to {:+.2f} m over {:g} s", a.actor, a.value, a.time));

@@ -8,6 +8,7 @@
 #include <pugixml.hpp>
 #include <set>
 
+#include "core/xml_text.hpp"
 #include "core/errors.hpp"
 #include "core/files.hpp"
 
@@ -30,20 +31,6 @@ struct NetEdge {
   std::vector<std::string> next;  // normal edges reached through connections
   bool has_previous = false;
 };
-
-std::string xml_escape(std::string_view text) {
-  std::string out;
-  for (const char c : text) {
-    switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      default: out += c;
-    }
-  }
-  return out;
-}
 
 std::vector<NetEdge> read_net_edges(const std::filesystem::path& net_file) {
   pugi::xml_document doc;

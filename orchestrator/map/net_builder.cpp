@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <sstream>
 
+#include "core/xml_text.hpp"
 #include "core/errors.hpp"
 #include "core/files.hpp"
 #include "core/process.hpp"
@@ -17,21 +18,6 @@ namespace orch {
 namespace {
 
 constexpr int kMaxReportedWarnings = 10;
-
-std::string xml_escape(std::string_view text) {
-  std::string out;
-  for (const char c : text) {
-    switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      case '\'': out += "&apos;"; break;
-      default: out += c;
-    }
-  }
-  return out;
-}
 
 // Coordinates with 0.1 mm resolution: far below the 2 cm simplification, and fixed
 // formatting keeps the files byte-identical from build to build.

@@ -1,5 +1,7 @@
 #include "run/run_result.hpp"
 
+#include <cmath>
+
 #include <nlohmann/json.hpp>
 
 #include "core/files.hpp"
@@ -63,6 +65,18 @@ std::string to_json(const RunResult& r) {
                                {"source", c.source},
                                {"counted", c.counted},
                                {"sumo_type", c.sumo_type}});
+  }
+  j["lane_change_conflicts"] = nlohmann::ordered_json::array();
+  for (const auto& c : r.lane_change_conflicts) {
+    j["lane_change_conflicts"].push_back(
+        {{"time", c.time},
+         {"actor", c.actor},
+         {"vehicle", c.vehicle},
+         {"target_route", c.target_route},
+         {"gap", c.gap},
+         {"vehicle_is", c.vehicle_ahead ? "ahead" : "behind"},
+         {"time_gap", std::isfinite(c.time_gap) ? nlohmann::ordered_json(c.time_gap) : nlohmann::ordered_json(nullptr)},
+         {"positions", {{c.actor_position.x(), c.actor_position.y()}, {c.vehicle_position.x(), c.vehicle_position.y()}}}});
   }
   j["hand_overs"] = nlohmann::ordered_json::array();
   for (const auto& h : r.hand_overs) {

@@ -42,6 +42,7 @@ struct RunResult {
   std::vector<engine::Event> events;
   std::vector<std::string> warnings;  // validation warnings
   std::vector<engine::Contact> collisions;     // every contact, in the order they began
+  std::vector<engine::LaneChangeConflict> lane_change_conflicts;  // background traffic in a lane change's way
   std::vector<engine::HandOverRecord> hand_overs;
   std::optional<EgoLinkReport> ego_plugin;  // the external ego plug-in's connection (--ego-port)
   double wall_time_s = 0;

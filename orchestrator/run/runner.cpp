@@ -219,6 +219,7 @@ RunResult run_scenario(const RunRequest& req, Simulator& sim) {
   if (engine) {
     result.scenes = engine->visits();
     result.collisions = engine->contacts();
+    result.lane_change_conflicts = engine->lane_change_conflicts();
     result.hand_overs = engine->hand_overs();
     judge_collisions(*engine, in->scenario.ego.id, result);
   }

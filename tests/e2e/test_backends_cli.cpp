@@ -14,12 +14,6 @@ using namespace orch::test;
 
 namespace {
 
-CliResult run(const std::string& scenario, const TempDir& out, std::vector<std::string> extra = {}) {
-  std::vector<std::string> args{"run", scenario, "--out", out.path().string(), "-q"};
-  args.insert(args.end(), extra.begin(), extra.end());
-  return run_cli(args);
-}
-
 std::string cut_in() { return source_path("scenarios/highway_cut_in.json"); }
 
 // A copy of the shipped highway map whose net SUMO refuses (valid XML, so the orchestrator's
@@ -48,8 +42,8 @@ TEST(BackendsCli, LibsumoAndTraciGiveByteIdenticalOutputsWithTraffic) {
     o.insert(o.end(), {"--backend", backend});
     return o;
   };
-  ASSERT_EQ(run(cut_in(), a, with("libsumo")).exit_code, 1);
-  ASSERT_EQ(run(cut_in(), b, with("traci")).exit_code, 1);
+  ASSERT_EQ(run_scenario(cut_in(), a, with("libsumo")).exit_code, 1);
+  ASSERT_EQ(run_scenario(cut_in(), b, with("traci")).exit_code, 1);
   EXPECT_EQ(read_json(a / "result.json")["backend"], "libsumo");
   EXPECT_EQ(read_json(b / "result.json")["backend"], "traci");
   for (const char* file : {"trace.csv", "counts.csv", "background.csv"}) {
@@ -65,7 +59,7 @@ TEST(BackendsCli, BrokenNetIsAnErrorWithSumosMessageOnBothBackends) {
     SCOPED_TRACE(backend);
     TempDir out;
     const auto maps = broken_map(out);
-    const auto r = run(cut_in(), out, {"--maps", maps.string(), "--backend", backend});
+    const auto r = run_scenario(cut_in(), out, {"--maps", maps.string(), "--backend", backend});
     EXPECT_EQ(r.exit_code, 2) << r.output;
     EXPECT_EQ(verdict_of(out), "error");
     // SUMO's own words, not a bare "Process Error".
@@ -84,7 +78,7 @@ TEST(BackendsCli, RouteSumoCannotBuildMidRunIsAnErrorAndTheTraceIsKept) {
         "unroutable.rou.xml",
         "<routes>\n  <trip id=\"bad\" depart=\"5\" from=\"Waypoint03+Waypoint02+Waypoint01#0\" "
         "to=\"Waypoint03R+Waypoint02R+Waypoint01R#3\"/>\n</routes>\n");
-    const auto r = run(cut_in(), out, {"--traffic", traffic.string(), "--backend", backend});
+    const auto r = run_scenario(cut_in(), out, {"--traffic", traffic.string(), "--backend", backend});
     EXPECT_EQ(r.exit_code, 2) << r.output;
     EXPECT_EQ(verdict_of(out), "error");
     EXPECT_NE(reason_of(out).find("Vehicle 'bad' has no valid route"), std::string::npos) << reason_of(out);
@@ -182,10 +176,10 @@ TEST(BackendsCli, ConnectJoinsARunningSumoAndGivesTheSameTrace) {
     ::execlp("sumo", "sumo", "-n", net.c_str(), "--remote-port", port_text.c_str(), static_cast<char*>(nullptr));
     ::_exit(127);
   }
-  const auto r = run(cut_in(), joined, {"--connect", "127.0.0.1:" + std::to_string(port), "--traffic", "light"});
+  const auto r = run_scenario(cut_in(), joined, {"--connect", "127.0.0.1:" + std::to_string(port), "--traffic", "light"});
   EXPECT_EQ(r.exit_code, 0) << r.output;
   EXPECT_TRUE(wait_for_exit(sumo, 10).has_value()) << "the joined SUMO did not end with the run";
-  ASSERT_EQ(run(cut_in(), own, {"--traffic", "light"}).exit_code, 0);
+  ASSERT_EQ(run_scenario(cut_in(), own, {"--traffic", "light"}).exit_code, 0);
   // The joined SUMO loaded the run's own net, traffic and settings.
   EXPECT_EQ(slurp(joined / "trace.csv"), slurp(own / "trace.csv"));
   EXPECT_EQ(read_json(joined / "result.json")["backend"], "traci");
@@ -193,14 +187,14 @@ TEST(BackendsCli, ConnectJoinsARunningSumoAndGivesTheSameTrace) {
 
 TEST(BackendsCli, GuiOrConnectWithLibsumoIsRefused) {
   TempDir out;
-  const auto r = run(cut_in(), out, {"--backend", "libsumo", "--gui"});
+  const auto r = run_scenario(cut_in(), out, {"--backend", "libsumo", "--gui"});
   EXPECT_EQ(r.exit_code, 2) << r.output;
   EXPECT_NE(r.output.find("--backend traci"), std::string::npos) << r.output;
 }
 
 TEST(BackendsCli, RealtimeMakesTheRunTakeAtLeastItsSimulatedTime) {
   TempDir out;
-  ASSERT_EQ(run(cut_in(), out, {"--max-time", "2", "--realtime", "2"}).exit_code, 1);
+  ASSERT_EQ(run_scenario(cut_in(), out, {"--max-time", "2", "--realtime", "2"}).exit_code, 1);
   const auto result = read_json(out / "result.json");
   // 2 s simulated at twice real time: at least 1 s of wall-clock time (a lower bound only).
   EXPECT_GE(result["wall_time_s"].get<double>(), 1.0);

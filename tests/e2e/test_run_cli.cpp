@@ -11,12 +11,6 @@ using namespace orch::test;
 
 namespace {
 
-CliResult run(const std::string& scenario, const TempDir& out, std::vector<std::string> extra = {}) {
-  std::vector<std::string> args{"run", scenario, "--out", out.path().string(), "-q"};
-  args.insert(args.end(), extra.begin(), extra.end());
-  return run_cli(args);
-}
-
 std::vector<int> scene_ids(const nlohmann::json& result) {
   std::vector<int> ids;
   for (const auto& s : result["scenes"]) ids.push_back(s["scene_id"].get<int>());
@@ -27,7 +21,7 @@ std::vector<int> scene_ids(const nlohmann::json& result) {
 
 TEST(RunCli, SampleCutInSucceedsWithTheDocumentedOutputs) {
   TempDir out;
-  const auto r = run(source_path("scenarios/highway_cut_in.json"), out);
+  const auto r = run_scenario(source_path("scenarios/highway_cut_in.json"), out);
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const auto result = read_json(out / "result.json");
   EXPECT_EQ(result["verdict"], "success");
@@ -58,8 +52,8 @@ TEST(RunCli, SampleCutInSucceedsWithTheDocumentedOutputs) {
 
 TEST(RunCli, SameInputsAndSeedGiveAByteIdenticalTrace) {
   TempDir a, b;
-  ASSERT_EQ(run(source_path("scenarios/highway_cut_in.json"), a, {"--seed", "7"}).exit_code, 0);
-  ASSERT_EQ(run(source_path("scenarios/highway_cut_in.json"), b, {"--seed", "7"}).exit_code, 0);
+  ASSERT_EQ(run_scenario(source_path("scenarios/highway_cut_in.json"), a, {"--seed", "7"}).exit_code, 0);
+  ASSERT_EQ(run_scenario(source_path("scenarios/highway_cut_in.json"), b, {"--seed", "7"}).exit_code, 0);
   const std::string ta = slurp(a / "trace.csv");
   EXPECT_GT(ta.size(), 10000u);
   EXPECT_EQ(ta, slurp(b / "trace.csv"));
@@ -68,7 +62,7 @@ TEST(RunCli, SameInputsAndSeedGiveAByteIdenticalTrace) {
 
 TEST(RunCli, StepLengthIsHonoured) {
   TempDir out;
-  ASSERT_EQ(run(source_path("scenarios/highway_cut_in.json"), out, {"--step", "0.1"}).exit_code, 0);
+  ASSERT_EQ(run_scenario(source_path("scenarios/highway_cut_in.json"), out, {"--step", "0.1"}).exit_code, 0);
   Trace trace(out / "trace.csv");
   const auto ego = trace.actor(0);
   ASSERT_GT(ego.size(), 10u);
@@ -77,7 +71,7 @@ TEST(RunCli, StepLengthIsHonoured) {
 
 TEST(RunCli, ScriptedCarCutsInWithItsBlinkerOn) {
   TempDir out;
-  ASSERT_EQ(run(source_path("scenarios/highway_cut_in.json"), out).exit_code, 0);
+  ASSERT_EQ(run_scenario(source_path("scenarios/highway_cut_in.json"), out).exit_code, 0);
   const auto result = read_json(out / "result.json");
   const double blinker_on = result["scenes"][2]["enter_time"];  // scene 2: blinker
   const double change = result["scenes"][3]["enter_time"];      // scene 3: lane change, 3 s
@@ -104,7 +98,7 @@ TEST(RunCli, ScriptedCarCutsInWithItsBlinkerOn) {
 
 TEST(RunCli, EgoStopsBeforeAStationaryObstacle) {
   TempDir out;
-  const auto r = run(source_path("scenarios/alks_obstacle_stop.json"), out);
+  const auto r = run_scenario(source_path("scenarios/alks_obstacle_stop.json"), out);
   ASSERT_EQ(r.exit_code, 0) << r.output;
   Trace trace(out / "trace.csv");
   const auto ego = trace.actor(0);
@@ -120,7 +114,7 @@ TEST(RunCli, EgoStopsBeforeAStationaryObstacle) {
 
 TEST(RunCli, EgoStopsBehindALeadVehicleThatBrakesHard) {
   TempDir out;
-  ASSERT_EQ(run(source_path("scenarios/alks_lead_brake.json"), out).exit_code, 0);
+  ASSERT_EQ(run_scenario(source_path("scenarios/alks_lead_brake.json"), out).exit_code, 0);
   Trace trace(out / "trace.csv");
   const auto lead = trace.actor(1);
   // The lead's deceleration is the scenario's: 5 m/s^2 once it brakes.
@@ -133,7 +127,7 @@ TEST(RunCli, EgoStopsBehindALeadVehicleThatBrakesHard) {
 
 TEST(RunCli, PedestrianBesideTheRoadDoesNotStopTheEgo) {
   TempDir out;
-  ASSERT_EQ(run(source_path("scenarios/pedestrian_roadside.json"), out).exit_code, 0);
+  ASSERT_EQ(run_scenario(source_path("scenarios/pedestrian_roadside.json"), out).exit_code, 0);
   Trace trace(out / "trace.csv");
   double slowest_after_start = 1e9;
   for (const auto& row : trace.actor(0))
@@ -146,7 +140,7 @@ TEST(RunCli, PedestrianBesideTheRoadDoesNotStopTheEgo) {
 
 TEST(RunCli, MaxTimeEndsTheRunAsAFailure) {
   TempDir out;
-  const auto r = run(source_path("scenarios/highway_cut_in.json"), out, {"--max-time", "5"});
+  const auto r = run_scenario(source_path("scenarios/highway_cut_in.json"), out, {"--max-time", "5"});
   EXPECT_EQ(r.exit_code, 1) << r.output;
   const auto result = read_json(out / "result.json");
   EXPECT_EQ(result["verdict"], "failure");
@@ -161,7 +155,7 @@ TEST(RunCli, StopConditionEndsTheRunAsAFailure) {
   const std::string from = "\"comparison\": \">=\", \"value\": 120";
   text.replace(text.find(from), from.size(), "\"comparison\": \">=\", \"value\": 12");
   const auto file = out.write("early_stop.json", text);
-  const auto r = run(file.string(), out);
+  const auto r = run_scenario(file.string(), out);
   EXPECT_EQ(r.exit_code, 1) << r.output;
   const auto result = read_json(out / "result.json");
   EXPECT_EQ(result["verdict"], "failure");
@@ -175,7 +169,7 @@ TEST(RunCli, InvalidScenarioIsAnErrorWithTheFileLineAndPointer) {
   const std::string key = "\"description\": \"Both at 60 km/h\"";
   text.replace(text.find(key), key.size(), "\"descripton\": \"Both at 60 km/h\"");
   const auto file = out.write("typo.json", text);
-  const auto r = run(file.string(), out);
+  const auto r = run_scenario(file.string(), out);
   EXPECT_EQ(r.exit_code, 2) << r.output;
   const auto result = read_json(out / "result.json");
   EXPECT_EQ(result["verdict"], "error");
@@ -189,7 +183,7 @@ TEST(RunCli, UnknownMapIsAnError) {
   TempDir out;
   std::string text = slurp(source_path("scenarios/alks_lead_brake.json"));
   text.replace(text.find("\"ALKS_Road\""), 11, "\"ALKS_Rode\"");
-  const auto r = run(out.write("badmap.json", text).string(), out);
+  const auto r = run_scenario(out.write("badmap.json", text).string(), out);
   EXPECT_EQ(r.exit_code, 2) << r.output;
   const auto result = read_json(out / "result.json");
   EXPECT_EQ(result["verdict"], "error");

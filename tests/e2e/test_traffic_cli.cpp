@@ -12,12 +12,6 @@ using namespace orch::test;
 
 namespace {
 
-CliResult run(const std::string& scenario, const TempDir& out, std::vector<std::string> extra = {}) {
-  std::vector<std::string> args{"run", scenario, "--out", out.path().string(), "-q"};
-  args.insert(args.end(), extra.begin(), extra.end());
-  return run_cli(args);
-}
-
 // A construction sign standing in the middle lane of the highway, the ego passing on the
 // left lane, dense traffic all around.
 std::string obstacle_on_the_highway() {
@@ -47,8 +41,8 @@ std::string obstacle_on_the_highway() {
 TEST(TrafficCli, CountsEveryStepAndBackgroundRowsOnlyWhenAsked) {
   TempDir plain, traced;
   const std::string scenario = source_path("scenarios/highway_cut_in.json");
-  ASSERT_EQ(run(scenario, plain, {"--traffic", "dense", "--max-time", "15"}).exit_code, 1);
-  ASSERT_EQ(run(scenario, traced, {"--traffic", "dense", "--max-time", "15", "--trace-background"}).exit_code, 1);
+  ASSERT_EQ(run_scenario(scenario, plain, {"--traffic", "dense", "--max-time", "15"}).exit_code, 1);
+  ASSERT_EQ(run_scenario(scenario, traced, {"--traffic", "dense", "--max-time", "15", "--trace-background"}).exit_code, 1);
 
   EXPECT_FALSE(std::filesystem::exists(plain / "background.csv"));
   // The flag only writes: what happened is the same.
@@ -95,9 +89,9 @@ TEST(TrafficCli, SameSeedSameTrafficOtherSeedOtherTraffic) {
     o.insert(o.end(), {"--seed", seed});
     return o;
   };
-  ASSERT_EQ(run(scenario, a, with_seed("7")).exit_code, 1);
-  ASSERT_EQ(run(scenario, b, with_seed("7")).exit_code, 1);
-  ASSERT_EQ(run(scenario, c, with_seed("8")).exit_code, 1);
+  ASSERT_EQ(run_scenario(scenario, a, with_seed("7")).exit_code, 1);
+  ASSERT_EQ(run_scenario(scenario, b, with_seed("7")).exit_code, 1);
+  ASSERT_EQ(run_scenario(scenario, c, with_seed("8")).exit_code, 1);
   EXPECT_EQ(slurp(a / "trace.csv"), slurp(b / "trace.csv"));
   EXPECT_EQ(slurp(a / "counts.csv"), slurp(b / "counts.csv"));
   EXPECT_EQ(slurp(a / "background.csv"), slurp(b / "background.csv"));
@@ -108,7 +102,7 @@ TEST(TrafficCli, SameSeedSameTrafficOtherSeedOtherTraffic) {
 TEST(TrafficCli, BackgroundCarsStopForAScriptedObstacleInsteadOfHittingIt) {
   TempDir out;
   const auto file = out.write("obstacle.json", obstacle_on_the_highway());
-  const auto r = run(file.string(), out, {"--traffic", "dense", "--trace-background"});
+  const auto r = run_scenario(file.string(), out, {"--traffic", "dense", "--trace-background"});
   ASSERT_EQ(r.exit_code, 0) << r.output;
   Trace trace(out / "trace.csv");
   const auto sign = trace.actor(1);
@@ -146,8 +140,8 @@ TEST(TrafficCli, ScenarioMayNameItsOwnTrafficFile) {
             "from=\"Waypoint03+Waypoint02+Waypoint01#0\" to=\"Waypoint03+Waypoint02+Waypoint01#7\" "
             "departLane=\"2\" departPos=\"base\" departSpeed=\"max\"/>\n</routes>\n");
   TempDir own, none;
-  ASSERT_EQ(run(scenario.string(), own, {"--max-time", "10"}).exit_code, 1);
-  ASSERT_EQ(run(scenario.string(), none, {"--max-time", "10", "--traffic", "none"}).exit_code, 1);
+  ASSERT_EQ(run_scenario(scenario.string(), own, {"--max-time", "10"}).exit_code, 1);
+  ASSERT_EQ(run_scenario(scenario.string(), none, {"--max-time", "10", "--traffic", "none"}).exit_code, 1);
   const auto result = read_json(own / "result.json");
   EXPECT_NE(result["traffic"].get<std::string>().find("mine.rou.xml"), std::string::npos);
   EXPECT_GE(Trace(own / "counts.csv").rows().back().integer("background_vehicles"), 5);  // one a second from t=1
@@ -157,7 +151,7 @@ TEST(TrafficCli, ScenarioMayNameItsOwnTrafficFile) {
 
 TEST(TrafficCli, UnknownTrafficLevelIsAnError) {
   TempDir out;
-  const auto r = run(source_path("scenarios/highway_cut_in.json"), out, {"--traffic", "heavy"});
+  const auto r = run_scenario(source_path("scenarios/highway_cut_in.json"), out, {"--traffic", "heavy"});
   EXPECT_EQ(r.exit_code, 2) << r.output;
   const auto result = read_json(out / "result.json");
   EXPECT_EQ(result["verdict"], "error");

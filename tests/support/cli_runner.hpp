@@ -75,4 +75,11 @@ inline nlohmann::json read_json(const std::filesystem::path& p) { return nlohman
 
 inline std::string source_path(const std::string& relative) { return std::string(ORCH_SOURCE_DIR) + "/" + relative; }
 
+// `orchestrator run SCENARIO --out OUT -q EXTRA...`
+inline CliResult run_scenario(const std::string& scenario, const TempDir& out, std::vector<std::string> extra = {}) {
+  std::vector<std::string> args{"run", scenario, "--out", out.path().string(), "-q"};
+  args.insert(args.end(), extra.begin(), extra.end());
+  return run_cli(args);
+}
+
 }  // namespace orch::test

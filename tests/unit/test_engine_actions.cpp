@@ -276,3 +276,26 @@ TEST(EngineActions, LaneChangeIntoTheOppositeSideKeepsTheDirectionOfTravel) {
             r.m.lanes.lane(place->lane).routes.end());
   EXPECT_EQ(p.edge, r.m.lanes.lane(place->lane).edge);  // SUMO is told the opposite edge
 }
+
+TEST(EngineActions, BackgroundCarInTheWayOfALaneChangeIsRecordedAndTheChangeGoesOn) {
+  Rig r(alks(R"({"actor_id": 1, "start_position": {"type": "waypoint", "wp_id": "Waypoint03", "wp_idx": 100},
+                 "start_speed": {"type": "absolute", "value": 36}})",
+             R"([{"scene_id": 1, "next_scenes": [99],
+                 "actions": [{"lane_change": {"actor_id": 1, "type": "lane", "wp_id": "Waypoint02", "time": 3}}]}])"));
+  r.world.start(5);
+  r.world.run_until(0.1);
+  // A background car right beside the actor in the target lane (y = -8), at its speed.
+  const double x = r.world.pose("actor1").position.x();
+  r.world.nearby = {NearbyVehicle{"bg.0", {x, -8.0}, 0.0, 10.0, 4.6, 1.8}};
+  bool logged = false;
+  while (r.world.time() < 3.2)
+    for (const auto& e : r.world.step())
+      logged |= e.kind == EventKind::Warning && e.text.find("lane change conflict: actor 1 changing to Waypoint02 has "
+                                                             "vehicle bg.0") != std::string::npos;
+  EXPECT_TRUE(logged);
+  ASSERT_EQ(r.engine.lane_change_conflicts().size(), 1u);
+  EXPECT_EQ(r.engine.lane_change_conflicts()[0].vehicle, "bg.0");
+  EXPECT_DOUBLE_EQ(r.engine.lane_change_conflicts()[0].gap, 0.0);
+  // The scenario's lane change is not altered by the traffic.
+  EXPECT_NEAR(r.world.pose("actor1").position.y(), -8.0, 1e-9);
+}
