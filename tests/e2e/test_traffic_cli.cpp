@@ -157,3 +157,50 @@ TEST(TrafficCli, UnknownTrafficLevelIsAnError) {
   EXPECT_EQ(result["verdict"], "error");
   EXPECT_NE(result["reason"].get<std::string>().find("heavy"), std::string::npos);
 }
+
+TEST(TrafficCli, BackgroundCarInTheWayOfTheCutInIsRecordedAsAConflict) {
+  // Dense traffic, seed 1: a background car drives in the target lane close ahead while the
+  // cut-in car changes lanes (found by running it; the seed makes it repeatable).
+  TempDir out;
+  const auto r = run_scenario(source_path("scenarios/highway_cut_in.json"), out,
+                              {"--traffic", "dense", "--seed", "1", "--trace-background"});
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto result = read_json(out / "result.json");
+  const auto& conflicts = result["lane_change_conflicts"];
+  ASSERT_FALSE(conflicts.empty()) << result.dump(1);
+  double lane_change_start = -1;
+  for (const auto& s : result["scenes"])
+    if (s["scene_id"] == 3) lane_change_start = s["enter_time"].get<double>();  // "Cut in over 3 s"
+  ASSERT_GT(lane_change_start, 0);
+  Trace background(out / "background.csv");
+  for (const auto& c : conflicts) {
+    const double t = c["time"].get<double>();
+    EXPECT_EQ(c["actor"], 1);
+    EXPECT_EQ(c["target_route"], "Waypoint02");
+    EXPECT_GE(t, lane_change_start);
+    EXPECT_LE(t, lane_change_start + 3.0 + 1e-9);
+    EXPECT_TRUE(c["gap"].get<double>() < 2.0 || c["time_gap"].get<double>() < 1.0) << c.dump();
+    // The vehicle is a background car, and it was where the conflict says in that step.
+    const std::string vehicle = c["vehicle"];
+    EXPECT_EQ(vehicle.rfind("bg", 0), 0u) << vehicle;
+    bool seen = false;
+    for (const auto& row : background.rows())
+      if (row.str("vehicle_id") == vehicle && std::abs(row.num("time") - t) < 1e-6) {
+        seen = true;
+        EXPECT_NEAR(row.num("x"), c["positions"][1][0].get<double>(), 1e-3);
+        EXPECT_NEAR(row.num("y"), c["positions"][1][1].get<double>(), 1e-3);
+      }
+    EXPECT_TRUE(seen) << vehicle << " at " << t;
+  }
+  // The run log says it too, and the lane change itself went ahead as written.
+  bool logged = false;
+  for (const auto& e : result["events"])
+    logged |= e["text"].get<std::string>().rfind("lane change conflict: actor 1 changing to Waypoint02", 0) == 0;
+  EXPECT_TRUE(logged);
+  // The scripted car neither brakes nor steers for traffic: here it runs into the slower car
+  // it cut in ahead of, and that contact is a collision like any other.
+  bool contact = false;
+  for (const auto& c : result["collisions"])
+    contact |= c["between"][0] == 1 && c["between"][1] == conflicts[0]["vehicle"] && c["source"] == "geometry";
+  EXPECT_TRUE(contact) << result["collisions"].dump();
+}
