@@ -277,9 +277,10 @@ class SumoSimulator final : public Simulator {
       sumo::VehicleType::setShapeClass(type, c.model.gui_shape);
       // Deterministic driver: no dawdling, no speed deviation.
       sumo::VehicleType::setImperfection(type, 0.0);
-      // A scripted actor may be faster than the road allows (the scenario says so); SUMO
-      // refuses to insert a vehicle above speed limit x speed factor.
-      sumo::VehicleType::setSpeedFactor(type, c.scripted ? 10.0 : 1.0);
+      // Speed factor 1 for scripted actors too: SUMO sizes every lane's leader and follower
+      // search by the largest speed factor of any type, so a large one would make each
+      // background car look kilometres around itself (twice the run time in dense traffic).
+      sumo::VehicleType::setSpeedFactor(type, 1.0);
       sumo::VehicleType::setSpeedDeviation(type, 0.0);
       if (c.scripted) sumo::VehicleType::setMaxSpeed(type, 300.0 / 3.6 * 2);
       const std::string route = "orch.route." + c.actor.sumo_id;
@@ -287,8 +288,11 @@ class SumoSimulator final : public Simulator {
       const std::string lane_id = c.edge + "_" + std::to_string(c.lane);
       const double lane_length = sumo::Lane::getLength(lane_id);
       const double front = std::clamp(c.lane_pos + c.actor.length / 2, 0.0, lane_length);
+      // SUMO refuses to insert a vehicle faster than the lane allows; a scripted actor the
+      // scenario starts faster gets its exact speed with its first pose (speed mode 0).
+      const double depart_speed = c.scripted ? std::min(c.speed, sumo::Lane::getMaxSpeed(lane_id)) : c.speed;
       sumo::Vehicle::add(c.actor.sumo_id, route, type, "now", std::to_string(c.lane), fmt::format("{:.3f}", front),
-                         fmt::format("{:.3f}", c.speed));
+                         fmt::format("{:.3f}", depart_speed));
       if (c.scripted) {
         // Placed by the orchestrator every step: SUMO must neither slow nor steer it.
         sumo::Vehicle::setSpeedMode(c.actor.sumo_id, 0);

@@ -111,7 +111,8 @@ LaneMap LaneMap::build(const std::string& net_file, const WaypointFile& waypoint
     std::sort(along.begin(), along.end());
     for (const auto& [s, lane] : along) rl.lanes.push_back(lane);
     rl.points.reserve(route.points.size());
-    for (std::size_t i = 0; i < route.points.size(); ++i) rl.points.push_back(map.nearest_of(rl.lanes, route.line.point(i)));
+    for (std::size_t i = 0; i < route.points.size(); ++i)
+      rl.points.push_back(map.nearest_of(rl.lanes, route.line.point(i), i == 0 ? -1 : rl.points.back().lane));
     map.routes_.emplace(route.id, std::move(rl));
   }
   return map;
@@ -139,10 +140,12 @@ LanePlace LaneMap::place_on_lane(int lane, const Vec2& p) const {
   return place;
 }
 
-LanePlace LaneMap::nearest_of(const std::vector<int>& candidates, const Vec2& p) const {
+LanePlace LaneMap::nearest_of(const std::vector<int>& candidates, const Vec2& p, int first) const {
   LanePlace best;
   best.distance = std::numeric_limits<double>::infinity();
+  if (first >= 0) best = place_on_lane(first, p);
   for (const int lane : candidates) {
+    if (lane == first) continue;
     // A lane whose bounding box is farther than the best so far cannot beat it.
     const Bounds& b = bounds_[static_cast<std::size_t>(lane)];
     const Vec2 outside = (b.lo - p).cwiseMax(p - b.hi).cwiseMax(Vec2::Zero());

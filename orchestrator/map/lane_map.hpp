@@ -73,7 +73,9 @@ class LaneMap {
   };
   [[nodiscard]] const RouteLanes& route_or_throw(const WaypointRoute& route) const;
   // The lane of `candidates` nearest to p, preferring lanes beside which p lies.
-  [[nodiscard]] LanePlace nearest_of(const std::vector<int>& candidates, const Vec2& p) const;
+  // `first`: a lane likely to be the answer (e.g. the previous waypoint's), tried before the
+  // others so that the bounding-box test skips the rest cheaply.
+  [[nodiscard]] LanePlace nearest_of(const std::vector<int>& candidates, const Vec2& p, int first = -1) const;
 
   std::vector<LaneInfo> lanes_;
   std::vector<Bounds> bounds_;  // per lane, for skipping far lanes cheaply
