@@ -64,8 +64,16 @@ def bench_orchestrator(binary, steps, tmp):
     port = free_port()
     proc = subprocess.Popen([binary, "run", scenario, "--out", os.path.join(tmp, "out"), "-q",
                              "--ego-port", str(port)], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    return drive(proc, port, steps, warm_up=False)
+
+
+def drive(proc, port, steps, warm_up):
+    """Connects to the server proc listens on, runs the loop, and never leaves proc behind.
+    warm_up: one step first (a plain SUMO departs the ego in its first step)."""
     try:
         conn = traci.connect(port, numRetries=60)
+        if warm_up:
+            conn.simulationStep()
         rate = loop(conn, steps)
         conn.close()
         proc.wait(timeout=60)
@@ -92,16 +100,7 @@ def bench_plain_sumo(steps, tmp):
                              "--collision.check-junctions", "true", "--time-to-teleport", "-1", "--no-step-log",
                              "true", "--duration-log.disable", "true"],
                             stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-    try:
-        conn = traci.connect(port, numRetries=60)
-        conn.simulationStep()  # the ego departs in the first step
-        rate = loop(conn, steps)
-        conn.close()
-        proc.wait(timeout=60)
-        return rate
-    finally:
-        if proc.poll() is None:
-            proc.kill()
+    return drive(proc, port, steps, warm_up=True)
 
 
 def main():
