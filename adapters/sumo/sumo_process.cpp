@@ -25,6 +25,7 @@
 #include <fmt/format.h>
 
 #include "core/errors.hpp"
+#include "core/files.hpp"
 
 namespace orch {
 
@@ -227,11 +228,11 @@ std::string sumo_errors_in(const std::string& text) {
 }
 
 std::string sumo_errors_in_file(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) return "";
-  std::ostringstream text;
-  text << in.rdbuf();
-  return sumo_errors_in(text.str());
+  try {
+    return sumo_errors_in(read_file(path));
+  } catch (const OrchError&) {
+    return "";  // no log (yet): nothing SUMO said
+  }
 }
 
 StderrCapture::StderrCapture() {

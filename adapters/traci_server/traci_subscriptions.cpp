@@ -90,8 +90,7 @@ void Session::subscribe(const RawCommand& c, Domain domain, bool context) {
     return;
   }
   for (const auto& v : s.vars) {
-    if (v.variable != tc::VAR_PARAMETER_WITH_KEY && !world_.supports(values_domain, v.variable) &&
-        !(values_domain == Domain::Simulation && v.variable == tc::VAR_MIN_EXPECTED_VEHICLES)) {
+    if (v.variable != tc::VAR_PARAMETER_WITH_KEY && !world_.supports(values_domain, v.variable)) {
       status(c.id, tc::RTYPE_NOTIMPLEMENTED,
              command_name(static_cast<std::uint8_t>((c.id & 0x0F) | 0xa0), v.variable) +
                  " cannot be subscribed: not implemented by the orchestrator's ego TraCI server");

@@ -140,20 +140,20 @@ BatchPlan plan_batch(const std::vector<std::string>& inputs, const std::optional
     const std::string key = fs::weakly_canonical(parameter_file).string();
     if (!seen_files.insert(key).second) continue;  // the same sets named twice run once
 
-    PlannedLogical pl{load_logical_scenario(logical_file), parameter_file, {}};
+    PlannedLogical pl{load_logical_scenario(logical_file), parameter_file, {}, nullptr};
     pl.lineage = find_lineage(pl.logical);
     const ParameterFile params = load_parameter_file(parameter_file);
     if (params.logical_uuid != pl.logical.uuid)
       throw ScenarioError(SourceLocation{parameter_file.string(), "/logical_uuid", 0},
                           fmt::format("the parameter file names logical scenario \"{}\", its logical file has \"{}\"",
                                       params.logical_uuid, pl.logical.uuid));
-    const JsonDocument tmpl = JsonDocument::load(pl.logical.template_file.string());
-    if (Diagnostics d = check_template(pl.logical, tmpl); d.has_errors()) throw ScenarioError(d);
+    pl.template_doc = std::make_shared<const JsonDocument>(JsonDocument::load(pl.logical.template_file.string()));
+    if (Diagnostics d = check_template(pl.logical, *pl.template_doc); d.has_errors()) throw ScenarioError(d);
     hash(logical_file);
     hash(parameter_file);
     hash(pl.logical.template_file);
     for (const auto& set : params.sets) {
-      bound_scenario_text(pl.logical, set);  // every set binds, or the batch does not start
+      bound_scenario_text(pl.logical, *pl.template_doc, set);  // every set binds, or the batch does not start
       PlannedRun run{run_id(pl.logical.uuid, set.uuid), pl.logical.uuid, set.uuid, pl.logical.name,
                      plan.logicals.size(), set};
       if (ids.insert(run.id).second) all.push_back(std::move(run));

@@ -4,6 +4,7 @@
 // shard. The plan is written to batch.json (manifest.hpp) in the output folder; a resumed
 // batch plans again from the same inputs and refuses to go on when they have changed since.
 #include <filesystem>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
@@ -11,6 +12,7 @@
 
 #include "batch/logical_scenario.hpp"
 #include "batch/parameter_file.hpp"
+#include "json/json_document.hpp"
 
 namespace orch::batch {
 
@@ -46,6 +48,8 @@ struct PlannedLogical {
   LogicalScenario logical;
   std::filesystem::path parameter_file;
   Lineage lineage;
+  // The template, loaded and checked once when planning; every set is bound into it.
+  std::shared_ptr<const JsonDocument> template_doc;
 };
 
 struct BatchPlan {

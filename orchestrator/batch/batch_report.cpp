@@ -154,7 +154,7 @@ std::string summary_json(const BatchReport& report, const fs::path& out_dir) {
       r["verdict"] = s.verdict;
       r["reason"] = s.reason;
       r["seed"] = s.seed ? ordered_json(*s.seed) : ordered_json(nullptr);
-      r["sampled_values"] = ordered_json::parse(s.sampled_values.dump());
+      r["sampled_values"] = ordered_json(s.sampled_values);
       r["attempts"] = s.attempts;
       r["sim_time"] = s.sim_time ? ordered_json(*s.sim_time) : ordered_json(nullptr);
       r["wall_time_s"] = s.wall_time_s;

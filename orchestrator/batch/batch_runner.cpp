@@ -210,7 +210,8 @@ int run_batch(const BatchOptions& given) {
     const PlannedRun& run = plan.runs[task];
     const fs::path dir = out / "runs" / run.id;
     prepare_run_dir(dir, attempt);
-    write_file_atomically(dir / "scenario.json", bound_scenario_text(plan.logicals[run.logical_index].logical, run.set));
+    const PlannedLogical& pl = plan.logicals[run.logical_index];
+    write_file_atomically(dir / "scenario.json", bound_scenario_text(pl.logical, *pl.template_doc, run.set));
     std::vector<std::string> argv = run_command_line(o, run, dir);
     if (!o.wrapper.empty()) argv.insert(argv.begin(), o.wrapper);
     ExecutionRecord& rec = records[task];

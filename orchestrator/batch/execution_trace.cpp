@@ -72,7 +72,7 @@ std::string execution_trace_text(const PlannedRun& run, const PlannedLogical& lo
   trace["parameter_file"] = std::filesystem::absolute(logical.parameter_file).lexically_normal().string();
   trace["parameter_uuid"] = run.parameter_uuid;
   trace["seed"] = opt(run.set.seed);
-  trace["sampled_values"] = ordered_json::parse(run.set.sampled_values.dump());
+  trace["sampled_values"] = ordered_json(run.set.sampled_values);
   ordered_json impl;
   impl["template_file"] = std::filesystem::absolute(logical.logical.template_file).lexically_normal().string();
   impl["scenario_file"] = out_block["run_dir"].get<std::string>() + "/scenario.json";

@@ -119,7 +119,7 @@ std::string to_json_text(const ParameterFile& f) {
     ordered_json set;
     set["created_at"] = s.created_at;
     if (s.seed) set["seed"] = *s.seed;
-    set["sampled_values"] = ordered_json::parse(s.sampled_values.dump());
+    set["sampled_values"] = ordered_json(s.sampled_values);
     ordered_json cfg;
     cfg["map"] = s.sumo_config.map;
     cfg["step"] = s.sumo_config.step;

@@ -90,7 +90,7 @@ nlohmann::ordered_json sample_values(const LogicalScenario& logical, std::uint64
   nlohmann::ordered_json out = nlohmann::ordered_json::object();
   for (const auto& p : logical.parameters) {
     auto engine = parameter_stream(set_seed, p.key());
-    out[p.group][p.name] = nlohmann::ordered_json::parse(draw(p, engine).dump());
+    out[p.group][p.name] = nlohmann::ordered_json(draw(p, engine));
   }
   return out;
 }

@@ -34,9 +34,12 @@ void check_set_fits(const LogicalScenario& logical, const ParameterSet& set,
 }  // namespace
 
 std::string bound_scenario_text(const LogicalScenario& logical, const ParameterSet& set) {
+  return bound_scenario_text(logical, JsonDocument::load(logical.template_file.string()), set);
+}
+
+std::string bound_scenario_text(const LogicalScenario& logical, const JsonDocument& tmpl, const ParameterSet& set) {
   const auto values = flatten_values(set.sampled_values);
   check_set_fits(logical, set, values);
-  const JsonDocument tmpl = JsonDocument::load(logical.template_file.string());
   return bind_template(tmpl, values).dump(2) + "\n";
 }
 
@@ -70,7 +73,7 @@ SampleOutcome sample_parameter_sets(const LogicalScenario& logical, const Sample
     set.uuid = name_based_uuid(fmt::format("{}/{}", logical.uuid, seed));
     set.created_at = now;
     set.seed = seed;
-    set.sampled_values = nlohmann::json::parse(sample_values(logical, static_cast<std::uint64_t>(seed)).dump());
+    set.sampled_values = nlohmann::json(sample_values(logical, static_cast<std::uint64_t>(seed)));
     set.sumo_config.step = request.step.value_or(logical.sumo_config.step.value_or(0.05));
     set.sumo_config.max_time = request.max_time ? request.max_time : logical.sumo_config.max_time;
     set.sumo_config.traffic = request.traffic ? request.traffic : logical.sumo_config.traffic;
@@ -84,7 +87,7 @@ SampleOutcome sample_parameter_sets(const LogicalScenario& logical, const Sample
     if (!loaded.scenario) throw ScenarioError(loaded.diagnostics);
     set.sumo_config.map = loaded.scenario->map_id;
 
-    set.output = nlohmann::json::parse(output_block(logical.uuid, set.uuid).dump());
+    set.output = nlohmann::json(output_block(logical.uuid, set.uuid));
     outcome.new_set_ids.push_back(set.uuid);
     outcome.file.sets.push_back(std::move(set));
     used.insert(seed);

@@ -9,6 +9,7 @@
 
 #include "batch/logical_scenario.hpp"
 #include "batch/parameter_file.hpp"
+#include "json/json_document.hpp"
 
 namespace orch::batch {
 
@@ -35,5 +36,7 @@ SampleOutcome sample_parameter_sets(const LogicalScenario& logical, const Sample
 // The template bound with one parameter set, as scenario file text. Throws ScenarioError
 // when the set does not fit the logical scenario (a parameter missing or extra).
 std::string bound_scenario_text(const LogicalScenario& logical, const ParameterSet& set);
+// The same with the template already loaded (a batch binds every set into one template).
+std::string bound_scenario_text(const LogicalScenario& logical, const JsonDocument& tmpl, const ParameterSet& set);
 
 }  // namespace orch::batch

@@ -137,7 +137,7 @@ ordered_json bind_template(const JsonDocument& tmpl, const std::map<std::string,
         return;
       }
       if (pieces.size() == 1) {
-        s = ordered_json::parse(it->second.dump());  // keeps the value's JSON type
+        s = ordered_json(it->second);  // keeps the value's JSON type
         return;
       }
       text += as_text(it->second);

@@ -25,12 +25,7 @@ namespace fs = std::filesystem;
 
 struct SampleOptions {
   std::string logical;
-  int count = 1;
-  long long seed = 1;
-  std::optional<double> step;
-  std::optional<double> max_time;
-  std::optional<std::string> traffic;
-  std::optional<std::string> backend;
+  batch::SampleRequest request;  // the CLI options bind straight into it
 };
 
 struct BatchCliOptions {
@@ -59,8 +54,7 @@ int report_input_error(const ScenarioError& e) {
 int sample_command(const SampleOptions& o) {
   try {
     const batch::LogicalScenario logical = batch::load_logical_scenario(o.logical);
-    batch::SampleRequest req{o.count, o.seed, o.step, o.max_time, o.traffic, o.backend};
-    const batch::SampleOutcome outcome = batch::sample_parameter_sets(logical, req);
+    const batch::SampleOutcome outcome = batch::sample_parameter_sets(logical, o.request);
     write_file_atomically(outcome.file.file, batch::to_json_text(outcome.file));
     std::cout << fmt::format("{}: {} new parameter set(s), {} in all\n", outcome.file.file.string(),
                              outcome.new_set_ids.size(), outcome.file.sets.size());
@@ -140,15 +134,15 @@ class BatchCommandsImpl : public BatchCommands {
     sample_->add_option("logical", sample_opts_.logical, "Logical scenario (logical_{uuid}.json)")
         ->required()
         ->check(CLI::ExistingFile);
-    sample_->add_option("--count", sample_opts_.count, "Parameter sets to add")->required()->check(CLI::Range(1, 1000000));
-    sample_->add_option("--seed", sample_opts_.seed, "Seed of the first new set; the next take seed+1, ... (skipping used ones)")
+    sample_->add_option("--count", sample_opts_.request.count, "Parameter sets to add")->required()->check(CLI::Range(1, 1000000));
+    sample_->add_option("--seed", sample_opts_.request.first_seed, "Seed of the first new set; the next take seed+1, ... (skipping used ones)")
         ->capture_default_str()
         ->check(CLI::Range(0LL, 2147483647LL));
-    sample_->add_option("--step", sample_opts_.step, "sumo_config.step of the new sets, s")->check(CLI::Range(0.001, 1.0));
-    sample_->add_option("--max-time", sample_opts_.max_time, "sumo_config.max_time of the new sets, s")
+    sample_->add_option("--step", sample_opts_.request.step, "sumo_config.step of the new sets, s")->check(CLI::Range(0.001, 1.0));
+    sample_->add_option("--max-time", sample_opts_.request.max_time, "sumo_config.max_time of the new sets, s")
         ->check(CLI::PositiveNumber);
-    sample_->add_option("--traffic", sample_opts_.traffic, "sumo_config.traffic of the new sets (passed to run --traffic)");
-    sample_->add_option("--backend", sample_opts_.backend, "sumo_config.backend of the new sets (passed to run --backend)");
+    sample_->add_option("--traffic", sample_opts_.request.traffic, "sumo_config.traffic of the new sets (passed to run --traffic)");
+    sample_->add_option("--backend", sample_opts_.request.backend, "sumo_config.backend of the new sets (passed to run --backend)");
 
     batch_ = app.add_subcommand("batch", "Run every parameter set of logical scenarios, in parallel child processes");
     batch_->require_subcommand(0, 1);
