@@ -16,6 +16,7 @@
 #include "cli/commands.hpp"
 #include "core/errors.hpp"
 #include "core/files.hpp"
+#include "core/process.hpp"
 
 namespace orch::cli {
 
@@ -71,12 +72,7 @@ int sample_command(const SampleOptions& o) {
 // Flags `orchestrator run` offers, read from its --help: the batch passes sumo_config
 // settings (traffic, backend) only through flags that exist, whoever adds them.
 std::set<std::string> run_flags_of(const fs::path& exe) {
-  namespace bp = boost::process;
-  bp::ipstream out;
-  bp::child child(exe.string(), "run", "--help", (bp::std_out & bp::std_err) > out);
-  std::string text, line;
-  while (std::getline(out, line)) text += line + "\n";
-  child.wait();
+  const std::string text = run_process(exe.string(), {"run", "--help"}).output;
   std::set<std::string> flags;
   const std::regex flag("--[a-z][a-z0-9-]*");
   for (auto it = std::sregex_iterator(text.begin(), text.end(), flag); it != std::sregex_iterator(); ++it)

@@ -15,7 +15,9 @@ std::string sumo_home() {
 ProcessResult run_process(const std::string& program, const std::vector<std::string>& args,
                           const std::filesystem::path& working_dir) {
   namespace bp = boost::process;
-  const auto exe = bp::search_path(program);
+  // A path (it has a '/') is run as given; a bare name is looked up in PATH.
+  const boost::filesystem::path exe =
+      program.find('/') != std::string::npos ? boost::filesystem::path(program) : bp::search_path(program);
   if (exe.empty()) throw OrchError("cannot find the program \"" + program + "\" in PATH");
   auto env = boost::this_process::environment();
   bp::environment child_env = env;

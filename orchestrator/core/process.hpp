@@ -11,7 +11,7 @@ struct ProcessResult {
   std::string output;  // stdout and stderr, interleaved
 };
 
-// Runs `program` (looked up in PATH) with `args`; SUMO_HOME is set for SUMO's tools when
+// Runs `program` (a path, or a name looked up in PATH) with `args`; SUMO_HOME is set for SUMO's tools when
 // the caller's environment lacks it. Throws OrchError when the program cannot be started.
 // `working_dir` (default: the caller's) lets tools that echo their relative input paths
 // into their output (netconvert) write the same bytes wherever the files live.
