@@ -9,6 +9,10 @@
 
 #include <libsumo/TraCIConstants.h>
 
+// A name made per client library (for what two sources of one library share).
+#define ORCH_SUMO_CONCAT_INNER(a, b) a##b
+#define ORCH_SUMO_CONCAT(a, b) ORCH_SUMO_CONCAT_INNER(a, b)
+
 namespace orch_sumo {
 using namespace ORCH_SUMO_NS;  // NOLINT: the classes of this compilation's library
 using libsumo::ContextSubscriptionResults;

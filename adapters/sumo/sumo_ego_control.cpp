@@ -2,9 +2,9 @@
 // libsumo or libtraci (see adapters/CMakeLists.txt). SUMO's exceptions stop here and become
 // WorldError (an error status for the plug-in, the run goes on).
 //
-// Reads are cached until the world advances: a plug-in asking for the same value twice, and
-// the context subscription that looks at every vehicle's position, cost one SUMO call per
-// value and step (a socket round trip each on libtraci).
+// Reads are cached until the world advances: a plug-in asking for the same value twice costs
+// one SUMO call per value and step (a socket round trip each on libtraci). A plug-in's context
+// subscription is answered from SUMO's own (sumo_contexts.hpp), values included.
 #include "sumo_ego_control.hpp"
 
 #include <libsumo/TraCIConstants.h>
@@ -17,17 +17,16 @@
 #include "run/ego_link.hpp"
 
 #include "sumo_api.hpp"
+#include "sumo_contexts.hpp"
 
 // Classes from ORCH_SUMO_NS, shared types and exceptions from libsumo (sumo_api.hpp).
 namespace sumo = orch_sumo;
-
-#define ORCH_CONCAT_INNER(a, b) a##b
-#define ORCH_CONCAT(a, b) ORCH_CONCAT_INNER(a, b)
 
 namespace orch {
 namespace {
 
 namespace tc = libsumo;
+namespace contexts = ORCH_SUMO_CONCAT(contexts_, ORCH_SUMO_NS);
 using traci::Domain;
 using traci::Value;
 
@@ -82,11 +81,7 @@ class SumoEgoControl final : public traci::EgoWorld {
                                                                          : "simulation") +
                                   " variable " + std::to_string(variable) +
                                   " is not implemented by the orchestrator's ego TraCI server");
-    std::string key;
-    key += static_cast<char>(domain);
-    key += static_cast<char>(variable);
-    key += id;
-    if (parameter) key += '\0' + parameter_text(*parameter);
+    std::string key = cache_key(domain, variable, id, parameter);
     if (const auto it = cache_.find(key); it != cache_.end()) return it->second;
     Value v;
     guard([&] {
@@ -98,6 +93,34 @@ class SumoEgoControl final : public traci::EgoWorld {
     });
     cache_.emplace(std::move(key), v);
     return v;
+  }
+
+  // From the context subscription SUMO keeps for the centre (shared with the world reader):
+  // SUMO's lane tree finds the objects, and their subscribed values go into the cache, so
+  // the session's reads of them cost nothing more.
+  std::vector<std::string> objects_in_range(Domain centre_domain, const std::string& centre, Domain context,
+                                            double range, const std::vector<int>& variables) override {
+    if (centre_domain == Domain::Simulation || context == Domain::Simulation)
+      throw traci::WorldError("context subscriptions are served around vehicles and persons, for vehicles and persons");
+    std::vector<int> subscribed;
+    for (const int v : variables)
+      if (supports(context, v) && v != tc::VAR_LEADER && v != tc::VAR_PARAMETER && v != tc::TRACI_ID_LIST &&
+          v != tc::ID_COUNT)
+        subscribed.push_back(v);
+    sumo::SubscriptionResults found;
+    guard([&] {
+      found = contexts::shared_contexts().within(
+          centre, centre_domain == Domain::Person,
+          context == Domain::Person ? tc::CMD_GET_PERSON_VARIABLE : tc::CMD_GET_VEHICLE_VARIABLE, range, subscribed);
+    });
+    std::vector<std::string> ids;
+    ids.reserve(found.size());
+    for (const auto& [id, values] : found) {
+      ids.push_back(id);
+      for (const auto& [variable, value] : values)
+        if (auto v = to_value(variable, *value)) cache_.emplace(cache_key(context, variable, id, std::nullopt), *v);
+    }
+    return ids;
   }
 
   void command(const std::string& vehicle, const traci::EgoCommand& command) override {
@@ -152,6 +175,26 @@ class SumoEgoControl final : public traci::EgoWorld {
     for (int lane = current; lane < target; ++lane) distance += (width(lane) + width(lane + 1)) / 2;
     for (int lane = current; lane > target; --lane) distance -= (width(lane) + width(lane - 1)) / 2;
     sumo::Vehicle::changeSublane(vehicle, distance);
+  }
+
+  static std::string cache_key(Domain domain, int variable, const std::string& id,
+                               const std::optional<Value>& parameter) {
+    std::string key;
+    key += static_cast<char>(domain);
+    key += static_cast<char>(variable);
+    key += id;
+    if (parameter) key += '\0' + parameter_text(*parameter);
+    return key;
+  }
+
+  // A subscribed value as its getter returns it (nullopt: a type the cache does not keep).
+  static std::optional<Value> to_value(int variable, const sumo::TraCIResult& r) {
+    if (const auto* p = dynamic_cast<const sumo::TraCIPosition*>(&r))
+      return variable == tc::VAR_POSITION3D ? pos3(*p) : pos2(*p);
+    if (const auto* d = dynamic_cast<const sumo::TraCIDouble*>(&r)) return Value(d->value);
+    if (const auto* i = dynamic_cast<const sumo::TraCIInt*>(&r)) return Value(static_cast<std::int32_t>(i->value));
+    if (const auto* t = dynamic_cast<const sumo::TraCIString*>(&r)) return Value(t->value);
+    return std::nullopt;
   }
 
   static std::string parameter_text(const Value& v) {
@@ -237,7 +280,7 @@ class SumoEgoControl final : public traci::EgoWorld {
 
 }  // namespace
 
-std::unique_ptr<traci::EgoWorld> ORCH_CONCAT(make_ego_control_, ORCH_SUMO_NS)() {
+std::unique_ptr<traci::EgoWorld> ORCH_SUMO_CONCAT(make_ego_control_, ORCH_SUMO_NS)() {
   return std::make_unique<SumoEgoControl>();
 }
 

@@ -21,6 +21,7 @@
 
 #include "engine/world.hpp"
 #include "sumo_api.hpp"
+#include "sumo_contexts.hpp"
 
 namespace orch::sumo_reading {
 // Internal linkage: this header is compiled once per client library, and the libsumo and
@@ -29,6 +30,7 @@ namespace {
 
 namespace sumo = orch_sumo;
 namespace tc = libsumo;
+namespace contexts = ORCH_SUMO_CONCAT(contexts_, ORCH_SUMO_NS);
 
 // m between an actor's and a background vehicle's reference points (front bumpers) within
 // which the vehicle is "nearby": engine collision tests and --trace-background see it.
@@ -77,6 +79,7 @@ class WorldReader {
  public:
   // Once, after SUMO started and before the first step.
   void start() {
+    contexts::shared_contexts().reset();
     const std::vector<int> vars = {tc::VAR_TIME, tc::VAR_DEPARTED_VEHICLES_IDS, tc::VAR_ARRIVED_VEHICLES_NUMBER,
                                    tc::VAR_COLLIDING_VEHICLES_NUMBER};
     sumo::Simulation::subscribe(vars);
@@ -138,15 +141,11 @@ class WorldReader {
                                                   tc::VAR_LANEPOSITION, tc::VAR_LANEPOSITION_LAT, tc::VAR_SIGNALS};
     static const std::vector<int> person_vars = {tc::VAR_POSITION, tc::VAR_ANGLE,   tc::VAR_SPEED,
                                                  tc::VAR_ROAD_ID,  tc::VAR_LANE_ID, tc::VAR_LANEPOSITION};
-    static const std::vector<int> neighbour_vars = {tc::VAR_POSITION, tc::VAR_ANGLE, tc::VAR_SPEED, tc::VAR_LENGTH,
-                                                    tc::VAR_WIDTH};
-    if (person) {
+    if (person)
       sumo::Person::subscribe(id, person_vars);
-      sumo::Person::subscribeContext(id, tc::CMD_GET_VEHICLE_VARIABLE, kNearbyRange, neighbour_vars);
-    } else {
+    else
       sumo::Vehicle::subscribe(id, vehicle_vars);
-      sumo::Vehicle::subscribeContext(id, tc::CMD_GET_VEHICLE_VARIABLE, kNearbyRange, neighbour_vars);
-    }
+    (void)nearby(id, person);  // subscribes
     followed_[id] = person;
   }
 
@@ -198,8 +197,7 @@ class WorldReader {
     for (const auto& a : actors) {
       const auto it = followed_.find(a.sumo_id);
       if (it == followed_.end()) continue;
-      const sumo::SubscriptionResults around = it->second ? sumo::Person::getContextSubscriptionResults(a.sumo_id)
-                                                          : sumo::Vehicle::getContextSubscriptionResults(a.sumo_id);
+      const sumo::SubscriptionResults around = nearby(a.sumo_id, it->second);
       for (const auto& [id, r] : around) {
         if (actor_kind_.count(id) || found.count(id) || r.empty()) continue;
         engine::NearbyVehicle v;
@@ -214,6 +212,14 @@ class WorldReader {
     }
     snap.nearby.reserve(found.size());
     for (auto& [id, v] : found) snap.nearby.push_back(std::move(v));
+  }
+
+  // The vehicles within kNearbyRange of an actor (a context subscription shared with the ego
+  // plug-in's, sumo_contexts.hpp).
+  static sumo::SubscriptionResults nearby(const std::string& id, bool person) {
+    static const std::vector<int> vars = {tc::VAR_POSITION, tc::VAR_ANGLE, tc::VAR_SPEED, tc::VAR_LENGTH,
+                                          tc::VAR_WIDTH};
+    return contexts::shared_contexts().within(id, person, tc::CMD_GET_VEHICLE_VARIABLE, kNearbyRange, vars);
   }
 
   std::unordered_map<std::string, ActorKind> actor_kind_;  // scenario actors by SUMO id

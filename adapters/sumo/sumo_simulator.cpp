@@ -10,6 +10,7 @@
 #include <chrono>
 #include <cmath>
 #include <numbers>
+#include <optional>
 #include <string_view>
 #include <thread>
 #include <unordered_map>
@@ -328,17 +329,26 @@ class SumoSimulator final : public Simulator {
       if (!c.scripted) return;
       // Without an explicit speed SUMO derives one from the lane positions, which jump when
       // the vehicle crosses into another lane of a curved edge: followers would see a
-      // phantom brake. The scenario's speed is exact.
-      sumo::Vehicle::setSpeed(c.sumo_id, c.speed);
-      if (c.signals != 0 || signals_sent_[c.sumo_id] != 0) {
+      // phantom brake. The scenario's speed is exact. SUMO keeps a speed and signals set
+      // over TraCI until they are set again, so each is sent when it changes: on the traci
+      // backend every call is a round trip to SUMO.
+      Sent& sent = sent_[c.sumo_id];
+      if (!sent.speed || *sent.speed != c.speed) {
+        sumo::Vehicle::setSpeed(c.sumo_id, c.speed);
+        sent.speed = c.speed;
+      }
+      if (sent.signals != c.signals) {
         sumo::Vehicle::setSignals(c.sumo_id, c.signals);
-        signals_sent_[c.sumo_id] = c.signals;
+        sent.signals = c.signals;
       }
     });
   }
 
   void execute(const engine::SetSignals& c) {
-    guard("setting signals", [&] { sumo::Vehicle::setSignals(c.sumo_id, c.signals); });
+    guard("setting signals", [&] {
+      sumo::Vehicle::setSignals(c.sumo_id, c.signals);
+      sent_[c.sumo_id].signals = c.signals;
+    });
   }
 
   void execute(const engine::SetMaxSpeed& c) {
@@ -366,10 +376,19 @@ class SumoSimulator final : public Simulator {
 #ifdef LIBTRACI
   SumoProcess process_;
 #endif
-  std::unordered_map<std::string, int> signals_sent_;
+  struct Sent {  // what a scripted vehicle was last given
+    std::optional<double> speed;
+    int signals = 0;  // SUMO's own until set
+  };
+  std::unordered_map<std::string, Sent> sent_;
 };
 
 }  // namespace
+
+ORCH_SUMO_CONCAT(contexts_, ORCH_SUMO_NS)::SharedContexts& ORCH_SUMO_CONCAT(contexts_, ORCH_SUMO_NS)::shared_contexts() {
+  static SharedContexts table;
+  return table;
+}
 
 std::unique_ptr<Simulator> ORCH_SUMO_FACTORY(const SumoBackendOptions& options) {
   return std::make_unique<SumoSimulator>(options);

@@ -36,12 +36,6 @@ std::optional<Domain> domain_of_get_command(std::uint8_t cmd) {
   return std::nullopt;
 }
 
-Pos2 as_pos2(const Value& v) {
-  if (const auto* p = std::get_if<Pos2>(&v)) return *p;
-  if (const auto* p = std::get_if<Pos3>(&v)) return {p->x, p->y};
-  return {};
-}
-
 }  // namespace
 
 std::vector<Session::VarRequest> Session::read_var_requests(Reader& r, Domain domain) {
@@ -131,19 +125,9 @@ void Session::append_values(Writer& w, Domain domain, const std::string& id, con
 }
 
 std::vector<std::string> Session::objects_in_range(const Subscription& s) {
-  const Pos2 centre = as_pos2(world_.read(s.domain, tc::VAR_POSITION, s.id, std::nullopt));
-  const auto ids = std::get<std::vector<std::string>>(world_.read(s.context_domain, tc::TRACI_ID_LIST, "", std::nullopt));
-  std::vector<std::string> near;
-  for (const auto& other : ids) {
-    try {
-      const Pos2 p = as_pos2(world_.read(s.context_domain, tc::VAR_POSITION, other, std::nullopt));
-      if (std::hypot(p.x - centre.x, p.y - centre.y) <= s.range) near.push_back(other);
-    } catch (const WorldError&) {
-      // Listed but not on the road (not inserted yet): nothing to perceive.
-    }
-  }
-  std::sort(near.begin(), near.end());  // SUMO answers in id order
-  return near;
+  std::vector<int> variables;
+  for (const auto& v : s.vars) variables.push_back(v.variable);
+  return world_.objects_in_range(s.domain, s.id, s.context_domain, s.range, variables);
 }
 
 bool Session::append_result(std::string& out, const Subscription& s) {

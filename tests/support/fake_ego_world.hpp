@@ -84,6 +84,18 @@ class FakeEgoWorld : public traci::EgoWorld {
     }
   }
 
+  // By brute force over the table (SUMO searches its lane tree instead).
+  std::vector<std::string> objects_in_range(traci::Domain centre_domain, const std::string& centre,
+                                            traci::Domain context, double range, const std::vector<int>&) override {
+    auto& centres = table(centre_domain);
+    const auto c = centres.find(centre);
+    if (c == centres.end()) throw traci::WorldError("'" + centre + "' is not known");
+    std::vector<std::string> near;  // std::map: in id order
+    for (const auto& [name, o] : table(context))
+      if (std::hypot(o.x - c->second.x, o.y - c->second.y) <= range) near.push_back(name);
+    return near;
+  }
+
   void command(const std::string& vehicle, const traci::EgoCommand& c) override {
     if (!vehicles.count(vehicle)) throw traci::WorldError("Vehicle '" + vehicle + "' is not known");
     if (const auto* lane = std::get_if<traci::ChangeLane>(&c); lane && (lane->lane < 0 || lane->lane > 2))
