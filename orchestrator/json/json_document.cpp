@@ -145,6 +145,50 @@ class LineRecorder : public nlohmann::json_sax<nlohmann::json> {
   std::vector<Frame> stack_;
 };
 
+// The cheap pass every document gets: does any object repeat a key? (Which one, and on
+// which line, the LineRecorder pass finds when the answer is yes.) Keys are compared when
+// their object ends; the key lists of each depth are kept for reuse.
+class DuplicateKeyCheck : public nlohmann::json_sax<nlohmann::json> {
+ public:
+  bool null() override { return true; }
+  bool boolean(bool) override { return true; }
+  bool number_integer(number_integer_t) override { return true; }
+  bool number_unsigned(number_unsigned_t) override { return true; }
+  bool number_float(number_float_t, const string_t&) override { return true; }
+  bool string(string_t&) override { return true; }
+  bool binary(binary_t&) override { return true; }
+  bool start_object(std::size_t) override {
+    if (depth_ == keys_.size()) keys_.emplace_back();
+    keys_[depth_++].clear();
+    return true;
+  }
+  bool key(string_t& k) override {
+    keys_[depth_ - 1].push_back(k);
+    return true;
+  }
+  bool end_object() override {
+    auto& keys = keys_[--depth_];
+    std::sort(keys.begin(), keys.end());
+    return std::adjacent_find(keys.begin(), keys.end()) == keys.end();  // false stops the parse
+  }
+  bool start_array(std::size_t) override { return true; }
+  bool end_array() override { return true; }
+  bool parse_error(std::size_t, const std::string&, const nlohmann::detail::exception&) override {
+    return false;
+  }
+
+ private:
+  std::vector<std::vector<std::string>> keys_;
+  std::size_t depth_ = 0;
+};
+
+std::vector<std::size_t> line_starts_of(const std::string& text) {
+  std::vector<std::size_t> line_starts{0};
+  for (std::size_t i = 0; i < text.size(); ++i)
+    if (text[i] == '\n') line_starts.push_back(i + 1);
+  return line_starts;
+}
+
 int line_at_offset(const std::vector<std::size_t>& line_starts, std::size_t offset) {
   auto it = std::upper_bound(line_starts.begin(), line_starts.end(), offset);
   return static_cast<int>(it - line_starts.begin());
@@ -171,36 +215,47 @@ JsonDocument JsonDocument::parse(std::string text, const std::string& path_for_m
   JsonDocument doc;
   doc.path_ = path_for_messages;
   doc.text_ = std::move(text);
-  std::vector<std::size_t> line_starts{0};
-  for (std::size_t i = 0; i < doc.text_.size(); ++i)
-    if (doc.text_[i] == '\n') line_starts.push_back(i + 1);
-
   try {
     doc.root_ = nlohmann::json::parse(doc.text_);
   } catch (const nlohmann::json::parse_error& e) {
     const std::size_t byte = e.byte > 0 ? e.byte - 1 : 0;
-    throw ScenarioError(SourceLocation{doc.path_, "", line_at_offset(line_starts, byte)},
+    throw ScenarioError(SourceLocation{doc.path_, "", line_at_offset(line_starts_of(doc.text_), byte)},
                         "invalid JSON: " + syntax_message(e.what()));
   }
-
-  std::size_t last = 0;
-  LineRecorder recorder(last, line_starts, doc.lines_);
-  const char* b = doc.text_.data();
-  TrackingIterator first{b, b, &last};
-  TrackingIterator end{b + doc.text_.size(), b, &last};
-  const bool complete = nlohmann::json::sax_parse(first, end, &recorder);
-  if (!complete && !recorder.duplicate_.empty()) {
-    throw ScenarioError(SourceLocation{doc.path_, recorder.duplicate_, recorder.duplicate_line_},
-                        "duplicate key: the same key appears twice in one object");
+  DuplicateKeyCheck check;
+  if (!nlohmann::json::sax_parse(doc.text_, &check)) {
+    const auto& lines = doc.lines();  // stops at the duplicate, or throws naming it
+    (void)lines;
   }
   return doc;
 }
 
+// The line of every value, recorded on the first question (most documents are never
+// asked: a waypoint file of 57,000 points would spend most of its load time here).
+const std::unordered_map<std::string, int>& JsonDocument::lines() const {
+  if (lines_) return *lines_;
+  auto lines = std::make_shared<std::unordered_map<std::string, int>>();
+  const std::vector<std::size_t> line_starts = line_starts_of(text_);
+  std::size_t last = 0;
+  LineRecorder recorder(last, line_starts, *lines);
+  const char* b = text_.data();
+  TrackingIterator first{b, b, &last};
+  TrackingIterator end{b + text_.size(), b, &last};
+  const bool complete = nlohmann::json::sax_parse(first, end, &recorder);
+  if (!complete && !recorder.duplicate_.empty()) {
+    throw ScenarioError(SourceLocation{path_, recorder.duplicate_, recorder.duplicate_line_},
+                        "duplicate key: the same key appears twice in one object");
+  }
+  lines_ = std::move(lines);
+  return *lines_;
+}
+
 int JsonDocument::line_of(const std::string& pointer) const {
+  const auto& lines = this->lines();
   std::string p = pointer;
   while (true) {
-    auto it = lines_.find(p);
-    if (it != lines_.end()) return it->second;
+    auto it = lines.find(p);
+    if (it != lines.end()) return it->second;
     if (p.empty()) return 0;
     p = p.substr(0, p.rfind('/'));
   }

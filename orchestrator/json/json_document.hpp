@@ -1,7 +1,9 @@
 #pragma once
-// A parsed JSON file that remembers on which line every value starts, so that every
-// message about it can name file, line and JSON pointer. nlohmann::json parses the values;
-// a SAX pass over the same text records the lines (nlohmann 3.11 keeps no positions).
+// A parsed JSON file that can tell on which line every value starts, so that every message
+// about it can name file, line and JSON pointer. nlohmann::json parses the values; a SAX
+// pass over the same text records the lines (nlohmann 3.11 keeps no positions) when the
+// first line is asked for.
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <unordered_map>
@@ -28,10 +30,14 @@ class JsonDocument {
   }
 
  private:
+  const std::unordered_map<std::string, int>& lines() const;
+
   std::string path_;
   std::string text_;
   nlohmann::json root_;
-  std::unordered_map<std::string, int> lines_;
+  // Built once, on the first line_of (not thread-safe: a document is read by one thread);
+  // shared by copies.
+  mutable std::shared_ptr<const std::unordered_map<std::string, int>> lines_;
 };
 
 // Appends one reference token to a JSON pointer, escaping '~' and '/' (RFC 6901).

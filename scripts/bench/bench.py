@@ -114,7 +114,10 @@ def vehicles(counts_csv):
     return sum(values) / len(values), values[-1]
 
 
-def bench(binary, quick, work):
+def bench(binary, quick, repeat, work):
+    """Each size: `repeat` rounds of bare SUMO, the orchestrator on both backends and the
+    subscribing Python loop, interleaved so that a slow spell of the machine hits all of
+    them; the polling loop (several times slower) runs once."""
     rows = []
     for name, rate, fill, steps in SIZES:
         if quick:
@@ -123,20 +126,32 @@ def bench(binary, quick, work):
         subprocess.run([binary, "map", "traffic", MAP, "--rate", str(rate), "--fill-per-km", str(fill),
                         "--out", traffic], check=True, stdout=subprocess.DEVNULL)
         d = os.path.join(work, "n%d" % fill)
-        runs = {}
-        runs["bare"] = measure([binary, "baseline", MAP, "--traffic", traffic, "--steps", str(steps), "--step",
-                                "%g" % STEP, "--out", d + "_bare"], d + "_bare.log")
-        runs["libsumo"] = measure(orchestrator(binary, d + "_libsumo", traffic, steps, "libsumo"), d + "_libsumo.log")
-        runs["traci"] = measure(orchestrator(binary, d + "_traci", traffic, steps, "traci"), d + "_traci.log")
-        for mode in ("poll", "subscribe"):
-            runs["py_" + mode] = measure(
-                ["/usr/bin/python3", PYTHON_LOOP, "--result", os.path.join(d + "_libsumo", "result.json"),
-                 "--waypoints", WAYPOINTS, "--steps", str(steps), "--out", d + "_py_" + mode, "--neighbours", mode],
-                d + "_py_%s.log" % mode)
+
+        def python_loop(mode):
+            return ["/usr/bin/python3", PYTHON_LOOP, "--result", os.path.join(d + "_libsumo", "result.json"),
+                    "--waypoints", WAYPOINTS, "--steps", str(steps), "--out", d + "_py_" + mode, "--neighbours", mode]
+
+        commands = {
+            "bare": [binary, "baseline", MAP, "--traffic", traffic, "--steps", str(steps), "--step", "%g" % STEP,
+                     "--out", d + "_bare"],
+            "libsumo": orchestrator(binary, d + "_libsumo", traffic, steps, "libsumo"),
+            "traci": orchestrator(binary, d + "_traci", traffic, steps, "traci"),
+            "py_subscribe": python_loop("subscribe"),
+        }
+        runs = {key: [] for key in list(commands) + ["py_poll"]}
+        for _ in range(repeat):
+            for key, cmd in commands.items():
+                runs[key].append(measure(cmd, d + "_%s.log" % key))
+        runs["py_poll"].append(measure(python_loop("poll"), d + "_py_poll.log"))
         mean, last = vehicles(os.path.join(d + "_libsumo", "counts.csv"))
         rows.append((name, mean, steps, runs))
         print("measured %s: %.0f vehicles on average over %d steps" % (name, mean, steps), file=sys.stderr)
     return rows
+
+
+def median(values):
+    v = sorted(values)
+    return v[len(v) // 2] if len(v) % 2 else (v[len(v) // 2 - 1] + v[len(v) // 2]) / 2
 
 
 def table(rows):
@@ -146,13 +161,24 @@ def table(rows):
         "| loop / orch |",
         "|---|---|---|---|---|---|---|---|---|---|---|"]
     for name, mean, steps, r in rows:
+        wall = {k: median([m[0] for m in v]) for k, v in r.items()}
+        rss = {k: max(m[1] for m in v) for k, v in r.items()}
+
         def cell(key):
-            return "%.2f s, %.0f MB" % (r[key][0], r[key][1])
-        lib = r["libsumo"][0]
-        lines.append("| %s (%.0f) | %d | %s | %s | **%.3f** | %s | **%.2f** | %s | **%.2f** | %s | **%.2f** |" % (
-            name, mean, steps, cell("bare"), cell("libsumo"), lib / r["bare"][0], cell("traci"),
-            r["traci"][0] / lib, cell("py_poll"), r["py_poll"][0] / lib, cell("py_subscribe"),
-            r["py_subscribe"][0] / lib))
+            return "%.2f s, %.0f MB" % (wall[key], rss[key])
+
+        def ratio(num, den):
+            """Ratio of the medians, and the range of the rounds' own ratios."""
+            text = "**%.2f**" % (wall[num] / wall[den])
+            if len(r[num]) > 1 and len(r[num]) == len(r[den]):
+                each = [a[0] / b[0] for a, b in zip(r[num], r[den])]
+                text += " (%.2f-%.2f)" % (min(each), max(each))
+            return text
+
+        lines.append("| %s (%.0f) | %d | %s | %s | %s | %s | %s | %s | %s | %s | %s |" % (
+            name, mean, steps, cell("bare"), cell("libsumo"), ratio("libsumo", "bare"), cell("traci"),
+            ratio("traci", "libsumo"), cell("py_poll"), "**%.2f**" % (wall["py_poll"] / wall["libsumo"]),
+            cell("py_subscribe"), ratio("py_subscribe", "libsumo")))
     return "\n".join(lines)
 
 
@@ -175,6 +201,7 @@ def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--binary", default=os.path.join(ROOT, "build-bench", "bin", "orchestrator"))
     ap.add_argument("--quick", action="store_true", help="a fifth of the steps (a smoke test)")
+    ap.add_argument("--repeat", type=int, default=3, help="rounds per size; the table shows medians (default 3)")
     ap.add_argument("--hour", action="store_true", help="also the one-hour dense run (memory; ~10 min)")
     ap.add_argument("--hour-only", action="store_true", help="only the one-hour run")
     ap.add_argument("--keep", help="keep outputs in this folder")
@@ -186,12 +213,14 @@ def main():
         print("Machine: " + header)
         print(hour(a.binary, work))
         return
-    rows = bench(a.binary, a.quick, work)
+    rows = bench(a.binary, a.quick, max(1, a.repeat), work)
     print("Machine: " + header)
     print("Map %s, bench_scenario.json (ego + 3 scripted cars; scene conditions, a collision stop condition and "
           "speed, relative-speed, blinker and lane-change actions active), step %g s, seed 42. Wall time of each "
-          "process from start to exit (loading included); peak RSS summed over its processes (orchestrator + "
-          "sumo on traci; Python + sumo for the loops).\n" % (MAP, STEP))
+          "process from start to exit (loading included), the median of %d interleaved rounds (the polling loop: "
+          "one round); ratios of the medians, with the range of the rounds' own ratios in brackets; peak RSS "
+          "summed over its processes (orchestrator + sumo on traci; Python + sumo for the loops), the largest "
+          "of the rounds.\n" % (MAP, STEP, max(1, a.repeat)))
     print(table(rows))
     if a.hour:
         print()

@@ -114,6 +114,27 @@ TEST(EgoPluginPython, StopsBeforeAnObstacleItPerceivedThroughItsContextSubscript
   }
 }
 
+// A plug-in's context subscription is answered from SUMO's own, which it shares with the
+// orchestrator's 75 m one around the ego: smaller and larger ranges both give exactly the
+// vehicles a brute-force census finds, and neither changes what the orchestrator sees.
+TEST(EgoPluginPython, ContextSubscriptionsMatchABruteForceCensusAndLeaveTheRunAsItIs) {
+  std::vector<std::unique_ptr<TempDir>> outs;
+  for (const char* range : {"30", "150"}) {
+    outs.push_back(std::make_unique<TempDir>());
+    const TempDir& out = *outs.back();
+    const auto r = run_with_plugin(source_path("scenarios/alks_lead_brake.json"), out,
+                                   drive({"--mode", "census", "--speed", "20", "--range", range}, out),
+                                   {"--traffic", "dense", "--trace-background", "--max-time", "15"});
+    ASSERT_EQ(r.plugin_exit, 0) << r.plugin_output;
+    const auto census = read_json(out / "summary.json")["census"];
+    EXPECT_GT(census["checks"].get<int>(), 25) << range;
+    EXPECT_EQ(census["mismatches"], nlohmann::json::array()) << range;
+    EXPECT_GT(census["most"].get<int>(), std::string(range) == "30" ? 2 : 12) << range;  // dense traffic around
+  }
+  for (const char* file : {"trace.csv", "counts.csv", "background.csv"})
+    EXPECT_EQ(slurp(outs[0]->path() / file), slurp(outs[1]->path() / file)) << file;
+}
+
 TEST(EgoPluginPython, WithoutPerceptionTheSameDriverHitsTheObstacleAndTheRunFails) {
   TempDir out;
   const auto r = run_with_plugin(source_path("scenarios/alks_obstacle_stop.json"), out,

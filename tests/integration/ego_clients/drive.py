@@ -11,6 +11,8 @@ Modes:
   perceive   SUMO's speed checks off; drives at --speed and brakes for the vehicle ahead in
              its lane, which it knows only from its context subscription.
   blind      SUMO's speed checks off; --speed whatever is ahead (the negative control).
+  census     setSpeed(--speed) every step; a context subscription of --range around the
+             ego, checked every 10th step against every vehicle's position (getIDList).
   disconnect / hang / close   step --after times, then vanish / stop answering / close.
 """
 import argparse
@@ -64,6 +66,9 @@ def main():
     if a.mode == "perceive":
         traci.vehicle.subscribeContext("ego", tc.CMD_GET_VEHICLE_VARIABLE, a.range,
                                        [tc.VAR_ROAD_ID, tc.VAR_LANE_INDEX, tc.VAR_LANEPOSITION, tc.VAR_LENGTH])
+    if a.mode == "census":
+        traci.vehicle.subscribeContext("ego", tc.CMD_GET_VEHICLE_VARIABLE, a.range, [tc.VAR_POSITION, tc.VAR_SPEED])
+        summary["census"] = {"checks": 0, "mismatches": [], "most": 0}
     lane_changes = [(float(t), int(lane)) for t, lane in (x.split(":") for x in a.lane_change)]
     hand_over = ""
     try:
@@ -93,6 +98,8 @@ def main():
                     summary["min_gap"] = ahead[1] if summary["min_gap"] is None else min(summary["min_gap"], ahead[1])
                     # Stop 3 m behind it at 3 m/s^2.
                     speed = min(speed, math.sqrt(max(0.0, 2 * 3.0 * (ahead[1] - 3.0))))
+            if a.mode == "census" and summary["steps"] % 10 == 0:
+                census(a.range, now, summary["census"])
             traci.vehicle.setSpeed("ego", speed)
             for t, lane in lane_changes:
                 if abs(now - t) < 1e-6:
@@ -123,6 +130,23 @@ def probe(summary):
     summary["vehicles"] = sorted(traci.vehicle.getIDList())
     summary["leader"] = traci.vehicle.getLeader("ego", 1000)
     summary["delta_t"] = traci.simulation.getDeltaT()
+
+
+def census(reach, now, out):
+    """The context subscription's answer against the brute-force one, ids and values."""
+    seen = traci.vehicle.getContextSubscriptionResults("ego")
+    ex, ey = traci.vehicle.getPosition("ego")
+    truth = {}
+    for vid in traci.vehicle.getIDList():
+        x, y = traci.vehicle.getPosition(vid)
+        if math.sqrt((x - ex) ** 2 + (y - ey) ** 2) <= reach:  # SUMO's test
+            truth[vid] = {tc.VAR_POSITION: (x, y), tc.VAR_SPEED: traci.vehicle.getSpeed(vid)}
+    out["checks"] += 1
+    out["most"] = max(out["most"], len(truth))
+    got = {vid: {tc.VAR_POSITION: tuple(v[tc.VAR_POSITION]), tc.VAR_SPEED: v[tc.VAR_SPEED]} for vid, v in seen.items()}
+    if got != truth:
+        out["mismatches"].append({"time": now, "only_seen": sorted(set(got) - set(truth)),
+                                  "only_truth": sorted(set(truth) - set(got))})
 
 
 def write(path, summary):
