@@ -86,7 +86,8 @@ inline orch_sumo::SubscriptionResults SharedContexts::within(const std::string& 
   sumo::SubscriptionResults found = centre_person ? sumo::Person::getContextSubscriptionResults(centre)
                                                   : sumo::Vehicle::getContextSubscriptionResults(centre);
   const bool both = mixed(centre, centre_person);
-  if (e.range <= range && !both) return found;
+  // Empty also when the centre has left SUMO (its subscriptions went with it).
+  if (found.empty() || (e.range <= range && !both)) return found;
   sumo::TraCIPosition at;
   if (e.range > range) at = centre_person ? sumo::Person::getPosition(centre) : sumo::Vehicle::getPosition(centre);
   for (auto it = found.begin(); it != found.end();) {

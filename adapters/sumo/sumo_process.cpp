@@ -235,31 +235,4 @@ std::string sumo_errors_in_file(const std::string& path) {
   }
 }
 
-StderrCapture::StderrCapture() {
-  std::fflush(stderr);
-  FILE* tmp = std::tmpfile();
-  if (!tmp) return;
-  file_ = ::dup(::fileno(tmp));
-  std::fclose(tmp);  // the dup keeps the anonymous file alive
-  saved_ = ::dup(STDERR_FILENO);
-  ::dup2(file_, STDERR_FILENO);
-}
-
-std::string StderrCapture::release() {
-  if (saved_ < 0) return "";
-  std::fflush(stderr);
-  ::dup2(saved_, STDERR_FILENO);
-  ::close(saved_);
-  saved_ = -1;
-  std::string text;
-  if (::lseek(file_, 0, SEEK_SET) == 0) {
-    char buf[4096];
-    ssize_t n;
-    while ((n = ::read(file_, buf, sizeof buf)) > 0 && text.size() < 65536) text.append(buf, static_cast<std::size_t>(n));
-  }
-  ::close(file_);
-  file_ = -1;
-  return text;
-}
-
 }  // namespace orch

@@ -62,20 +62,4 @@ int set_socket_deadline(const std::set<int>& before, int peer_port, double secon
 std::string sumo_errors_in(const std::string& text);
 std::string sumo_errors_in_file(const std::string& path);
 
-// While alive, this process's stderr goes to an anonymous temporary file: libsumo prints
-// some errors (a broken net) only there and throws a bare "Process Error".
-class StderrCapture {
- public:
-  StderrCapture();
-  ~StderrCapture() { release(); }
-  StderrCapture(const StderrCapture&) = delete;
-  StderrCapture& operator=(const StderrCapture&) = delete;
-  // Restores stderr and returns what was written meanwhile.
-  std::string release();
-
- private:
-  int saved_ = -1;
-  int file_ = -1;
-};
-
 }  // namespace orch

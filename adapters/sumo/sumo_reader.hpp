@@ -6,7 +6,8 @@
 //     Vehicle::getIDCount builds the list of every vehicle id, O(n) each step);
 //   - each scenario actor, once SUMO has inserted it: its pose and lane;
 //   - around each actor, a context subscription: the vehicles within kNearbyRange of it
-//     (SUMO finds them through its lane tree, looking only at lanes near the actor).
+//     (SUMO finds them through its lane tree, looking only at lanes near the actor; the
+//     subscription is shared with an ego plug-in's, sumo_contexts.hpp).
 // On libsumo subscription results are computed in-process after each step; on libtraci
 // they arrive with the answer to the step command, so reading costs no extra round trip.
 //

@@ -15,11 +15,11 @@
 #include <thread>
 #include <unordered_map>
 
-#include "console_silencer.hpp"
 #include "core/errors.hpp"
 #include "sumo_api.hpp"
 #include "sumo_process.hpp"
 #include "sumo_reader.hpp"
+#include "stderr_redirect.hpp"
 
 namespace sumo = orch_sumo;
 
@@ -121,7 +121,7 @@ class SumoSimulator final : public Simulator {
   void start_libsumo(const std::vector<std::string>& args) {
     std::vector<std::string> cmd{"sumo"};
     cmd.insert(cmd.end(), args.begin(), args.end());
-    StderrCapture printed;  // a broken net is reported on stderr only, as "Process Error"
+    StderrRedirect printed(StderrRedirect::Target::Capture);  // a broken net: stderr only
     try {
       sumo::Simulation::start(cmd);
     } catch (const std::exception& e) {
@@ -129,7 +129,7 @@ class SumoSimulator final : public Simulator {
     }
     printed.release();
     started_ = true;
-    silencer_.engage();
+    silencer_.engage(StderrRedirect::Target::Silence);
   }
 #else
   void start_traci(const std::vector<std::string>& args) {
@@ -372,7 +372,7 @@ class SumoSimulator final : public Simulator {
   bool started_ = false;
   bool broken_ = false;  // the connection to SUMO is lost: no more calls
   sumo_reading::WorldReader reader_;
-  ConsoleSilencer silencer_;
+  StderrRedirect silencer_;
 #ifdef LIBTRACI
   SumoProcess process_;
 #endif

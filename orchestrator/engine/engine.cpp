@@ -140,7 +140,7 @@ void Engine::update_ego(StepOutput& out) {
   if (!ego || !ego->present || !ego_route_) return;
   ego_s_ = ego_route_->line.project_near(ego->position, ego_s_, 50.0).s;
   const double v = ego_route_->speed_at(ego_s_);
-  if (std::abs(v - ego_max_speed_) > 1e-6) {
+  if (!options_.external_ego && std::abs(v - ego_max_speed_) > 1e-6) {
     ego_max_speed_ = v;
     out.commands.push_back(SetMaxSpeed{"ego", v});
   }

@@ -33,6 +33,11 @@ struct MapContext {
 
 struct EngineOptions {
   double step = 0.05;  // s
+  // An external plug-in drives the ego (run --ego-port): the engine does not drive it. No
+  // route speed, no stop at end_position (the scenario still judges them), and the ego's
+  // vehicle type keeps its own top speed, so a plug-in commanding 100 km/h on a 60 km/h
+  // route gets 100 km/h. Everything else (insertion, start pose, hand_over) is as usual.
+  bool external_ego = false;
 };
 
 enum class EventKind { Scene, Action, Info, Warning };

@@ -118,7 +118,7 @@ void Engine::start_action(const Action& action, double t, StepOutput& out) {
             m->cancel_moves();  // a longitudinal action replaces a running route_move
             longitudinal_[a.actor] = HoldSpeed{a};
           } else if (a.type == SpeedType::Absolute) {
-            out.commands.push_back(SetMaxSpeed{"ego", a.value});
+            if (!options_.external_ego) out.commands.push_back(SetMaxSpeed{"ego", a.value});
           } else {
             ego_only(a.actor, "a relative speed action");
           }

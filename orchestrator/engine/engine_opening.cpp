@@ -68,7 +68,7 @@ void Engine::spawn_ego(StepOutput& out) {
   spawn.lane_pos = place.lane_pos;
   spawn.speed = 0;
   ego_max_speed_ = ego_route_->speed_at(ego_s_);
-  spawn.max_speed = ego_max_speed_;
+  spawn.max_speed = options_.external_ego ? 0 : ego_max_speed_;  // 0: the type's own
   out.commands.push_back(spawn);
 
   // A start beside the route line or turned away from it: placed once, then SUMO drives.
@@ -87,6 +87,7 @@ void Engine::spawn_ego(StepOutput& out) {
     out.commands.push_back(pose);
   }
 
+  if (options_.external_ego) return;
   const LanePlace end_place = map_.lanes.place_on_route(*ego_route_, end_s, 0.0);
   out.commands.push_back(SetStop{"ego", map_.lanes.lane(end_place.lane).edge, map_.lanes.lane(end_place.lane).index,
                                  end_place.lane_pos, slot.tracked.length});

@@ -61,11 +61,6 @@ inline constexpr const char* kEgoSumoId = "ego";
 // so the ego changes lanes only when the plug-in says so.
 inline constexpr int kPluginEgoLaneChangeMode = 1621 & ~0xFF;
 
-// Takes the built-in driver off the ego: the scenario's route speed and end stop are not
-// sent to SUMO (the plug-in decides speed and stopping). Everything else (insertion,
-// hand_over parameters, placing a start pose) passes unchanged.
-void hand_ego_to_plugin(std::vector<engine::Command>& commands);
-
 // The ego's actor id when a connected plug-in drives it this step (for the trace's
 // `driver` column), else nullopt.
 std::optional<scenario::ActorId> plugin_driven_actor(const EgoLink* link,

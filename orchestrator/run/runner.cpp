@@ -128,7 +128,7 @@ RunResult run_scenario(const RunRequest& req, Simulator& sim) {
     in.emplace(load_inputs(req, result, log));
     lanes.emplace(LaneMap::build(in->map.net_path().string(), in->waypoints));
     engine.emplace(in->scenario, engine::MapContext{in->waypoints, *lanes, in->map.lane_extension}, in->catalog,
-                   engine::EngineOptions{req.step});
+                   engine::EngineOptions{req.step, req.ego_link != nullptr});
     log.note(fmt::format("map {} ({}) | {} actors", in->map.id, in->map.net_path().string(),
                          engine->actors().slots().size()));
 
@@ -148,7 +148,6 @@ RunResult run_scenario(const RunRequest& req, Simulator& sim) {
     traffic_trace.emplace(req.out_dir, req.trace_background);
 
     auto out = engine->start();
-    if (req.ego_link) hand_ego_to_plugin(out.commands);
     log_events(log, result, out.events);
     sim.apply(out.commands);
     const auto tracked = engine->tracked();
@@ -174,7 +173,6 @@ RunResult run_scenario(const RunRequest& req, Simulator& sim) {
         log.at(snap.time, result.reason);
         break;
       }
-      if (req.ego_link) hand_ego_to_plugin(out.commands);
       sim.apply(out.commands);
       // The plug-in sees this step (a hand_over included) and acts before the world advances.
       if (req.ego_link) req.ego_link->exchange(snap.time);

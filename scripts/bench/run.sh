@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Builds the orchestrator (Release) into build-bench/ and runs the benchmark: bare SUMO vs
 # the orchestrator on libsumo and traci vs a Python traci loop, at ~200, ~1,000 and ~3,000
-# vehicles. A few minutes on 2 cores. Options: --quick (a fifth of the steps), --hour (adds
+# vehicles, 5 interleaved rounds (best times). About 20 minutes on 2 cores. Options: --quick (a
+# fifth of the steps), --repeat N (rounds), --hour (adds
 # the one-hour dense run that checks memory stays flat, ~10 more minutes), --keep DIR.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)

@@ -135,6 +135,34 @@ TEST(EgoPluginPython, ContextSubscriptionsMatchABruteForceCensusAndLeaveTheRunAs
     EXPECT_EQ(slurp(outs[0]->path() / file), slurp(outs[1]->path() / file)) << file;
 }
 
+// The ego drives off the end of its 300 m route and SUMO removes it, and its widened context
+// subscription with it: the run goes on to its stop condition exactly as with a narrow one.
+TEST(EgoPluginPython, AnEgoThatLeavesWithAWideContextSubscriptionLeavesTheRunAsWithANarrowOne) {
+  std::string text = kFreeRoad;
+  const std::string end = R"("end_position": {"wp_id": "Waypoint02", "wp_idx": 2000})";
+  ASSERT_NE(text.find(end), std::string::npos);
+  text.replace(text.find(end), end.size(), R"("end_position": {"wp_id": "Waypoint02", "wp_idx": 300})");
+  const std::string stop = R"("value": 120)";
+  ASSERT_NE(text.find(stop), std::string::npos);
+  text.replace(text.find(stop), stop.size(), R"("value": 30)");
+  std::vector<std::unique_ptr<TempDir>> outs;
+  for (const char* range : {"30", "150"}) {
+    outs.push_back(std::make_unique<TempDir>());
+    const TempDir& out = *outs.back();
+    const auto r = run_with_plugin(out.write("leave.json", text).string(), out,
+                                   drive({"--mode", "census", "--speed", "25", "--range", range}, out),
+                                   {"--traffic", "light"});
+    ASSERT_EQ(r.plugin_exit, 0) << r.plugin_output;
+    EXPECT_EQ(r.result["verdict"], "failure") << range << ": " << r.result["reason"];
+    EXPECT_NE(r.result["reason"].get<std::string>().find("stop condition met"), std::string::npos) << range;
+    const auto census = read_json(out / "summary.json")["census"];
+    EXPECT_GT(census["ego_left"].get<double>(), 5.0) << range;  // it did leave, before the end (30 s)
+    EXPECT_LT(census["ego_left"].get<double>(), 29.0) << range;
+    EXPECT_EQ(census["mismatches"], nlohmann::json::array()) << range;
+  }
+  EXPECT_EQ(slurp(outs[0]->path() / "trace.csv"), slurp(outs[1]->path() / "trace.csv"));
+}
+
 TEST(EgoPluginPython, WithoutPerceptionTheSameDriverHitsTheObstacleAndTheRunFails) {
   TempDir out;
   const auto r = run_with_plugin(source_path("scenarios/alks_obstacle_stop.json"), out,

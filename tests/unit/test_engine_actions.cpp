@@ -48,9 +48,9 @@ std::string alks(const std::string& actor1_opening, const std::string& scenes, c
 }
 
 struct Rig {
-  explicit Rig(const std::string& text, const std::string& map = "ALKS_Road")
+  explicit Rig(const std::string& text, const std::string& map = "ALKS_Road", bool external_ego = false)
       : scenario(test::scenario_from(text)), m(shipped(map)),
-        engine(scenario, MapContext{m.waypoints, m.lanes, 20.0}, Catalog::embedded(), EngineOptions{0.05}),
+        engine(scenario, MapContext{m.waypoints, m.lanes, 20.0}, Catalog::embedded(), EngineOptions{0.05, external_ego}),
         world(engine, *m.waypoints.find(scenario.opening.ego.start.waypoint->wp_id), 0.05) {}
   scenario::Scenario scenario;
   const LoadedMap& m;
@@ -298,4 +298,57 @@ TEST(EngineActions, BackgroundCarInTheWayOfALaneChangeIsRecordedAndTheChangeGoes
   EXPECT_DOUBLE_EQ(r.engine.lane_change_conflicts()[0].gap, 0.0);
   // The scenario's lane change is not altered by the traffic.
   EXPECT_NEAR(r.world.pose("actor1").position.y(), -8.0, 1e-9);
+}
+
+// With an external plug-in driving the ego, the engine sends nothing that drives it (no
+// route speed, no end stop, no speed action's top speed; the type's own top speed at
+// insertion) and everything else as usual: the same scenario without the option does.
+TEST(EngineActions, AnExternalEgoGetsNoDrivingCommandsAndTheRestIsUnchanged) {
+  const std::string text = R"({"map_id": "ALKS_Road",
+    "actors": {"ego": {"actor_id": 0, "model_id": "vehicle.toyota.prius"},
+               "others": [{"actor_id": 1, "model_id": "vehicle.audi.tt"}]},
+    "scenario": {"opening_scene": {
+        "ego": {"start_position": {"wp_id": "Waypoint02", "wp_idx": 5},
+                "end_position": {"wp_id": "Waypoint02", "wp_idx": 900}},
+        "others": [{"actor_id": 1, "start_position": {"type": "waypoint", "wp_id": "Waypoint03", "wp_idx": 100},
+                    "start_speed": {"type": "absolute", "value": 36}}],
+        "next_scenes": [1]},
+      "scenes": [{"scene_id": 1, "next_scenes": [99], "actions": [
+          {"speed": {"actor_id": 0, "type": "absolute", "value": 50}},
+          {"speed": {"actor_id": 1, "type": "absolute", "value": 72}},
+          {"hand_over": {"hand_over": true}}]}],
+      "ending_scenes": [{"scene_id": 99, "conditions": {"and": [{"simulation_time": {"comparison": ">=", "value": 1000}}]}}]}})";
+  struct Seen {
+    int ego_max_speed = 0, ego_stop = 0, other_max_speed = 0, hand_over = 0, other_poses = 0;
+    double ego_spawn_max_speed = -1;
+  };
+  const auto run = [&](bool external) {
+    Rig r(text, "ALKS_Road", external);
+    r.world.start(5);
+    r.world.ego_speed = 10;
+    r.world.run_until(2);
+    Seen seen;
+    for (const auto& c : r.world.history()) {
+      if (const auto* m = std::get_if<SetMaxSpeed>(&c)) (m->sumo_id == "ego" ? seen.ego_max_speed : seen.other_max_speed)++;
+      if (const auto* st = std::get_if<SetStop>(&c); st && st->sumo_id == "ego") ++seen.ego_stop;
+      if (const auto* p = std::get_if<SetParameter>(&c); p && p->sumo_id == "ego") ++seen.hand_over;
+      if (const auto* p = std::get_if<SetPose>(&c); p && p->sumo_id == "actor1") ++seen.other_poses;
+      if (const auto* sp = std::get_if<SpawnVehicle>(&c); sp && sp->actor.sumo_id == "ego")
+        seen.ego_spawn_max_speed = sp->max_speed;
+    }
+    EXPECT_NEAR(r.world.pose("actor1").speed, 20.0, 1e-9) << external;  // scripted actors as ever
+    return seen;
+  };
+  const Seen builtin = run(false);
+  const Seen external = run(true);
+  EXPECT_GE(builtin.ego_max_speed, 1);  // the speed action (and the route speed) for the built-in driver
+  EXPECT_EQ(builtin.ego_stop, 1);
+  EXPECT_GT(builtin.ego_spawn_max_speed, 0);
+  EXPECT_EQ(external.ego_max_speed, 0);
+  EXPECT_EQ(external.ego_stop, 0);
+  EXPECT_EQ(external.ego_spawn_max_speed, 0);  // the vehicle type's own top speed
+  EXPECT_EQ(external.hand_over, builtin.hand_over);
+  EXPECT_GE(external.hand_over, 1);
+  EXPECT_EQ(external.other_max_speed, builtin.other_max_speed);
+  EXPECT_EQ(external.other_poses, builtin.other_poses);
 }

@@ -1,5 +1,5 @@
-// What changes in a run when an external plug-in drives the ego (run/ego_link.hpp): the
-// built-in driver's commands for the ego are dropped, everything else passes.
+// The run's side of an external plug-in (run/ego_link.hpp): who the trace says drives, and
+// the run log line. What the engine stops doing for the ego: test_engine_actions.cpp.
 #include <gtest/gtest.h>
 
 #include "run/ego_link.hpp"
@@ -20,29 +20,6 @@ class ConnectedLink : public EgoLink {
 };
 
 }  // namespace
-
-TEST(TraciEgoLinkRules, TheBuiltInDriverLetsGoOfTheEgoOnly) {
-  SpawnVehicle ego;
-  ego.actor.sumo_id = "ego";
-  ego.max_speed = 16.7;
-  SpawnVehicle other;
-  other.actor.sumo_id = "actor1";
-  other.max_speed = 10;
-  std::vector<Command> commands{ego,
-                                other,
-                                SetStop{"ego", "E0", 1, 500, 4.5},
-                                SetMaxSpeed{"ego", 20},
-                                SetMaxSpeed{"actor1", 20},
-                                SetParameter{"ego", "orch.hand_over", "1"},
-                                SetSignals{"ego", 2}};
-  hand_ego_to_plugin(commands);
-  ASSERT_EQ(commands.size(), 5u);
-  EXPECT_EQ(std::get<SpawnVehicle>(commands[0]).max_speed, 0);     // the type's top speed
-  EXPECT_EQ(std::get<SpawnVehicle>(commands[1]).max_speed, 10);    // others untouched
-  EXPECT_EQ(std::get<SetMaxSpeed>(commands[2]).sumo_id, "actor1");
-  EXPECT_EQ(std::get<SetParameter>(commands[3]).key, "orch.hand_over");  // hand_over reaches the plug-in
-  EXPECT_TRUE(std::holds_alternative<SetSignals>(commands[4]));
-}
 
 TEST(TraciEgoLinkRules, TheTraceMarksTheEgoOnlyWhileAPluginIsConnected) {
   const std::vector<TrackedActor> tracked{{3, "actor3", ActorKind::Vehicle, 4, 2}, {7, "ego", ActorKind::Vehicle, 4, 2}};

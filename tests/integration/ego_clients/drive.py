@@ -98,8 +98,12 @@ def main():
                     summary["min_gap"] = ahead[1] if summary["min_gap"] is None else min(summary["min_gap"], ahead[1])
                     # Stop 3 m behind it at 3 m/s^2.
                     speed = min(speed, math.sqrt(max(0.0, 2 * 3.0 * (ahead[1] - 3.0))))
-            if a.mode == "census" and summary["steps"] % 10 == 0:
-                census(a.range, now, summary["census"])
+            if a.mode == "census":
+                if "ego" not in traci.vehicle.getIDList():  # it drove off the end of its route
+                    summary["census"].setdefault("ego_left", now)
+                    continue
+                if summary["steps"] % 10 == 0:
+                    census(a.range, now, summary["census"])
             traci.vehicle.setSpeed("ego", speed)
             for t, lane in lane_changes:
                 if abs(now - t) < 1e-6:
