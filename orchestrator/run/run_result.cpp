@@ -100,6 +100,11 @@ std::string to_json(const RunResult& r) {
   }
   j["trace_rows"] = r.trace_rows;
   j["wall_time_s"] = r.wall_time_s;
+  j["timing"] = {{"start_s", r.timing.start_s},
+                 {"sumo_step_s", r.timing.sumo_step_s},
+                 {"orchestrator_s", r.timing.orchestrator_s},
+                 {"plugin_s", r.timing.plugin_s},
+                 {"finish_s", r.timing.finish_s}};
   j["outputs"] = {{"trace", "trace.csv"}, {"log", "run.log"}, {"sumo_log", "sumo.log"}};
   return j.dump(2) + "\n";
 }

@@ -46,6 +46,15 @@ struct RunResult {
   std::vector<engine::HandOverRecord> hand_overs;
   std::optional<EgoLinkReport> ego_plugin;  // the external ego plug-in's connection (--ego-port)
   double wall_time_s = 0;
+  // Where the wall time went (README "Outputs"): measured inside the one process, so the
+  // orchestrator's own share does not depend on how fast the machine happens to be today.
+  struct Timing {
+    double start_s = 0;         // inputs, lane map, SUMO start, first commands
+    double sumo_step_s = 0;     // inside SUMO's step (traci: with its round trip; --realtime: with its waits)
+    double orchestrator_s = 0;  // the rest of every step: reading, the engine, commands, the trace
+    double plugin_s = 0;        // waiting for the ego plug-in's step (--ego-port)
+    double finish_s = 0;        // results, flushing, closing SUMO
+  } timing;
   long long trace_rows = 0;
 };
 

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <chrono>
 
 #include "core/errors.hpp"
@@ -22,6 +23,9 @@
 namespace orch {
 
 namespace {
+
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
 // Everything a run needs from disk, loaded and checked before SUMO starts.
 struct Inputs {
@@ -106,7 +110,8 @@ void judge_collisions(const engine::Engine& engine, scenario::ActorId ego, RunRe
 }  // namespace
 
 RunResult run_scenario(const RunRequest& req, Simulator& sim) {
-  const auto wall_start = std::chrono::steady_clock::now();
+  const auto wall_start = Clock::now();
+  std::optional<Clock::time_point> loop_start, loop_end;
   std::filesystem::create_directories(req.out_dir);
   RunLog log(req.out_dir / "run.log", req.echo);
   RunResult result;
@@ -151,8 +156,11 @@ RunResult run_scenario(const RunRequest& req, Simulator& sim) {
     log_events(log, result, out.events);
     sim.apply(out.commands);
     const auto tracked = engine->tracked();
+    loop_start = Clock::now();
     while (true) {
+      const auto before_step = Clock::now();
       sim.advance();
+      result.timing.sumo_step_s += seconds_since(before_step);
       ++result.steps;
       const engine::WorldSnapshot snap = sim.read(tracked);
       out = engine->step(snap);
@@ -175,8 +183,13 @@ RunResult run_scenario(const RunRequest& req, Simulator& sim) {
       }
       sim.apply(out.commands);
       // The plug-in sees this step (a hand_over included) and acts before the world advances.
-      if (req.ego_link) req.ego_link->exchange(snap.time);
+      if (req.ego_link) {
+        const auto before_plugin = Clock::now();
+        req.ego_link->exchange(snap.time);
+        result.timing.plugin_s += seconds_since(before_plugin);
+      }
     }
+    loop_end = Clock::now();
     switch (engine->state()) {
       case engine::RunState::EndingReached:
         result.verdict = "success";
@@ -214,6 +227,7 @@ RunResult run_scenario(const RunRequest& req, Simulator& sim) {
     result.verdict = "error";
     result.reason = std::string("internal error: ") + e.what();
   }
+  if (loop_start && !loop_end) loop_end = Clock::now();  // the loop ended by an exception
   if (engine) {
     result.scenes = engine->visits();
     result.collisions = engine->contacts();
@@ -232,8 +246,14 @@ RunResult run_scenario(const RunRequest& req, Simulator& sim) {
     log.note(describe(*result.ego_plugin));
   }
   sim.close();
-  result.wall_time_s =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+  result.wall_time_s = seconds_since(wall_start);
+  if (!loop_start) loop_start = Clock::now();  // it never got to the first step
+  if (!loop_end) loop_end = *loop_start;
+  const auto span = [](auto a, auto b) { return std::chrono::duration<double>(b - a).count(); };
+  result.timing.start_s = span(wall_start, *loop_start);
+  result.timing.orchestrator_s =
+      std::max(0.0, span(*loop_start, *loop_end) - result.timing.sumo_step_s - result.timing.plugin_s);
+  result.timing.finish_s = std::max(0.0, result.wall_time_s - span(wall_start, *loop_end));
   log.note(fmt::format("verdict {}: {} (simulated {:.2f} s in {} steps, {:.2f} s wall)", result.verdict,
                        result.reason, result.sim_time, result.steps, result.wall_time_s));
   write_result(req.out_dir, result);

@@ -141,14 +141,18 @@ def bench(binary, quick, repeat, work):
             "py_subscribe": python_loop("subscribe"),
         }
         runs = {key: [] for key in list(commands) + ["py_poll"]}
+        own = []  # the orchestrator's own time per step over SUMO's step time, in one process
         for _ in range(repeat):
             for key, cmd in commands.items():
                 runs[key].append(measure(cmd, d + "_%s.log" % key))
+                if key == "libsumo":
+                    timing = json.load(open(os.path.join(d + "_libsumo", "result.json")))["timing"]
+                    own.append(timing["orchestrator_s"] / timing["sumo_step_s"])
             print("  %s round: %s" % (name, ", ".join("%s %.2f s" % (k, v[-1][0]) for k, v in runs.items() if v)),
                   file=sys.stderr)
         runs["py_poll"].append(measure(python_loop("poll"), d + "_py_poll.log"))
         mean, last = vehicles(os.path.join(d + "_libsumo", "counts.csv"))
-        rows.append((name, mean, steps, runs))
+        rows.append((name, mean, steps, runs, own))
         print("measured %s: %.0f vehicles on average over %d steps" % (name, mean, steps), file=sys.stderr)
     return rows
 
@@ -157,9 +161,9 @@ def table(rows):
     lines = [
         "| vehicles (mean) | steps | bare SUMO (libsumo) | orchestrator libsumo | orch / bare | orchestrator traci "
         "| traci / libsumo | Python traci loop, polling | loop / orch | Python traci loop, subscriptions "
-        "| loop / orch |",
-        "|---|---|---|---|---|---|---|---|---|---|---|"]
-    for name, mean, steps, r in rows:
+        "| loop / orch | orchestrator's own time / SUMO's step time (libsumo, same process) |",
+        "|---|---|---|---|---|---|---|---|---|---|---|---|"]
+    for name, mean, steps, r, own in rows:
         wall = {k: min(m[0] for m in v) for k, v in r.items()}
         rss = {k: max(m[1] for m in v) for k, v in r.items()}
 
@@ -174,10 +178,11 @@ def table(rows):
                 text += " (%.2f-%.2f)" % (min(each), max(each))
             return text
 
-        lines.append("| %s (%.0f) | %d | %s | %s | %s | %s | %s | %s | %s | %s | %s |" % (
+        lines.append("| %s (%.0f) | %d | %s | %s | %s | %s | %s | %s | %s | %s | %s | %.1f %% (%.1f-%.1f) |" % (
             name, mean, steps, cell("bare"), cell("libsumo"), ratio("libsumo", "bare"), cell("traci"),
             ratio("traci", "libsumo"), cell("py_poll"), "**%.2f**" % (wall["py_poll"] / wall["libsumo"]),
-            cell("py_subscribe"), ratio("py_subscribe", "libsumo")))
+            cell("py_subscribe"), ratio("py_subscribe", "libsumo"), 100 * sorted(own)[len(own) // 2], 100 * min(own),
+            100 * max(own)))
     return "\n".join(lines)
 
 
@@ -219,7 +224,10 @@ def main():
           "process from start to exit (loading included), the best of %d interleaved rounds (the polling loop: "
           "one round); ratios of the best times, with the range of the rounds' own ratios in brackets; peak RSS "
           "summed over its processes (orchestrator + sumo on traci; Python + sumo for the loops), the largest "
-          "of the rounds.\n" % (MAP, STEP, max(1, a.repeat)))
+          "of the rounds. Last column: result.json's timing of the libsumo runs, the orchestrator's own time "
+          "in the stepping loop (reading, engine, commands, trace) over the time inside SUMO's steps, median "
+          "and range of the rounds: both measured in one process at the same moments, so the machine's "
+          "changing speed cancels out.\n" % (MAP, STEP, max(1, a.repeat)))
     print(table(rows))
     if a.hour:
         print()

@@ -48,6 +48,20 @@ TEST(RunCli, SampleCutInSucceedsWithTheDocumentedOutputs) {
   const std::string log = slurp(out / "run.log");
   EXPECT_NE(log.find("scene 2 -> 3"), std::string::npos);
   EXPECT_NE(log.find("lane_change: actor 1 to the lane of Waypoint02 over 3 s"), std::string::npos);
+
+  // Where the wall time went: the parts add up to it, and SUMO's steps take most of it.
+  const auto& timing = result["timing"];
+  double sum = 0;
+  for (const char* part : {"start_s", "sumo_step_s", "orchestrator_s", "plugin_s", "finish_s"}) {
+    ASSERT_TRUE(timing[part].is_number()) << part;
+    EXPECT_GE(timing[part].get<double>(), 0.0) << part;
+    sum += timing[part].get<double>();
+  }
+  EXPECT_NEAR(sum, result["wall_time_s"].get<double>(), 1e-6);
+  EXPECT_EQ(timing["plugin_s"].get<double>(), 0.0);  // no plug-in
+  EXPECT_GT(timing["start_s"].get<double>(), 0.0);
+  EXPECT_GT(timing["orchestrator_s"].get<double>(), 0.0);
+  EXPECT_GT(timing["sumo_step_s"].get<double>(), timing["orchestrator_s"].get<double>());
 }
 
 TEST(RunCli, SameInputsAndSeedGiveAByteIdenticalTrace) {
@@ -177,6 +191,9 @@ TEST(RunCli, InvalidScenarioIsAnErrorWithTheFileLineAndPointer) {
   EXPECT_NE(reason.find("typo.json:"), std::string::npos) << reason;
   EXPECT_NE(reason.find("/scenario/scenes/0"), std::string::npos) << reason;
   EXPECT_NE(reason.find("did you mean \"description\""), std::string::npos) << reason;
+  // It never got to a step: all of its time was the start and the finish.
+  EXPECT_EQ(result["timing"]["sumo_step_s"].get<double>(), 0.0);
+  EXPECT_EQ(result["timing"]["orchestrator_s"].get<double>(), 0.0);
 }
 
 TEST(RunCli, UnknownMapIsAnError) {
