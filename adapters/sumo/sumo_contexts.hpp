@@ -60,7 +60,9 @@ inline orch_sumo::SubscriptionResults SharedContexts::within(const std::string& 
                                                              int domain, double range,
                                                              const std::vector<int>& vars) {
   namespace sumo = orch_sumo;
-  Entry& e = entries_[{centre, centre_person, domain}];
+  const Key key{centre, centre_person, domain};
+  Entry& e = entries_[key];
+  const Entry before = e;
   bool changed = range > e.range;
   std::vector<int> wanted = vars;
   wanted.push_back(libsumo::VAR_POSITION);  // the range test needs it
@@ -78,7 +80,11 @@ inline orch_sumo::SubscriptionResults SharedContexts::within(const std::string& 
       else
         sumo::Vehicle::subscribeContext(centre, domain, subscribed, e.vars);
     } catch (...) {
-      entries_.erase({centre, centre_person, domain});
+      // SUMO kept what it had (if anything): so does the table.
+      if (before.range < 0)
+        entries_.erase(key);
+      else
+        e = before;
       throw;
     }
     e.range = subscribed;

@@ -51,7 +51,9 @@ TEST(BatchResume, RandomSigkillsThenResumeRunExactlyTheMissingRuns) {
   // result files are being written), so that both kinds of moment are hit every time.
   const unsigned seed = std::random_device{}();
   std::mt19937 rng(seed);
-  std::uniform_int_distribution<int> any_moment_ms(50, 3000);
+  // Within the time the whole batch takes (10 quick runs, 2 at a time: 1.5 s and more), so
+  // that the first kill always comes before the batch is done.
+  std::uniform_int_distribution<int> any_moment_ms(50, 1200);
   std::uniform_int_distribution<int> after_a_run_ms(0, 150);
   SCOPED_TRACE("kill schedule seed " + std::to_string(seed));
 
