@@ -28,11 +28,17 @@ class SharedContexts {
   // A new simulation: SUMO has no subscriptions.
   void reset() { entries_.clear(); }
 
-  // The objects of `domain` (libsumo::CMD_GET_VEHICLE_VARIABLE or CMD_GET_PERSON_VARIABLE)
-  // within `range` m of `centre`, with at least `vars` in their results, by id (the centre
-  // itself included when it is of `domain`, as in SUMO). Subscribes first, or widens SUMO's
-  // subscription, when it does not cover the request yet. Throws sumo::TraCIException when
-  // SUMO does not know the centre.
+  // Makes SUMO's context subscription of `domain` (libsumo::CMD_GET_VEHICLE_VARIABLE or
+  // CMD_GET_PERSON_VARIABLE) around `centre` reach at least `range` m with at least `vars`:
+  // subscribes, or widens it, when it does not yet (SUMO answers at once, so results are
+  // there in this step). Throws sumo::TraCIException when SUMO does not know the centre;
+  // the table then stays as SUMO's subscriptions are.
+  void subscribe(const std::string& centre, bool centre_person, int domain, double range,
+                 const std::vector<int>& vars);
+
+  // The objects of `domain` within `range` m of `centre`, with at least `vars` in their
+  // results, by id (the centre itself included when it is of `domain`, as in SUMO);
+  // subscribes first when needed.
   orch_sumo::SubscriptionResults within(const std::string& centre, bool centre_person, int domain, double range,
                                         const std::vector<int>& vars);
 
@@ -42,6 +48,9 @@ class SharedContexts {
     std::vector<int> vars;
   };
   using Key = std::tuple<std::string, bool, int>;  // centre, centre is a person, domain
+
+  const Entry& cover(const std::string& centre, bool centre_person, int domain, double range,
+                     const std::vector<int>& vars);
 
   // SUMO files a centre's context results by the centre alone: with both domains subscribed
   // around one centre the two answers arrive as one table.
@@ -56,39 +65,40 @@ class SharedContexts {
 // The table of this process's SUMO connection for this client library.
 SharedContexts& shared_contexts();
 
+inline const SharedContexts::Entry& SharedContexts::cover(const std::string& centre, bool centre_person, int domain,
+                                                          double range, const std::vector<int>& vars) {
+  const Key key{centre, centre_person, domain};
+  const auto it = entries_.find(key);
+  const auto in = [](const Entry& e, int v) { return std::find(e.vars.begin(), e.vars.end(), v) != e.vars.end(); };
+  const auto covered = [&](int v) { return in(it->second, v); };
+  // The common case, every step: already covered, nothing to allocate.
+  if (it != entries_.end() && it->second.range >= range && covered(libsumo::VAR_POSITION) &&
+      std::all_of(vars.begin(), vars.end(), covered))
+    return it->second;
+  Entry wider = it == entries_.end() ? Entry{} : it->second;
+  wider.range = std::max(wider.range, range);
+  if (!in(wider, libsumo::VAR_POSITION)) wider.vars.push_back(libsumo::VAR_POSITION);  // the range test needs it
+  for (const int v : vars)
+    if (!in(wider, v)) wider.vars.push_back(v);
+  if (centre_person)
+    orch_sumo::Person::subscribeContext(centre, domain, wider.range, wider.vars);
+  else
+    orch_sumo::Vehicle::subscribeContext(centre, domain, wider.range, wider.vars);
+  Entry& slot = entries_[key];  // only once SUMO accepted
+  slot = std::move(wider);
+  return slot;
+}
+
+inline void SharedContexts::subscribe(const std::string& centre, bool centre_person, int domain, double range,
+                                      const std::vector<int>& vars) {
+  (void)cover(centre, centre_person, domain, range, vars);
+}
+
 inline orch_sumo::SubscriptionResults SharedContexts::within(const std::string& centre, bool centre_person,
                                                              int domain, double range,
                                                              const std::vector<int>& vars) {
   namespace sumo = orch_sumo;
-  const Key key{centre, centre_person, domain};
-  Entry& e = entries_[key];
-  const Entry before = e;
-  bool changed = range > e.range;
-  std::vector<int> wanted = vars;
-  wanted.push_back(libsumo::VAR_POSITION);  // the range test needs it
-  for (const int v : wanted)
-    if (std::find(e.vars.begin(), e.vars.end(), v) == e.vars.end()) {
-      e.vars.push_back(v);
-      changed = true;
-    }
-  if (changed) {
-    const double subscribed = std::max(range, e.range);
-    // SUMO answers a (re)subscription at once: the results below are this step's.
-    try {
-      if (centre_person)
-        sumo::Person::subscribeContext(centre, domain, subscribed, e.vars);
-      else
-        sumo::Vehicle::subscribeContext(centre, domain, subscribed, e.vars);
-    } catch (...) {
-      // SUMO kept what it had (if anything): so does the table.
-      if (before.range < 0)
-        entries_.erase(key);
-      else
-        e = before;
-      throw;
-    }
-    e.range = subscribed;
-  }
+  const Entry& e = cover(centre, centre_person, domain, range, vars);
   sumo::SubscriptionResults found = centre_person ? sumo::Person::getContextSubscriptionResults(centre)
                                                   : sumo::Vehicle::getContextSubscriptionResults(centre);
   const bool both = mixed(centre, centre_person);

@@ -100,8 +100,6 @@ class SumoEgoControl final : public traci::EgoWorld {
   // the session's reads of them cost nothing more.
   std::vector<std::string> objects_in_range(Domain centre_domain, const std::string& centre, Domain context,
                                             double range, const std::vector<int>& variables) override {
-    if (centre_domain == Domain::Simulation || context == Domain::Simulation)
-      throw traci::WorldError("context subscriptions are served around vehicles and persons, for vehicles and persons");
     std::vector<int> subscribed;
     for (const int v : variables)
       if (supports(context, v) && v != tc::VAR_LEADER && v != tc::VAR_PARAMETER && v != tc::TRACI_ID_LIST &&

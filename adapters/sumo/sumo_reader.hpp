@@ -146,7 +146,7 @@ class WorldReader {
       sumo::Person::subscribe(id, person_vars);
     else
       sumo::Vehicle::subscribe(id, vehicle_vars);
-    (void)nearby(id, person);  // subscribes
+    contexts::shared_contexts().subscribe(id, person, tc::CMD_GET_VEHICLE_VARIABLE, kNearbyRange, kNeighbourVars);
     followed_[id] = person;
   }
 
@@ -218,10 +218,10 @@ class WorldReader {
   // The vehicles within kNearbyRange of an actor (a context subscription shared with the ego
   // plug-in's, sumo_contexts.hpp).
   static sumo::SubscriptionResults nearby(const std::string& id, bool person) {
-    static const std::vector<int> vars = {tc::VAR_POSITION, tc::VAR_ANGLE, tc::VAR_SPEED, tc::VAR_LENGTH,
-                                          tc::VAR_WIDTH};
-    return contexts::shared_contexts().within(id, person, tc::CMD_GET_VEHICLE_VARIABLE, kNearbyRange, vars);
+    return contexts::shared_contexts().within(id, person, tc::CMD_GET_VEHICLE_VARIABLE, kNearbyRange, kNeighbourVars);
   }
+  inline static const std::vector<int> kNeighbourVars = {tc::VAR_POSITION, tc::VAR_ANGLE, tc::VAR_SPEED,
+                                                         tc::VAR_LENGTH, tc::VAR_WIDTH};
 
   std::unordered_map<std::string, ActorKind> actor_kind_;  // scenario actors by SUMO id
   std::unordered_map<std::string, bool> followed_;         // subscribed actors: true = person

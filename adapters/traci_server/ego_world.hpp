@@ -73,11 +73,12 @@ class EgoWorld {
   // extra argument of VAR_LEADER (distance) and VAR_PARAMETER (key). Throws WorldError or
   // NotImplemented.
   virtual Value read(Domain domain, int variable, const std::string& id, const std::optional<Value>& parameter) = 0;
-  // The objects of `context` within `range` m of `centre` (SUMO's test: the 2-D distance
-  // between their positions; the centre itself counts when it is of `context`), in id order:
-  // a context subscription's answer. `variables` are those the subscription will read of each
-  // (a hint: an implementation may fetch them with the search). Throws WorldError when the
-  // centre is not in the simulation.
+  // The objects of `context` within `range` m of `centre`, in id order: a context
+  // subscription's answer. Both domains are Vehicle or Person (the session serves no other).
+  // SUMO's test: the 2-D distance between their positions; the centre itself counts when it
+  // is of `context`. `variables` are those the subscription will read of each (a hint: an
+  // implementation may fetch them with the search). Throws WorldError when the centre is not
+  // in the simulation.
   virtual std::vector<std::string> objects_in_range(Domain centre_domain, const std::string& centre, Domain context,
                                                     double range, const std::vector<int>& variables) = 0;
   // A command for a vehicle (the session has checked that it is the ego). Throws WorldError.

@@ -147,7 +147,9 @@ class LineRecorder : public nlohmann::json_sax<nlohmann::json> {
 
 // The cheap pass every document gets: does any object repeat a key? (Which one, and on
 // which line, the LineRecorder pass finds when the answer is yes.) Keys are compared when
-// their object ends; the key lists of each depth are kept for reuse.
+// their object ends; the key lists of each depth are kept for reuse. A second pass over the
+// text, yet faster than one: the same check inside nlohmann's parse callback made the ALKS
+// waypoint file's load 50 % slower (0.145 s against 0.094 s before the first step).
 class DuplicateKeyCheck : public nlohmann::json_sax<nlohmann::json> {
  public:
   bool null() override { return true; }
@@ -224,8 +226,8 @@ JsonDocument JsonDocument::parse(std::string text, const std::string& path_for_m
   }
   DuplicateKeyCheck check;
   if (!nlohmann::json::sax_parse(doc.text_, &check)) {
-    const auto& lines = doc.lines();  // stops at the duplicate, or throws naming it
-    (void)lines;
+    (void)doc.lines();  // throws, naming the repeated key and its line
+    throw ScenarioError(SourceLocation{doc.path_, "", 0}, "duplicate key: the same key appears twice in one object");
   }
   return doc;
 }

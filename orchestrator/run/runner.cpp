@@ -25,7 +25,8 @@ namespace orch {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+double seconds(Clock::time_point from, Clock::time_point to) { return std::chrono::duration<double>(to - from).count(); }
+double seconds_since(Clock::time_point t) { return seconds(t, Clock::now()); }
 
 // Everything a run needs from disk, loaded and checked before SUMO starts.
 struct Inputs {
@@ -249,11 +250,10 @@ RunResult run_scenario(const RunRequest& req, Simulator& sim) {
   result.wall_time_s = seconds_since(wall_start);
   if (!loop_start) loop_start = Clock::now();  // it never got to the first step
   if (!loop_end) loop_end = *loop_start;
-  const auto span = [](auto a, auto b) { return std::chrono::duration<double>(b - a).count(); };
-  result.timing.start_s = span(wall_start, *loop_start);
+  result.timing.start_s = seconds(wall_start, *loop_start);
   result.timing.orchestrator_s =
-      std::max(0.0, span(*loop_start, *loop_end) - result.timing.sumo_step_s - result.timing.plugin_s);
-  result.timing.finish_s = std::max(0.0, result.wall_time_s - span(wall_start, *loop_end));
+      std::max(0.0, seconds(*loop_start, *loop_end) - result.timing.sumo_step_s - result.timing.plugin_s);
+  result.timing.finish_s = std::max(0.0, result.wall_time_s - seconds(wall_start, *loop_end));
   log.note(fmt::format("verdict {}: {} (simulated {:.2f} s in {} steps, {:.2f} s wall)", result.verdict,
                        result.reason, result.sim_time, result.steps, result.wall_time_s));
   write_result(req.out_dir, result);
