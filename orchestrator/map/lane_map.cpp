@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <limits>
 #include <pugixml.hpp>
 
@@ -16,6 +17,7 @@ namespace {
 
 constexpr const char* kRouteParam = "orch.route";  // written by map build (net_builder.cpp)
 constexpr double kSumoDefaultLaneWidth = 3.2;      // SUMO omits width="..." at its default
+constexpr double kMinInternalLength = 0.2;         // m
 
 // SUMO shapes: "x,y x,y ..." or "x,y,z ..."; heights are dropped (the map is planar).
 Polyline parse_shape(const char* text, const std::string& lane_id, const std::string& net_file) {
@@ -54,10 +56,21 @@ LaneInfo read_lane(const pugi::xml_node& lane, const std::string& edge_id, const
   info.speed = lane.attribute("speed").as_double();
   info.shape = parse_shape(lane.attribute("shape").as_string(), info.id, net_file);
   if (info.length <= 0) throw MapError(fmt::format("{}: lane \"{}\" has no positive length", net_file, info.id));
-  for (const pugi::xml_node param : lane.children("param"))
-    if (std::string_view(param.attribute("key").as_string()) == kRouteParam)
+  // "orch.route" names the route the lane was built from, "orch.route.1", ... further
+  // routes that drive it (junction maps).
+  for (const pugi::xml_node param : lane.children("param")) {
+    const std::string_view key = param.attribute("key").as_string();
+    if (key == kRouteParam || (key.rfind(kRouteParam, 0) == 0 && key.size() > std::strlen(kRouteParam) &&
+                               key[std::strlen(kRouteParam)] == '.'))
       info.routes.emplace_back(param.attribute("value").as_string());
+  }
   return info;
+}
+
+// A junction's interior lane of real length (netconvert writes 0.1 m stubs where two
+// edges of one road meet; those are passed through, not mapped).
+bool is_real_internal(const pugi::xml_node& lane) {
+  return lane.attribute("length").as_double() >= kMinInternalLength;
 }
 
 // A point beside a lane beats a point beyond its ends, then the nearer lane wins.
@@ -79,12 +92,32 @@ LaneMap LaneMap::build(const std::string& net_file, const WaypointFile& waypoint
   if (!net) throw MapError(fmt::format("{} is not a SUMO net (no <net> element)", net_file));
 
   LaneMap map;
+  std::unordered_map<std::string, int> index_of;  // lane id -> index into lanes_
   for (const pugi::xml_node edge : net.children("edge")) {
-    // Internal lanes (junction interiors), crossings and walking areas carry no routes.
+    // Crossings and walking areas carry no routes; junction interiors do (the routes' own
+    // shapes through the junction, junction_plan.hpp).
     const std::string_view function = edge.attribute("function").as_string();
-    if (!function.empty() && function != "normal") continue;
+    const bool internal = function == "internal";
+    if (!function.empty() && function != "normal" && !internal) continue;
     const std::string edge_id = edge.attribute("id").as_string();
-    for (const pugi::xml_node lane : edge.children("lane")) map.lanes_.push_back(read_lane(lane, edge_id, net_file));
+    for (const pugi::xml_node lane : edge.children("lane")) {
+      if (internal && !is_real_internal(lane)) continue;
+      index_of[lane.attribute("id").as_string()] = static_cast<int>(map.lanes_.size());
+      map.lanes_.push_back(read_lane(lane, edge_id, net_file));
+      map.lanes_.back().internal = internal;
+      map.junctions_ = map.junctions_ || internal || map.lanes_.back().routes.size() > 1;
+    }
+  }
+  // Where each lane leads: through the junction's interior lane when it has one.
+  for (const pugi::xml_node c : net.children("connection")) {
+    const auto from = index_of.find(fmt::format("{}_{}", c.attribute("from").as_string(), c.attribute("fromLane").as_int()));
+    if (from == index_of.end()) continue;
+    auto to = index_of.find(c.attribute("via").as_string());
+    if (to == index_of.end())
+      to = index_of.find(fmt::format("{}_{}", c.attribute("to").as_string(), c.attribute("toLane").as_int()));
+    if (to == index_of.end()) continue;
+    auto& next = map.lanes_[static_cast<std::size_t>(from->second)].next;
+    if (std::find(next.begin(), next.end(), to->second) == next.end()) next.push_back(to->second);
   }
   for (const LaneInfo& lane : map.lanes_) {
     Bounds b{lane.shape.point(0), lane.shape.point(0)};
@@ -96,6 +129,10 @@ LaneMap LaneMap::build(const std::string& net_file, const WaypointFile& waypoint
   }
 
   for (const WaypointRoute& route : waypoints.routes) {
+    if (map.junctions_) {
+      map.routes_.emplace(route.id, map.walk(route, net_file));
+      continue;
+    }
     RouteLanes rl;
     rl.route_id = route.id;
     std::vector<std::pair<double, int>> along;  // (arc length of the lane's middle on the route, lane)
@@ -111,8 +148,11 @@ LaneMap LaneMap::build(const std::string& net_file, const WaypointFile& waypoint
     std::sort(along.begin(), along.end());
     for (const auto& [s, lane] : along) rl.lanes.push_back(lane);
     rl.points.reserve(route.points.size());
-    for (std::size_t i = 0; i < route.points.size(); ++i)
+    for (std::size_t i = 0; i < route.points.size(); ++i) {
       rl.points.push_back(map.nearest_of(rl.lanes, route.line.point(i), i == 0 ? -1 : rl.points.back().lane));
+      const int lane = rl.points.back().lane;
+      rl.visits.push_back(static_cast<int>(std::find(rl.lanes.begin(), rl.lanes.end(), lane) - rl.lanes.begin()));
+    }
     map.routes_.emplace(route.id, std::move(rl));
   }
   return map;
@@ -210,19 +250,32 @@ std::optional<LanePlace> LaneMap::locate(const Vec2& p, double heading, double m
   return best;
 }
 
+int LaneMap::visit_at(const WaypointRoute& route, const RouteLanes& rl, double s) const {
+  if (rl.visits.empty()) return 0;
+  if (s <= 0) return rl.visits.front();
+  if (s >= route.line.length()) return rl.visits.back();
+  std::size_t lo = 0;
+  std::size_t hi = rl.visits.size() - 1;
+  while (hi - lo > 1) {
+    const std::size_t mid = (lo + hi) / 2;
+    (route.line.s_at_index(mid) <= s ? lo : hi) = mid;
+  }
+  // Between two waypoints on different lanes: the lane the point lies on.
+  if (rl.visits[lo] == rl.visits[hi]) return rl.visits[lo];
+  const LanePlace here = place_on_route(route, s, 0.0);
+  return here.lane == rl.lanes[static_cast<std::size_t>(rl.visits[hi])] ? rl.visits[hi] : rl.visits[lo];
+}
+
 std::vector<std::string> LaneMap::route_edges(const WaypointRoute& route, double s0, double s1) const {
   const RouteLanes& rl = route_or_throw(route);
-  const auto position = [&](double s) {
-    const int lane = place_on_route(route, s, 0.0).lane;
-    return std::find(rl.lanes.begin(), rl.lanes.end(), lane) - rl.lanes.begin();
-  };
-  auto first = position(s0);
-  auto last = position(s1);
+  auto first = visit_at(route, rl, s0);
+  auto last = visit_at(route, rl, s1);
   if (last < first) std::swap(first, last);
   std::vector<std::string> edges;
   for (auto k = first; k <= last; ++k) {
-    const std::string& edge = lanes_[static_cast<std::size_t>(rl.lanes[static_cast<std::size_t>(k)])].edge;
-    if (edges.empty() || edges.back() != edge) edges.push_back(edge);
+    const LaneInfo& lane = lanes_[static_cast<std::size_t>(rl.lanes[static_cast<std::size_t>(k)])];
+    if (lane.internal) continue;  // SUMO routes list normal edges; junctions are implied
+    if (edges.empty() || edges.back() != lane.edge) edges.push_back(lane.edge);
   }
   return edges;
 }

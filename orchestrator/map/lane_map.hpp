@@ -23,6 +23,8 @@ struct LaneInfo {
   double speed = 0;  // m/s
   Polyline shape;
   std::vector<std::string> routes;  // waypoint routes this lane was built from
+  bool internal = false;            // a lane inside a junction (SUMO's ":<node>_<n>_<i>")
+  std::vector<int> next;            // lanes a vehicle on this lane continues on (via connections)
 
   // SUMO scales positions on lanes whose drawn shape is longer or shorter than the lane.
   [[nodiscard]] double geometry_factor() const { return shape.length() / length; }
@@ -37,14 +39,18 @@ struct LanePlace {
 
 struct RouteLanes {
   std::string route_id;
-  std::vector<int> lanes;          // the route's lanes in driving order
+  // The lanes that drive the route, in driving order, internal lanes through junctions
+  // included; a lane appears again where the route drives it again (a loop).
+  std::vector<int> lanes;
   std::vector<LanePlace> points;   // one per waypoint
+  std::vector<int> visits;         // per waypoint: its position in `lanes`
 };
 
 class LaneMap {
  public:
   // Parses the SUMO net (pugixml) and maps every waypoint. Throws MapError when a route has
-  // no lanes in the net (the net was not built from this waypoint file).
+  // no lanes in the net (the net was not built from this waypoint file), or when its lanes
+  // do not connect into one path along it (naming the waypoint where the path breaks).
   static LaneMap build(const std::string& net_file, const WaypointFile& waypoints);
 
   [[nodiscard]] const std::vector<LaneInfo>& lanes() const { return lanes_; }
@@ -76,10 +82,15 @@ class LaneMap {
   // `first`: a lane likely to be the answer (e.g. the previous waypoint's), tried before the
   // others so that the bounding-box test skips the rest cheaply.
   [[nodiscard]] LanePlace nearest_of(const std::vector<int>& candidates, const Vec2& p, int first = -1) const;
+  // Junction maps: follows the route through the lane graph, waypoint by waypoint (lane_walk.cpp).
+  [[nodiscard]] RouteLanes walk(const WaypointRoute& route, const std::string& net_file) const;
+  // The visit (index into rl.lanes) of arc length s of the route.
+  [[nodiscard]] int visit_at(const WaypointRoute& route, const RouteLanes& rl, double s) const;
 
   std::vector<LaneInfo> lanes_;
   std::vector<Bounds> bounds_;  // per lane, for skipping far lanes cheaply
   std::unordered_map<std::string, RouteLanes> routes_;
+  bool junctions_ = false;  // the net has junction interiors the routes drive (internal lanes)
 };
 
 }  // namespace orch

@@ -37,6 +37,30 @@ MapManifest load_map_manifest(const std::filesystem::path& dir) {
     m.max_edge_length = b.number("max_edge_length_m", Need::Optional).value_or(m.max_edge_length);
     b.finish();
   }
+  if (const auto* list = r.array("junctions", Need::Optional)) {
+    for (std::size_t i = 0; i < list->size(); ++i) {
+      ObjectReader j(doc, (*list)[i], json_pointer_child(r.child("junctions"), i), diags, "junction setting");
+      if (!j.is_object()) continue;
+      JunctionOverride o;
+      o.id = j.string("id", Need::Optional).value_or("");
+      if (const auto* at = j.array("at", Need::Optional)) {
+        if (at->size() == 2 && (*at)[0].is_number() && (*at)[1].is_number())
+          o.at = Vec2((*at)[0].get<double>(), (*at)[1].get<double>());
+        else
+          j.error("at", "expected [x, y] in the map frame (m)");
+      }
+      if (o.id.empty() && !o.at) j.error("", "a junction setting names its junction by \"id\" or \"at\"");
+      o.type = j.choice("type", {std::begin(kJunctionTypes), std::end(kJunctionTypes)}, Need::Optional).value_or("");
+      if (const auto* routes = j.array("priority_routes", Need::Optional))
+        for (std::size_t k = 0; k < routes->size(); ++k) {
+          if ((*routes)[k].is_string()) o.priority_routes.push_back((*routes)[k].get<std::string>());
+          else diags.error(doc.where(json_pointer_child(j.child("priority_routes"), k)), "a route id must be a string");
+        }
+      j.allow({"note"});
+      j.finish();
+      m.junctions.overrides.push_back(std::move(o));
+    }
+  }
   // Documentation-only blocks: how map coordinates relate to the waypoint file, provenance.
   r.allow({"transform", "source"});
   r.finish();
@@ -56,6 +80,17 @@ void save_map_manifest(const MapManifest& m) {
   j["build"] = {{"lane_extension_m", m.lane_extension},
                 {"simplify_tolerance_m", m.simplify_tolerance},
                 {"max_edge_length_m", m.max_edge_length}};
+  if (!m.junctions.overrides.empty()) {
+    j["junctions"] = nlohmann::ordered_json::array();
+    for (const auto& o : m.junctions.overrides) {
+      nlohmann::ordered_json x;
+      if (!o.id.empty()) x["id"] = o.id;
+      if (o.at) x["at"] = {o.at->x(), o.at->y()};
+      if (!o.type.empty()) x["type"] = o.type;
+      if (!o.priority_routes.empty()) x["priority_routes"] = o.priority_routes;
+      j["junctions"].push_back(x);
+    }
+  }
   write_file_atomically(m.dir / "map.json", j.dump(2) + "\n");
 }
 

@@ -8,6 +8,8 @@
 #include <string_view>
 #include <vector>
 
+#include "map/junction_plan.hpp"
+
 namespace orch {
 
 // Edge length limit of maps created by `map build --waypoints` (net_plan.hpp says why).
@@ -25,6 +27,8 @@ struct MapManifest {
   // m, longer stretches become several edges (net_plan.hpp); 0 = never. New map folders get
   // kDefaultMaxEdgeLength; a map.json without the setting keeps its single long edges.
   double max_edge_length = 0;
+  // Junction types and right of way set by the user (README "Maps"; "junctions" in map.json).
+  JunctionSettings junctions;
 
   [[nodiscard]] std::filesystem::path waypoint_path() const { return dir / waypoint_file; }
   [[nodiscard]] std::filesystem::path net_path() const { return dir / net_file; }

@@ -11,6 +11,7 @@
 #include "core/errors.hpp"
 #include "core/files.hpp"
 #include "core/process.hpp"
+#include "map/junction_plan.hpp"
 #include "map/net_plan.hpp"
 
 namespace orch {
@@ -38,8 +39,9 @@ std::string file_header(const std::string& root, const MapManifest& m) {
 std::string nodes_xml(const NetPlan& plan, const MapManifest& m) {
   std::string out = file_header("nodes", m);
   for (const PlannedNode& n : plan.nodes)
-    out += fmt::format("    <node id=\"{}\" x=\"{:.4f}\" y=\"{:.4f}\" shape=\"{}\"/>\n", xml_escape(n.id),
-                       n.position.x(), n.position.y(), format_shape(n.shape));
+    out += fmt::format("    <node id=\"{}\" x=\"{:.4f}\" y=\"{:.4f}\"{} shape=\"{}\"/>\n", xml_escape(n.id),
+                       n.position.x(), n.position.y(),
+                       n.type.empty() ? "" : fmt::format(" type=\"{}\"", xml_escape(n.type)), format_shape(n.shape));
   return out + "</nodes>\n";
 }
 
@@ -48,15 +50,19 @@ std::string edges_xml(const NetPlan& plan, const MapManifest& m) {
   for (const PlannedEdge& e : plan.edges) {
     double speed = 0;
     for (const PlannedLane& l : e.lanes) speed = std::max(speed, l.speed);
-    out += fmt::format("    <edge id=\"{}\" from=\"{}\" to=\"{}\" numLanes=\"{}\" speed=\"{:.4f}\" shape=\"{}\">\n",
+    out += fmt::format("    <edge id=\"{}\" from=\"{}\" to=\"{}\" numLanes=\"{}\" speed=\"{:.4f}\"{} shape=\"{}\">\n",
                        xml_escape(e.id), xml_escape(e.from), xml_escape(e.to), e.lanes.size(), speed,
-                       format_shape(e.shape));
+                       e.priority < 0 ? "" : fmt::format(" priority=\"{}\"", e.priority), format_shape(e.shape));
     // No allow/disallow: SUMO's default lets every vehicle class and pedestrians use the lane.
     for (std::size_t i = 0; i < e.lanes.size(); ++i) {
       const PlannedLane& l = e.lanes[i];
       out += fmt::format("        <lane index=\"{}\" width=\"{:.2f}\" speed=\"{:.4f}\" shape=\"{}\">\n", i, l.width,
                          l.speed, format_shape(l.shape.points()));
-      out += fmt::format("            <param key=\"orch.route\" value=\"{}\"/>\n", xml_escape(l.route_id));
+      // One parameter per route driving the lane: "orch.route", then "orch.route.1", ...
+      const std::vector<std::string> routes = l.routes.empty() ? std::vector<std::string>{l.route_id} : l.routes;
+      for (std::size_t k = 0; k < routes.size(); ++k)
+        out += fmt::format("            <param key=\"orch.route{}\" value=\"{}\"/>\n",
+                           k == 0 ? std::string() : fmt::format(".{}", k), xml_escape(routes[k]));
       out += "        </lane>\n";
     }
     out += "    </edge>\n";
@@ -67,8 +73,9 @@ std::string edges_xml(const NetPlan& plan, const MapManifest& m) {
 std::string connections_xml(const NetPlan& plan, const MapManifest& m) {
   std::string out = file_header("connections", m);
   for (const PlannedConnection& c : plan.connections)
-    out += fmt::format("    <connection from=\"{}\" to=\"{}\" fromLane=\"{}\" toLane=\"{}\"/>\n", xml_escape(c.from),
-                       xml_escape(c.to), c.from_lane, c.to_lane);
+    out += fmt::format("    <connection from=\"{}\" to=\"{}\" fromLane=\"{}\" toLane=\"{}\"{}/>\n", xml_escape(c.from),
+                       xml_escape(c.to), c.from_lane, c.to_lane,
+                       c.shape.empty() ? "" : fmt::format(" shape=\"{}\"", format_shape(c.shape)));
   return out + "</connections>\n";
 }
 
@@ -97,7 +104,8 @@ std::vector<std::string> lines_starting_with(const std::string& text, std::strin
 }  // namespace
 
 NetBuildReport build_net(const MapManifest& manifest, const WaypointFile& waypoints) {
-  const NetPlan plan = plan_net(waypoints, {manifest.lane_extension, manifest.simplify_tolerance, manifest.max_edge_length});
+  const NetPlan plan = plan_net(waypoints, {manifest.lane_extension, manifest.simplify_tolerance, manifest.max_edge_length},
+                                manifest.junctions);
 
   // Paths relative to the map folder (netconvert runs there): netconvert copies its
   // arguments into the net's header, which must not depend on where the folder lives.
@@ -135,6 +143,7 @@ NetBuildReport build_net(const MapManifest& manifest, const WaypointFile& waypoi
 
   NetBuildReport report;
   report.corridors = plan.corridors;
+  report.junctions = plan.junctions;
   report.edges = static_cast<int>(plan.edges.size());
   for (const PlannedEdge& e : plan.edges) report.lanes += static_cast<int>(e.lanes.size());
   report.notes = plan.notes;

@@ -16,6 +16,7 @@ namespace orch {
 
 struct NetBuildReport {
   int corridors = 0;  // groups of parallel routes
+  int junctions = 0;
   int edges = 0;
   int lanes = 0;
   std::vector<std::string> notes;  // human-readable remarks (routes left alone, ...)

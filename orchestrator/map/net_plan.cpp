@@ -36,6 +36,11 @@ struct Member {
   std::size_t start_cut = 0;
   std::size_t end_cut = 0;
   std::vector<double> cut_s;  // arc length on `line` of cuts start_cut..end_cut
+  const CorridorLine* info = nullptr;  // junction maps: routes and the junctions at its ends
+  [[nodiscard]] const std::string& end_node(bool start) const {
+    static const std::string none;
+    return info ? (start ? info->start_node : info->end_node) : none;
+  }
   [[nodiscard]] double cut_at(std::size_t cut) const { return cut_s[cut - start_cut]; }
   [[nodiscard]] bool active_in(std::size_t segment) const { return start_cut <= segment && segment < end_cut; }
 
@@ -68,12 +73,14 @@ struct Cut {
   double key = 0;            // position along the corridor
   std::size_t member = 0;    // the lane end that placed the cut (kNoMember: a length cut)
   bool at_start = false;     // ... its start (else its end)
+  std::string node;          // the junction at this cut ("" = a node of the corridor's own)
 };
 
 struct Event {
   double key = 0;  // position along the corridor's reference route
   std::size_t member = 0;
   bool is_start = false;
+  std::string node;  // the junction this lane end lies at ("" = a free end)
 };
 
 std::string corridor_name(const std::vector<Member>& members, std::set<std::string>& used) {
@@ -117,8 +124,9 @@ double lane_speed(const Member& m, double s0, double s1, std::vector<std::string
 
 class CorridorPlanner {
  public:
-  CorridorPlanner(const WaypointFile& wf, const std::vector<std::size_t>& route_indices, const NetPlanSettings& st)
-      : settings_(st) {
+  CorridorPlanner(const WaypointFile& wf, const std::vector<std::size_t>& route_indices, const NetPlanSettings& st,
+                  const std::vector<CorridorLine>* info)
+      : settings_(st), info_given_(info != nullptr) {
     double shortest = std::numeric_limits<double>::infinity();
     for (std::size_t i : route_indices)
       shortest = std::min(shortest, wf.routes[i].line.length() + 2 * st.lane_extension);
@@ -130,8 +138,10 @@ class CorridorPlanner {
       m.index = i;
       const double ext = st.lane_extension + slack_;
       std::tie(m.line, m.first_wp_s) = extend_straight(m.route->line, ext, ext);
-      m.lane_start = m.first_wp_s - st.lane_extension;
-      m.lane_end = m.first_wp_s + m.route->line.length() + st.lane_extension;
+      if (info) m.info = &(*info)[i];
+      // A lane that ends at a junction ends exactly there: the junction's internal lanes go on.
+      m.lane_start = m.first_wp_s - (m.end_node(true).empty() ? st.lane_extension : 0.0);
+      m.lane_end = m.first_wp_s + m.route->line.length() + (m.end_node(false).empty() ? st.lane_extension : 0.0);
       members_.push_back(std::move(m));
     }
   }
@@ -152,13 +162,14 @@ class CorridorPlanner {
       e.id = fmt::format("{}#{}", name_, edge_number++);
       e.from = node_id(seg);
       e.to = node_id(seg + 1);
+      if (info_given_) e.priority = static_cast<int>(e.lanes.size());
       node_used[seg] = node_used[seg + 1] = true;
       edge_of_segment[seg] = static_cast<std::ptrdiff_t>(out.edges.size());
       out.edges.push_back(std::move(e));
     }
     std::vector<PlannedNode> nodes;
     for (std::size_t c = 0; c < cuts_.size(); ++c)
-      if (node_used[c]) nodes.push_back(plan_node(c, edge_of_segment, out.edges));
+      if (node_used[c] && cuts_[c].node.empty()) nodes.push_back(plan_node(c, edge_of_segment, out.edges));
     for (std::size_t i = first_edge; i < out.edges.size(); ++i) {
       PlannedEdge& e = out.edges[i];
       e.shape = centre_line(e);
@@ -199,7 +210,7 @@ class CorridorPlanner {
     for (std::size_t i = 0; i < members_.size(); ++i) {
       const Member& m = members_[i];
       for (const bool start : {true, false}) {
-        events.push_back({m.key_of(start ? m.lane_start : m.lane_end), i, start});
+        events.push_back({m.key_of(start ? m.lane_start : m.lane_end), i, start, m.end_node(start)});
       }
     }
     std::sort(events.begin(), events.end(), [](const Event& a, const Event& b) {
@@ -210,7 +221,10 @@ class CorridorPlanner {
     std::vector<bool> open(members_.size(), false);  // lanes running at the current cut
     for (std::size_t first = 0; first < events.size();) {
       std::size_t last = first;
-      while (last + 1 < events.size() && events[last + 1].key - events[first].key <= merge_) ++last;
+      // Lane ends at one junction are one cut; they never merge with other lane ends.
+      while (last + 1 < events.size() && events[last + 1].key - events[first].key <= merge_ &&
+             events[last + 1].node == events[first].node)
+        ++last;
       bool all_start = true;
       bool all_end = true;
       for (std::size_t k = first; k <= last; ++k) {
@@ -225,7 +239,7 @@ class CorridorPlanner {
       }
       const Member& rm = members_[rep.member];
       const double s = rep.is_start ? rm.lane_start : rm.lane_end;
-      cuts_.push_back({rm.line.point_at(s), rm.line.tangent_at(s), rep.key, rep.member, rep.is_start});
+      cuts_.push_back({rm.line.point_at(s), rm.line.tangent_at(s), rep.key, rep.member, rep.is_start, rep.node});
       for (std::size_t k = first; k <= last; ++k) open[events[k].member] = events[k].is_start;
       first = last + 1;
     }
@@ -244,7 +258,7 @@ class CorridorPlanner {
     for (int j = 1; j < pieces; ++j) {
       const double k = from + (key - from) * j / pieces;
       const double s = members_[ref].s_of_key(k);
-      cuts_.push_back({members_[ref].line.point_at(s), members_[ref].line.tangent_at(s), k, kNoMember, false});
+      cuts_.push_back({members_[ref].line.point_at(s), members_[ref].line.tangent_at(s), k, kNoMember, false, {}});
     }
   }
 
@@ -280,7 +294,9 @@ class CorridorPlanner {
       const double s0 = m->cut_at(seg);
       const double s1 = m->cut_at(seg + 1);
       PlannedLane lane;
-      lane.route_id = m->route->id;
+      lane.route_id = m->info ? m->info->routes.front() : m->route->id;
+      if (m->info) lane.routes = m->info->routes;
+      lane.piece = static_cast<int>(m->index);
       lane.shape = m->line.slice(s0, s1).simplified(settings_.simplify_tolerance);
       lane.speed = lane_speed(*m, s0, s1, notes);
       lanes.emplace_back(0.0, std::move(lane));
@@ -354,7 +370,7 @@ class CorridorPlanner {
   void add_connections(const std::vector<std::ptrdiff_t>& edge_of_segment, NetPlan& out) const {
     const auto lane_of = [&](const PlannedEdge& e, const Member& m) {
       for (std::size_t i = 0; i < e.lanes.size(); ++i)
-        if (e.lanes[i].route_id == m.route->id) return static_cast<int>(i);
+        if (e.lanes[i].piece == static_cast<int>(m.index)) return static_cast<int>(i);
       return -1;
     };
     for (std::size_t c = 1; c + 1 < cuts_.size(); ++c) {
@@ -383,6 +399,7 @@ class CorridorPlanner {
         Member& after = members_[a];
         if (a == b || has_next[b] || has_previous[a] || std::abs(before.lateral - after.lateral) >= kMinLaneSpacing)
           continue;
+        if (!before.end_node(false).empty() || !after.end_node(true).empty()) continue;  // junction ends
         const double end_key = before.key_of(before.last_wp_s());
         const double start_key = after.key_of(after.first_wp_s);
         const double gap = start_key - end_key;
@@ -399,9 +416,12 @@ class CorridorPlanner {
       }
   }
 
-  [[nodiscard]] std::string node_id(std::size_t cut) const { return fmt::format("{}@{}", name_, cut); }
+  [[nodiscard]] std::string node_id(std::size_t cut) const {
+    return cuts_[cut].node.empty() ? fmt::format("{}@{}", name_, cut) : cuts_[cut].node;
+  }
 
   NetPlanSettings settings_;
+  bool info_given_ = false;
   double merge_ = kMaxCutMerge;
   double slack_ = kMaxCutMerge;
   std::vector<Member> members_;
@@ -421,26 +441,17 @@ std::string sumo_safe_id(const std::string& id) {
   return out;
 }
 
-NetPlan plan_net(const WaypointFile& waypoints, const NetPlanSettings& settings) {
-  // A lane cannot close on itself: its two ends would meet in one junction, through which
-  // netconvert then cuts the lane. Say so instead of building a broken net.
-  for (const WaypointRoute& r : waypoints.routes) {
-    const double gap = (r.line.points().back() - r.line.point(0)).norm();
-    if (gap < kMaxLaneSpacing && r.line.length() > 4 * kMaxLaneSpacing)
-      throw MapError(fmt::format("route \"{}\" is a closed loop (its last waypoint is {:.2f} m from its first); "
-                                 "map build does not support loops", r.id, gap));
-  }
-  NetPlan plan;
-  const auto corridors = find_corridors(waypoints, plan.notes);
-  plan.corridors = static_cast<int>(corridors.size());
+void plan_corridors(const WaypointFile& lines, const std::vector<CorridorLine>* info, const NetPlanSettings& settings,
+                    NetPlan& out) {
+  const auto corridors = find_corridors(lines, out.notes);
+  out.corridors += static_cast<int>(corridors.size());
   std::set<std::string> used_names;
-  for (const auto& corridor : corridors) CorridorPlanner(waypoints, corridor, settings).plan(used_names, plan);
+  for (const auto& corridor : corridors) CorridorPlanner(lines, corridor, settings, info).plan(used_names, out);
   // Remarks repeat per stretch of road; keep the first of each.
   std::vector<std::string> unique_notes;
-  for (auto& note : plan.notes)
+  for (auto& note : out.notes)
     if (std::find(unique_notes.begin(), unique_notes.end(), note) == unique_notes.end()) unique_notes.push_back(std::move(note));
-  plan.notes = std::move(unique_notes);
-  return plan;
+  out.notes = std::move(unique_notes);
 }
 
 }  // namespace orch

@@ -21,14 +21,10 @@
 //   lane           SUMO's own: <edge>_<index>, index 0 = rightmost
 //   node           <corridor name>@<k>, k = 0, 1, ... the cuts in driving order
 //
+// Branches, merges, crossings, lanes shared by several routes and closed loops are the
+// junction step's (junction_zones.hpp, junction_pieces.hpp, junction_plan.hpp): it cuts the
+// routes at their junctions and hands the pieces between junctions to this planner.
 // What it does not model, and what happens instead:
-//   - lanes that branch off or merge (exit/entry ramps, tapers): a route whose spacing to
-//     its neighbour drifts by more than 1 m is not "parallel", so it becomes a road of its
-//     own, overlapping the other; vehicles on the two do not see each other;
-//   - routes drawn along the same lane over the same stretch (coincident routes): each gets
-//     a lane of its own, on top of the other (a note names them);
-//   - junctions, turns and crossings between corridors: corridors are never connected;
-//   - closed loops (a route ending where it starts): refused with an error;
 //   - heights: lanes are planar (the file's y is dropped);
 //   - left-hand traffic: lane 0 is always the rightmost lane (SUMO's right-hand default).
 #include <string>
@@ -58,6 +54,8 @@ struct NetPlanSettings {
 
 struct PlannedLane {
   std::string route_id;  // the waypoint route the lane lies under
+  std::vector<std::string> routes;  // every route driving the lane (route_id first); empty = route_id only
+  int piece = -1;        // junction maps: the lane piece it was planned from (junction_pieces.hpp)
   double width = kDefaultLaneWidth;
   double speed = kFallbackLaneSpeed;  // m/s
   Polyline shape;
@@ -73,6 +71,7 @@ struct PlannedNode {
   // and leaves waypoints beside no lane. A shape that touches the lanes only at their ends
   // leaves them exactly as planned.
   std::vector<Vec2> shape;
+  std::string type;  // SUMO junction type ("priority", "traffic_light", ...); empty: netconvert's choice
 };
 
 struct PlannedEdge {
@@ -82,6 +81,7 @@ struct PlannedEdge {
   std::vector<PlannedLane> lanes;  // index 0 = rightmost
   // Centre line of the road: SUMO derives the directions of connections from it.
   std::vector<Vec2> shape;
+  int priority = -1;  // SUMO edge priority at junctions (-1: not written)
 };
 
 struct PlannedConnection {
@@ -89,18 +89,37 @@ struct PlannedConnection {
   std::string to;
   int from_lane = 0;
   int to_lane = 0;
+  std::vector<Vec2> shape;  // through a junction: the route's own points (SUMO's internal lane)
 };
 
 struct NetPlan {
   int corridors = 0;
+  int junctions = 0;
   std::vector<PlannedNode> nodes;
   std::vector<PlannedEdge> edges;  // corridor by corridor, each in driving order
   std::vector<PlannedConnection> connections;
   std::vector<std::string> notes;  // remarks for the user (single routes, fallbacks, ...)
 };
 
+struct JunctionSettings;  // junction_plan.hpp
+
 // Throws MapError when the routes cannot be cut consistently (see the notes in the text).
+// Waypoint files whose routes cross, branch, merge, share lanes or close on themselves get
+// junctions (junction_plan.hpp); the others are planned as corridors only.
 NetPlan plan_net(const WaypointFile& waypoints, const NetPlanSettings& settings);
+NetPlan plan_net(const WaypointFile& waypoints, const NetPlanSettings& settings, const JunctionSettings& junctions);
+
+// What the junction step tells the corridor planner about each of its lines (one per
+// route of `lines`): the routes driving it, and the junctions its ends lie at ("" = a free
+// end, extended by lane_extension).
+struct CorridorLine {
+  std::vector<std::string> routes;
+  std::string start_node;
+  std::string end_node;
+};
+// Plans the corridors of `lines` into `out` (edges, own nodes, connections within corridors).
+void plan_corridors(const WaypointFile& lines, const std::vector<CorridorLine>* info, const NetPlanSettings& settings,
+                    NetPlan& out);
 
 // `id` with the characters SUMO does not accept in ids replaced by '_'.
 std::string sumo_safe_id(const std::string& id);

@@ -1,0 +1,163 @@
+#include "map/junction_pieces.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace orch {
+
+namespace {
+
+constexpr double kContainSample = 2.0;   // m between the samples of the containment test
+constexpr double kContainSlack = 0.5;    // m a contained piece may reach past the other's ends
+constexpr double kContainDistance = 0.5; // m: noise between routes drawn "on the same lane"
+constexpr double kContainCos = 0.94;     // cos 20 deg
+
+// The points of `route` between arc lengths a < b (b may exceed the length of a closed
+// route: the stretch then runs across its closing point), cut exactly at both ends.
+std::vector<WaypointPoint> stretch(const WaypointRoute& route, double a, double b) {
+  const double length = route.line.length();
+  std::vector<WaypointPoint> out;
+  const auto add = [&](double s) {
+    const double w = s > length ? s - length : s;
+    const Vec2 p = route.line.point_at(w);
+    if (!out.empty() && std::hypot(out.back().x - p.x(), out.back().y - p.y()) < 1e-6) return;
+    out.push_back({p.x(), p.y(), 0.0, route.speed_at(w)});
+  };
+  add(a);
+  for (int lap = 0; lap < 2; ++lap)
+    for (std::size_t i = 0; i < route.points.size(); ++i) {
+      const double s = route.line.s_at_index(i) + lap * length;
+      if (s > a + 1e-6 && s < b - 1e-6) add(s);
+    }
+  add(b);
+  return out;
+}
+
+WaypointRoute make_line(std::string id, std::vector<WaypointPoint> pts) {
+  WaypointRoute r;
+  r.id = std::move(id);
+  std::vector<Vec2> xy;
+  for (const auto& p : pts) xy.emplace_back(p.x, p.y);
+  r.points = std::move(pts);
+  r.line = Polyline(std::move(xy));
+  return r;
+}
+
+// Whether piece `inner` lies along piece `outer` over its whole length, same direction.
+bool lies_along(const RoutePiece& inner, const RoutePiece& outer) {
+  const Polyline& a = inner.line.line;
+  const Polyline& b = outer.line.line;
+  const int n = std::max(2, static_cast<int>(std::ceil(a.length() / kContainSample)) + 1);
+  for (int k = 0; k < n; ++k) {
+    const double s = a.length() * k / (n - 1);
+    const Polyline::Projection pr = b.project(a.point_at(s));
+    if (pr.distance > kContainDistance) return false;
+    const Vec2 foot = b.point_at(pr.s);
+    if ((a.point_at(s) - foot).norm() > kContainSlack + kContainDistance) return false;  // beyond b's ends
+    if (a.tangent_at(s).dot(b.tangent_at(pr.s)) < kContainCos) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+JunctionPieces cut_into_pieces(const WaypointFile& wf, const JunctionZones& zones) {
+  JunctionPieces out;
+  for (std::size_t r = 0; r < wf.routes.size(); ++r) {
+    const WaypointRoute& route = wf.routes[r];
+    const auto& ps = zones.passages[r];
+    const double length = route.line.length();
+    if (ps.empty()) {
+      out.pieces.push_back({route, r, {route.id}, -1, -1});
+      continue;
+    }
+    const bool closed = is_closed_route(route);
+    // Pieces between consecutive passages; an open route also before the first and after
+    // the last, a closed one from the last passage round to the first.
+    std::vector<std::pair<double, double>> spans;
+    std::vector<std::pair<int, int>> span_zones;
+    if (!closed && ps.front().s0 > 0) {
+      spans.emplace_back(0.0, ps.front().s0);
+      span_zones.emplace_back(-1, ps.front().zone);
+    }
+    for (std::size_t i = 0; i + 1 < ps.size(); ++i) {
+      spans.emplace_back(ps[i].s1, ps[i + 1].s0);
+      span_zones.emplace_back(ps[i].zone, ps[i + 1].zone);
+    }
+    if (closed) {
+      spans.emplace_back(ps.back().s1, ps.front().s0 + length);
+      span_zones.emplace_back(ps.back().zone, ps.front().zone);
+    } else if (ps.back().s1 < length) {
+      spans.emplace_back(ps.back().s1, length);
+      span_zones.emplace_back(ps.back().zone, -1);
+    }
+    const int first_piece = static_cast<int>(out.pieces.size());
+    for (std::size_t k = 0; k < spans.size(); ++k) {
+      auto [a, b] = spans[k];
+      if (a >= length && closed) {
+        a -= length;
+        b -= length;
+      }
+      RoutePiece piece{make_line(fmt::format("{}.{}", route.id, k), stretch(route, a, b)), r, {route.id},
+                       span_zones[k].first, span_zones[k].second};
+      out.pieces.push_back(std::move(piece));
+    }
+    // Passages with the pieces on either side (a closed route's last piece leads into its first passage).
+    const int pieces_here = static_cast<int>(spans.size());
+    const int lead = (!closed && ps.front().s0 > 0) ? 1 : 0;
+    for (std::size_t i = 0; i < ps.size(); ++i) {
+      JunctionPassage jp{r, ps[i].zone, ps[i].s0, ps[i].s1, -1, -1};
+      const int before = static_cast<int>(i) - 1 + lead;
+      const int after = static_cast<int>(i) + lead;
+      if (closed) {
+        jp.before = first_piece + (before + pieces_here) % pieces_here;
+        jp.after = first_piece + after % pieces_here;
+      } else {
+        jp.before = before >= 0 ? first_piece + before : -1;
+        jp.after = after < pieces_here ? first_piece + after : -1;
+      }
+      out.passages.push_back(jp);
+    }
+  }
+
+  // Fold pieces drawn along another (longer) piece into it: one lane, several routes.
+  std::vector<int> owner(out.pieces.size());
+  for (std::size_t i = 0; i < owner.size(); ++i) owner[i] = static_cast<int>(i);
+  std::vector<std::size_t> order(out.pieces.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    return out.pieces[a].line.line.length() > out.pieces[b].line.line.length();
+  });
+  for (std::size_t oi = 0; oi < order.size(); ++oi) {
+    const std::size_t q = order[oi];
+    for (std::size_t pi = 0; pi < oi; ++pi) {
+      const std::size_t p = order[pi];
+      if (owner[p] != static_cast<int>(p)) continue;
+      if (!lies_along(out.pieces[q], out.pieces[p])) continue;
+      owner[q] = static_cast<int>(p);
+      for (const auto& id : out.pieces[q].routes)
+        if (std::find(out.pieces[p].routes.begin(), out.pieces[p].routes.end(), id) == out.pieces[p].routes.end())
+          out.pieces[p].routes.push_back(id);
+      ++out.merged;
+      break;
+    }
+  }
+  // Renumber: only owners remain.
+  std::vector<int> index(out.pieces.size(), -1);
+  std::vector<RoutePiece> kept;
+  for (std::size_t i = 0; i < out.pieces.size(); ++i)
+    if (owner[i] == static_cast<int>(i)) {
+      index[i] = static_cast<int>(kept.size());
+      kept.push_back(std::move(out.pieces[i]));
+    }
+  for (auto& jp : out.passages) {
+    if (jp.before >= 0) jp.before = index[static_cast<std::size_t>(owner[static_cast<std::size_t>(jp.before)])];
+    if (jp.after >= 0) jp.after = index[static_cast<std::size_t>(owner[static_cast<std::size_t>(jp.after)])];
+  }
+  out.pieces = std::move(kept);
+  return out;
+}
+
+}  // namespace orch

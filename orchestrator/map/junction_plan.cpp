@@ -1,0 +1,245 @@
+#include "map/junction_plan.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+#include "core/errors.hpp"
+#include "map/junction_pieces.hpp"
+#include "map/junction_zones.hpp"
+
+namespace orch {
+
+namespace {
+
+constexpr double kConnectionSimplify = 0.02;  // m, as the lane shapes
+constexpr int kOverridePriority = 100;
+
+std::string junction_id(int zone) { return fmt::format("J{}", zone); }
+
+struct LaneRef {
+  std::size_t edge = 0;
+  int lane = 0;
+};
+
+double cross2(const Vec2& o, const Vec2& a, const Vec2& b) {
+  return (a - o).x() * (b - o).y() - (a - o).y() * (b - o).x();
+}
+
+// Andrew's monotone chain, counter-clockwise, without collinear points.
+std::vector<Vec2> convex_hull(std::vector<Vec2> pts) {
+  std::sort(pts.begin(), pts.end(), [](const Vec2& a, const Vec2& b) {
+    return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y());
+  });
+  if (pts.size() < 3) return pts;
+  std::vector<Vec2> hull(2 * pts.size());
+  std::size_t k = 0;
+  for (const Vec2& p : pts) {
+    while (k >= 2 && cross2(hull[k - 2], hull[k - 1], p) <= 1e-9) --k;
+    hull[k++] = p;
+  }
+  for (std::size_t i = pts.size() - 1, t = k + 1; i-- > 0;) {
+    while (k >= t && cross2(hull[k - 2], hull[k - 1], pts[i]) <= 1e-9) --k;
+    hull[k++] = pts[i];
+  }
+  hull.resize(k - 1);
+  return hull;
+}
+
+// The lane-end corners in the order of their angle around the centre: a polygon whose
+// boundary runs across each lane's end between its two corners, so it touches every lane
+// at its end only (a convex hull would reach over lanes that end further out and make
+// netconvert cut them short).
+std::vector<Vec2> star_polygon(std::vector<Vec2> corners, const Vec2& centre) {
+  std::stable_sort(corners.begin(), corners.end(), [&](const Vec2& a, const Vec2& b) {
+    return std::atan2(a.y() - centre.y(), a.x() - centre.x()) < std::atan2(b.y() - centre.y(), b.x() - centre.x());
+  });
+  return corners;
+}
+
+// The route's points from the lane end `from` to the lane start `to`, around arc lengths
+// [s0, s1] of the passage (s1 may run past the end of a closed route).
+std::vector<Vec2> passage_shape(const WaypointRoute& route, const JunctionPassage& p, const Vec2& from,
+                                const Vec2& to) {
+  const double length = route.line.length();
+  const auto near = [&](const Vec2& q, double hint) {
+    const double w = hint > length ? hint - length : hint;
+    double s = route.line.project_near(q, w, 5.0).s;
+    if (hint > length) s += length;
+    return s;
+  };
+  const double a = near(from, p.s0);
+  double b = near(to, p.s1);
+  if (b < a) b += length;  // across a closed route's first point
+  std::vector<Vec2> pts{from};
+  for (int lap = 0; lap < 2; ++lap)
+    for (std::size_t i = 0; i < route.line.size(); ++i) {
+      const double s = route.line.s_at_index(i) + lap * length;
+      if (s > a + 0.05 && s < b - 0.05) pts.push_back(route.line.point(i));
+    }
+  pts.push_back(to);
+  return Polyline(std::move(pts)).simplified(kConnectionSimplify).points();
+}
+
+class JunctionPlanner {
+ public:
+  JunctionPlanner(const WaypointFile& wf, const JunctionPieces& pieces, int zones, const JunctionSettings& js)
+      : wf_(wf), pieces_(pieces), zones_(zones), settings_(js) {}
+
+  void plan(NetPlan& plan) {
+    index_lanes(plan);
+    connect(plan);
+    add_nodes(plan);
+    apply_overrides(plan);
+    plan.junctions = static_cast<int>(node_of_zone_.size());
+  }
+
+ private:
+  // The first and last SUMO lane of every piece (edges are in driving order per corridor).
+  void index_lanes(const NetPlan& plan) {
+    for (std::size_t e = 0; e < plan.edges.size(); ++e)
+      for (std::size_t l = 0; l < plan.edges[e].lanes.size(); ++l) {
+        const int piece = plan.edges[e].lanes[l].piece;
+        if (piece < 0) continue;
+        first_.try_emplace(piece, LaneRef{e, static_cast<int>(l)});
+        last_[piece] = LaneRef{e, static_cast<int>(l)};
+      }
+  }
+
+  void connect(NetPlan& plan) {
+    std::map<std::tuple<std::string, int, std::string, int>, bool> seen;
+    for (const JunctionPassage& p : pieces_.passages) {
+      const WaypointRoute& route = wf_.routes[p.route];
+      if (p.before < 0 || p.after < 0) {
+        plan.notes.push_back(fmt::format("route \"{}\" {} inside junction {}: its waypoints there lie on no lane",
+                                         route.id, p.before < 0 ? "starts" : "ends", junction_id(p.zone)));
+        continue;
+      }
+      const auto from = last_.find(p.before);
+      const auto to = first_.find(p.after);
+      if (from == last_.end() || to == first_.end()) continue;
+      const PlannedEdge& fe = plan.edges[from->second.edge];
+      const PlannedEdge& te = plan.edges[to->second.edge];
+      const auto key = std::make_tuple(fe.id, from->second.lane, te.id, to->second.lane);
+      if (seen.count(key)) continue;
+      seen[key] = true;
+      const Vec2 a = fe.lanes[static_cast<std::size_t>(from->second.lane)].shape.points().back();
+      const Vec2 b = te.lanes[static_cast<std::size_t>(to->second.lane)].shape.point(0);
+      plan.connections.push_back({fe.id, te.id, from->second.lane, to->second.lane, passage_shape(route, p, a, b)});
+      zone_used_[p.zone] = true;
+    }
+  }
+
+  // One node per zone: at the middle of the lane ends it joins, shaped as their hull.
+  void add_nodes(NetPlan& plan) {
+    for (int z = 0; z < zones_; ++z) {
+      const std::string id = junction_id(z);
+      std::vector<Vec2> corners;
+      Vec2 sum(0, 0);
+      int ends = 0;
+      for (const PlannedEdge& e : plan.edges) {
+        const bool in = e.to == id;
+        const bool out = e.from == id;
+        if (!in && !out) continue;
+        for (const PlannedLane& l : e.lanes) {
+          const Vec2 p = in ? l.shape.points().back() : l.shape.point(0);
+          const Vec2 n = left_normal(l.shape.tangent_at(in ? l.shape.length() : 0.0));
+          corners.push_back(p + l.width / 2 * n);
+          corners.push_back(p - l.width / 2 * n);
+          sum += p;
+          ++ends;
+        }
+      }
+      if (ends == 0) continue;
+      PlannedNode node;
+      node.id = id;
+      node.position = sum / ends;
+      node.shape = star_polygon(corners, node.position);
+      if (convex_hull(corners).size() < 3) {  // lanes meeting end to end in a line: there and back
+        node.shape = corners;
+        node.shape.insert(node.shape.end(), corners.rbegin() + 1, corners.rend());
+      }
+      node.type = "priority";
+      node_of_zone_[z] = plan.nodes.size();
+      plan.nodes.push_back(std::move(node));
+    }
+  }
+
+  void apply_overrides(NetPlan& plan) {
+    for (const JunctionOverride& o : settings_.overrides) {
+      PlannedNode* node = find_node(plan, o);
+      if (!o.type.empty()) node->type = o.type;
+      for (PlannedEdge& e : plan.edges) {
+        if (e.from != node->id && e.to != node->id) continue;
+        for (const PlannedLane& l : e.lanes) {
+          const auto& routes = l.routes.empty() ? std::vector<std::string>{l.route_id} : l.routes;
+          const bool prior = std::any_of(routes.begin(), routes.end(), [&](const std::string& r) {
+            return std::find(o.priority_routes.begin(), o.priority_routes.end(), r) != o.priority_routes.end();
+          });
+          if (prior) e.priority = kOverridePriority + static_cast<int>(e.lanes.size());
+        }
+      }
+    }
+  }
+
+  PlannedNode* find_node(NetPlan& plan, const JunctionOverride& o) const {
+    PlannedNode* best = nullptr;
+    double best_d = kJunctionPickRadius;
+    for (auto& [z, i] : node_of_zone_) {
+      PlannedNode& n = plan.nodes[i];
+      if (!o.id.empty() && n.id == o.id) return &n;
+      if (o.at && (n.position - *o.at).norm() <= best_d) {
+        best_d = (n.position - *o.at).norm();
+        best = &n;
+      }
+    }
+    if (best) return best;
+    if (!o.id.empty()) throw MapError(fmt::format("map.json names junction \"{}\", which the net does not have", o.id));
+    throw MapError(fmt::format("map.json names a junction at ({:.1f}, {:.1f}), but none lies within {:.0f} m",
+                               o.at->x(), o.at->y(), kJunctionPickRadius));
+  }
+
+  const WaypointFile& wf_;
+  const JunctionPieces& pieces_;
+  int zones_;
+  const JunctionSettings& settings_;
+  std::map<int, LaneRef> first_;
+  std::map<int, LaneRef> last_;
+  std::map<int, bool> zone_used_;
+  std::map<int, std::size_t> node_of_zone_;
+};
+
+}  // namespace
+
+NetPlan plan_net(const WaypointFile& waypoints, const NetPlanSettings& settings) {
+  return plan_net(waypoints, settings, JunctionSettings{});
+}
+
+NetPlan plan_net(const WaypointFile& waypoints, const NetPlanSettings& settings, const JunctionSettings& junctions) {
+  NetPlan plan;
+  const JunctionZones zones = find_junction_zones(waypoints);
+  const JunctionPieces pieces = cut_into_pieces(waypoints, zones);
+  if (zones.empty() && pieces.merged == 0) {
+    if (!junctions.overrides.empty()) throw MapError("map.json sets junctions, but the routes form none");
+    plan_corridors(waypoints, nullptr, settings, plan);  // roads only: corridors as they are
+    return plan;
+  }
+  WaypointFile lines;
+  lines.path = waypoints.path;
+  std::vector<CorridorLine> info;
+  for (const RoutePiece& p : pieces.pieces) {
+    lines.routes.push_back(p.line);
+    info.push_back({p.routes, p.from_zone >= 0 ? junction_id(p.from_zone) : "",
+                    p.to_zone >= 0 ? junction_id(p.to_zone) : ""});
+  }
+  plan_corridors(lines, &info, settings, plan);
+  JunctionPlanner(waypoints, pieces, zones.count, junctions).plan(plan);
+  if (pieces.merged > 0)
+    plan.notes.push_back(fmt::format("{} stretches of routes drawn along another route's lane share its lane",
+                                     pieces.merged));
+  return plan;
+}
+
+}  // namespace orch

@@ -1,0 +1,41 @@
+#pragma once
+// The junction step of `map build`, part 1: where the net needs SUMO junctions. Wherever a
+// waypoint route comes closer than a lane width to another route (or to itself, further
+// along) at an angle, or drifts apart from a route it shared a lane with (a branch) or onto
+// one (a merge), both routes are "in a junction" there. Each route gets passages: stretches
+// of its line inside a junction, with a margin so that the lanes end before the routes
+// touch. Passages that touch each other's conflicts form one zone, which becomes one SUMO
+// junction. Lanes that must end together (one lane driven by several routes, neighbouring
+// lanes of one road) get aligned passage ends. Between passages lie the pieces that become
+// ordinary lanes (junction_pieces.hpp).
+#include <vector>
+
+#include "map/waypoint_file.hpp"
+
+namespace orch {
+
+inline constexpr double kSameLaneDistance = 0.35;  // m; closer and aligned: one lane
+inline constexpr double kConflictReach = 3.5;      // m; closer at an angle: a junction
+inline constexpr double kZoneMargin = 1.5;         // m of a passage before/after each conflict
+inline constexpr double kMinPieceLength = 6.0;     // m; shorter stretches between passages join them
+
+// A stretch of one route inside a junction, [s0, s1] in arc length along the route's line.
+// On a closed route a passage across the closing point has s1 > length (it wraps).
+struct Passage {
+  double s0 = 0;
+  double s1 = 0;
+  int zone = -1;  // 0.. in the order zones are first met (route by route, along each route)
+};
+
+struct JunctionZones {
+  std::vector<std::vector<Passage>> passages;  // per route (file order), sorted by s0
+  int count = 0;
+  [[nodiscard]] bool empty() const { return count == 0; }
+};
+
+// A route is closed when its last waypoint lies on its first one.
+bool is_closed_route(const WaypointRoute& route);
+
+JunctionZones find_junction_zones(const WaypointFile& waypoints);
+
+}  // namespace orch
