@@ -7,8 +7,9 @@ branch, merge, overlap in the middle, cross, close on themselves and pass a plac
 Routes are drawn the way RoadEditor users draw them: points 0.5-1 m apart, and routes meant
 to be "the same lane" a few centimetres apart (a fixed offset plus seeded noise).
 
-Usage: scripts/urban_waypoints.py OUT_DIR   (writes urban.waypoint.json and the pattern
-fixtures crossing.waypoint.json, branch_merge.waypoint.json, loop.waypoint.json)
+Usage: scripts/urban_waypoints.py map OUT_DIR        writes urban.waypoint.json (sumo_nets/urban)
+       scripts/urban_waypoints.py fixtures OUT_DIR   writes the single-pattern files the tests
+              use: crossing.waypoint.json, branch_merge.waypoint.json, loop.waypoint.json
 Deterministic: the same script writes the same bytes."""
 import json
 import math
@@ -172,14 +173,16 @@ def write(path, map_id, routes):
 
 
 def main():
-    if len(sys.argv) != 2:
+    if len(sys.argv) != 3 or sys.argv[1] not in ("map", "fixtures"):
         sys.exit(__doc__)
-    out = Path(sys.argv[1])
+    out = Path(sys.argv[2])
     out.mkdir(parents=True, exist_ok=True)
-    write(out / "urban.waypoint.json", "Urban.Grid", urban_routes())
-    write(out / "crossing.waypoint.json", "Crossing", crossing_routes())
-    write(out / "branch_merge.waypoint.json", "BranchMerge", branch_merge_routes())
-    write(out / "loop.waypoint.json", "Loop", loop_routes())
+    if sys.argv[1] == "map":
+        write(out / "urban.waypoint.json", "Urban.Grid", urban_routes())
+    else:
+        write(out / "crossing.waypoint.json", "Crossing", crossing_routes())
+        write(out / "branch_merge.waypoint.json", "BranchMerge", branch_merge_routes())
+        write(out / "loop.waypoint.json", "Loop", loop_routes())
 
 
 if __name__ == "__main__":

@@ -58,6 +58,7 @@ StepOutput Engine::step(const WorldSnapshot& snapshot) {
       fail(fmt::format("actor {} is no longer in the simulation (SUMO removed it)", a.id), t, out);
       return out;
     }
+    check_placement(a, t, out);
     // SUMO derives a placed vehicle's speed from the distance it was moved; the scenario's
     // own value is exact, and conditions must see exactly what the scenario commanded.
     a.speed = it->second.speed();
@@ -152,6 +153,9 @@ void Engine::move_scripted_actors(double t, StepOutput& out) {
     motion.advance(t, options_.step);
     const ActorSlot* slot = actors_.find(id);
     out.commands.push_back(pose_command(*slot, motion));
+    const auto& pose = std::get<SetPose>(out.commands.back());
+    if (pose.centred) placed_on_[id] = {pose.edge, pose.lane};
+    else placed_on_.erase(id);
     if (motion.running_out_of_road() && !reported_route_end_[id]) {
       reported_route_end_[id] = true;
       out.events.push_back({t + options_.step, EventKind::Warning,
@@ -159,6 +163,19 @@ void Engine::move_scripted_actors(double t, StepOutput& out) {
                                         id, motion.route().id)});
     }
   }
+}
+
+// A scripted vehicle centred on its route's lane must be where it was put: on a junction's
+// interior SUMO could match it to a crossing lane, and then it would be in the wrong
+// vehicles' way. Said once per actor and lane.
+void Engine::check_placement(const ActorState& a, double t, StepOutput& out) {
+  const auto it = placed_on_.find(a.id);
+  if (it == placed_on_.end() || (a.edge == it->second.first && a.lane == it->second.second)) return;
+  const std::string key = fmt::format("{}:{}_{}", a.id, it->second.first, it->second.second);
+  if (!misplaced_.insert(key).second) return;
+  out.events.push_back({t, EventKind::Warning,
+                        fmt::format("SUMO placed actor {} on lane {}_{} instead of its route's lane {}_{}", a.id,
+                                    a.edge, a.lane, it->second.first, it->second.second)});
 }
 
 SetPose Engine::pose_command(const ActorSlot& slot, const ScriptedMotion& m) const {
@@ -171,10 +188,15 @@ SetPose Engine::pose_command(const ActorSlot& slot, const ScriptedMotion& m) con
   p.speed = m.speed();
   if (auto it = signals_.find(slot.spec.id); it != signals_.end()) p.signals = it->second;
   if (!m.walking()) {
-    const LanePlace place = map_.lanes.place_on_route(m.route(), m.s(), m.route_lateral());
+    // SUMO places a vehicle by its front bumper and matches the lane named by the hint to
+    // the front's position: name the lane under the front, or on a short lane inside a
+    // junction SUMO would pick a crossing lane of its own choosing.
+    const double front_s = m.s() + m.direction() * slot.tracked.length / 2;
+    const LanePlace place = map_.lanes.place_on_route(m.route(), front_s, m.route_lateral());
     if (place.lane >= 0) {
       p.edge = map_.lanes.lane(place.lane).edge;
       p.lane = map_.lanes.lane(place.lane).index;
+      p.centred = std::abs(place.lateral) < kCentredOnLane;
     }
   } else if (const auto place = map_.lanes.locate(p.position, p.heading)) {
     p.edge = map_.lanes.lane(place->lane).edge;

@@ -9,6 +9,7 @@
 // first step, when SUMO inserts every actor.
 #include <map>
 #include <optional>
+#include <set>
 #include <string>
 #include <variant>
 #include <vector>
@@ -110,6 +111,7 @@ class Engine {
   void move_scripted_actors(double t, StepOutput& out);
   void resolve_longitudinal(ActorId id, ScriptedMotion& m);
   void update_ego(StepOutput& out);
+  void check_placement(const ActorState& a, double t, StepOutput& out);
   [[nodiscard]] SetPose pose_command(const ActorSlot& slot, const ScriptedMotion& m) const;
   [[nodiscard]] const WaypointRoute* route_of(ActorId id) const;
   [[nodiscard]] bool collided(ActorId id) const;
@@ -140,6 +142,9 @@ class Engine {
   RunState state_ = RunState::Running;
   std::string end_reason_;
   std::map<ActorId, bool> reported_route_end_;
+  std::map<ActorId, std::pair<std::string, int>> placed_on_;  // lane of the last pose, when centred on it
+  std::set<std::string> misplaced_;                            // placements already reported
+  static constexpr double kCentredOnLane = 0.5;                // m from the lane centre
 };
 
 }  // namespace orch::engine

@@ -47,15 +47,17 @@ void Engine::spawn_ego(StepOutput& out) {
     const WaypointRoute& end_route = route_named(map_.waypoints, o.end->wp_id, o.end->where);
     const double idx = std::min(o.end->wp_idx, end_route.last_index());
     const Vec2 end_point = end_route.line.point_at(end_route.s_of(idx));
-    // The ego drives its own route; an end on another route means the point beside it.
-    end_s = ego_route_->line.project(end_point).s;
+    // The ego drives its own route; an end on another route means the point beside it (on
+    // its own route the waypoint itself: a loop passes the point's place more than once).
+    end_s = &end_route == ego_route_ ? end_route.s_of(idx) : ego_route_->line.project(end_point).s;
   }
   if (end_s <= ego_s_) {
     out.events.push_back({0, EventKind::Warning, "the ego's end_position is not ahead of its start: it stays where it starts"});
     end_s = ego_s_;
   }
   const ActorSlot& slot = *actors_.find(scenario_.ego.id);
-  const LanePlace place = map_.lanes.place_on_route(*ego_route_, ego_s_, o.start.wp_offset);
+  // Inside a junction SUMO cannot insert it: it starts where the next lane begins.
+  const LanePlace place = map_.lanes.normal_place_on_route(*ego_route_, ego_s_, o.start.wp_offset, true);
   if (place.lane < 0) throw MapError("the ego's start position is not on any lane of the map");
   SpawnVehicle spawn;
   spawn.actor = slot.tracked;
@@ -88,7 +90,8 @@ void Engine::spawn_ego(StepOutput& out) {
   }
 
   if (options_.external_ego) return;
-  const LanePlace end_place = map_.lanes.place_on_route(*ego_route_, end_s, 0.0);
+  // An end inside a junction: it stops before the junction (SUMO stops on normal lanes only).
+  const LanePlace end_place = map_.lanes.normal_place_on_route(*ego_route_, end_s, 0.0, false);
   out.commands.push_back(SetStop{"ego", map_.lanes.lane(end_place.lane).edge, map_.lanes.lane(end_place.lane).index,
                                  end_place.lane_pos, slot.tracked.length});
 }
@@ -174,7 +177,9 @@ StepOutput Engine::start() {
     const auto& pose = std::get<SetPose>(cmd);
     const ActorSlot& slot = *actors_.find_sumo(pose.sumo_id);
     const ScriptedMotion& m = motions_.at(slot.spec.id);
-    const LanePlace place = map_.lanes.place_on_route(m.route(), m.s(), m.route_lateral());
+    // Inserted on a normal lane (SUMO cannot insert inside a junction); the pose command right
+    // after puts it where the scenario says.
+    const LanePlace place = map_.lanes.normal_place_on_route(m.route(), m.s(), m.route_lateral(), true);
     if (place.lane < 0) throw MapError(fmt::format("actor {} does not start on a lane of the map", slot.spec.id));
     const LaneInfo& lane = map_.lanes.lane(place.lane);
     if (slot.tracked.kind == ActorKind::Pedestrian) {

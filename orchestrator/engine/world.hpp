@@ -111,6 +111,7 @@ struct SetPose {
   int lane = 0;
   int signals = 0;   // SUMO forgets signals of vehicles it does not drive: sent with every pose
   bool scripted = true;  // false: a one-off placement of a SUMO-driven vehicle (speed left to SUMO)
+  bool centred = false;  // within half a metre of the lane's centre: SUMO must put it on that lane
 };
 struct SetSignals {
   std::string sumo_id;

@@ -266,6 +266,21 @@ int LaneMap::visit_at(const WaypointRoute& route, const RouteLanes& rl, double s
   return here.lane == rl.lanes[static_cast<std::size_t>(rl.visits[hi])] ? rl.visits[hi] : rl.visits[lo];
 }
 
+LanePlace LaneMap::normal_place_on_route(const WaypointRoute& route, double s, double lateral, bool forward) const {
+  LanePlace place = place_on_route(route, s, lateral);
+  if (place.lane < 0 || !lanes_[static_cast<std::size_t>(place.lane)].internal) return place;
+  const RouteLanes& rl = route_or_throw(route);
+  for (int v = visit_at(route, rl, s); v >= 0 && v < static_cast<int>(rl.lanes.size()); v += forward ? 1 : -1) {
+    const int lane = rl.lanes[static_cast<std::size_t>(v)];
+    const LaneInfo& info = lanes_[static_cast<std::size_t>(lane)];
+    if (info.internal) continue;
+    place.lane = lane;
+    place.lane_pos = forward ? std::min(0.1, info.length) : std::max(0.0, info.length - 0.1);
+    return place;
+  }
+  return place;
+}
+
 std::vector<std::string> LaneMap::route_edges(const WaypointRoute& route, double s0, double s1) const {
   const RouteLanes& rl = route_or_throw(route);
   auto first = visit_at(route, rl, s0);

@@ -63,6 +63,11 @@ class LaneMap {
   // straight (the lanes reach lane_extension past the end waypoints). Throws MapError for a
   // route this map does not know.
   [[nodiscard]] LanePlace place_on_route(const WaypointRoute& route, double s, double lateral) const;
+  // place_on_route moved off a junction interior (SUMO inserts and stops vehicles on normal
+  // lanes only): to the start of the next normal lane along the route (forward) or the end
+  // of the previous one. Unchanged when it already lies on a normal lane.
+  [[nodiscard]] LanePlace normal_place_on_route(const WaypointRoute& route, double s, double lateral,
+                                                bool forward) const;
   // Nearest lane whose direction is within 90 degrees of `heading`; nullopt if none within
   // `max_distance` metres.
   [[nodiscard]] std::optional<LanePlace> locate(const Vec2& p, double heading, double max_distance = 10.0) const;
