@@ -120,4 +120,9 @@ std::vector<Contact> CollisionMonitor::step(const WorldSnapshot& snap) {
   return started;
 }
 
+bool CollisionMonitor::touching(ActorId a, ActorId b) const {
+  // Actors are always seen, so the own geometry test decides for them (as for touching(id)).
+  return active_.count(ordered(std::to_string(a), std::to_string(b))) > 0;
+}
+
 }  // namespace orch::engine

@@ -51,6 +51,8 @@ class CollisionMonitor {
   std::vector<Contact> step(const WorldSnapshot& snap);
   // Actor ids in contact with anything on the last tested step (counted evidence only).
   [[nodiscard]] bool touching(ActorId id) const { return touching_.count(std::to_string(id)) > 0; }
+  // The two actors' bodies in contact on the last tested step.
+  [[nodiscard]] bool touching(ActorId a, ActorId b) const;
   [[nodiscard]] const std::vector<Contact>& all() const { return all_; }
 
  private:

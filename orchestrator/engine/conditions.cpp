@@ -97,7 +97,11 @@ std::optional<double> distance_measure(const DistanceCondition& c, const WorldSn
   } else {
     const WaypointRoute* route = ctx.route_of(c.actor);
     if (!route) return std::nullopt;
-    gap = direction(ctx, c.actor) * along_road(*route, a->position, t->position);
+    // A target on a route that crosses or joins the actor's: measured through the conflict point.
+    const WaypointRoute* other = ctx.route_of(c.target);
+    std::optional<double> through_conflict;
+    if (other && ctx.meetings) through_conflict = conflict_point_gap(*route, a->position, *other, t->position, *ctx.meetings);
+    gap = through_conflict ? *through_conflict : direction(ctx, c.actor) * along_road(*route, a->position, t->position);
   }
   if (c.measure == MeasureType::Surface) {
     const double halves = half_length(ctx.actors, c.actor) + half_length(ctx.actors, c.target);
@@ -141,6 +145,10 @@ ConditionOutcome time_headway(const TimeHeadwayCondition& c, const ConditionCont
 }
 
 ConditionOutcome collision(const CollisionCondition& c, const ConditionContext& ctx) {
+  if (c.target) {
+    const bool hit = ctx.collided_with && ctx.collided_with(c.actor, *c.target);
+    return {hit, fmt::format("actor {} collided with actor {}", c.actor, *c.target)};
+  }
   const bool hit = ctx.collided && ctx.collided(c.actor);
   return {hit, fmt::format("actor {} collided", c.actor)};
 }

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "engine/actor_table.hpp"
+#include "engine/route_crossing.hpp"
 #include "engine/world.hpp"
 #include "map/waypoint_file.hpp"
 #include "scenario/model.hpp"
@@ -34,6 +35,10 @@ struct ConditionContext {
   // +1 when the actor drives its route as drawn, -1 against it (in a lane of the opposite
   // side); empty = always +1.
   std::function<int(ActorId)> direction_of;
+  // True when the two actors' bodies touched during the last step (collision target_actor_id).
+  std::function<bool(ActorId, ActorId)> collided_with;
+  // Where routes without a common path meet (route_crossing.hpp); null: not measured.
+  RouteMeetings* meetings = nullptr;
 };
 
 struct ConditionOutcome {

@@ -94,7 +94,8 @@ StepOutput Engine::step(const WorldSnapshot& snapshot) {
                        [this](ActorId id) {
                          auto it = motions_.find(id);
                          return it == motions_.end() ? 1 : it->second.direction();
-                       }};
+                       },
+                       [this](ActorId a, ActorId b) { return collisions_.touching(a, b); }, &meetings_};
   std::vector<std::string> fired;
   const auto transition = machine_.step(t, [&](const Scene& scene) {
     fired.clear();

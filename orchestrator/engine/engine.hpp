@@ -18,6 +18,7 @@
 #include "engine/collision.hpp"
 #include "engine/lane_change_conflicts.hpp"
 #include "engine/motion.hpp"
+#include "engine/route_crossing.hpp"
 #include "engine/scene_machine.hpp"
 #include "engine/world.hpp"
 #include "map/lane_map.hpp"
@@ -144,6 +145,7 @@ class Engine {
   std::map<ActorId, bool> reported_route_end_;
   std::map<ActorId, std::pair<std::string, int>> placed_on_;  // lane of the last pose, when centred on it
   std::set<std::string> misplaced_;                            // placements already reported
+  RouteMeetings meetings_;                                     // where routes without a common path meet
   static constexpr double kCentredOnLane = 0.5;                // m from the lane centre
 };
 

@@ -55,7 +55,10 @@ void Engine::resolve_longitudinal(ActorId id, ScriptedMotion& m) {
   const auto& gap = std::get<KeepGap>(it->second).action;
   const ActorState* target = current_.find(gap.target);
   if (!target || !target->present) return;
+  // + = the actor ahead of its target; through the conflict point when their routes only cross.
   double now_gap = m.direction() * along_road(m.route(), target->position, m.position());
+  if (const WaypointRoute* other = route_of(gap.target))
+    if (const auto g = conflict_point_gap(m.route(), m.position(), *other, target->position, meetings_)) now_gap = -*g;
   if (gap.measure == MeasureType::Surface) {
     const double halves = (actors_.find(id)->model.length + actors_.find(gap.target)->model.length) / 2;
     now_gap += now_gap >= 0 ? -halves : halves;

@@ -71,8 +71,9 @@ std::optional<ConditionKind> read_time_headway(LoadContext&, ObjectReader& r) {
 
 std::optional<ConditionKind> read_collision(LoadContext&, ObjectReader& r) {
   const auto actor = r.integer("actor_id", Need::Required);
+  const auto target = r.integer("target_actor_id", Need::Optional);
   if (!actor) return std::nullopt;
-  return CollisionCondition{*actor};
+  return CollisionCondition{*actor, target};
 }
 
 std::optional<ConditionKind> read_simulation_time(LoadContext&, ObjectReader& r) {

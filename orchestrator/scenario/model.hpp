@@ -71,6 +71,9 @@ struct TimeHeadwayCondition {
 };
 struct CollisionCondition {
   ActorId actor = 0;
+  // Real files write it (the reference implementation ignores every key of "collision"):
+  // then only a contact of `actor` with this actor counts.
+  std::optional<ActorId> target;
 };
 struct SimulationTimeCondition {
   Comparison comparison = Comparison::GreaterEqual;

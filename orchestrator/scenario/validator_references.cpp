@@ -121,6 +121,11 @@ void check_condition(CheckContext& ctx, const Condition& c) {
           check_waypoint(ctx, k.waypoint, WaypointUse::Target);
         } else if constexpr (std::is_same_v<T, CollisionCondition>) {
           check_actor_ref(ctx, k.actor, where, "actor_id");
+          if (k.target) {
+            check_actor_ref(ctx, *k.target, where, "target_actor_id");
+            if (*k.target == k.actor)
+              ctx.diags.error(where, fmt::format("collision condition of actor {} with itself", k.actor));
+          }
         }
       },
       c.kind);
