@@ -84,6 +84,11 @@ class WorldReader {
     const std::vector<int> vars = {tc::VAR_TIME, tc::VAR_DEPARTED_VEHICLES_IDS, tc::VAR_ARRIVED_VEHICLES_NUMBER,
                                    tc::VAR_COLLIDING_VEHICLES_NUMBER};
     sumo::Simulation::subscribe(vars);
+    edges_.clear();
+    for (const auto& e : sumo::Edge::getIDList())
+      if (e.empty() || e.front() != ':') edges_.push_back(e);
+    next_wait_count_ = 0;
+    long_waiting_ = 0;
   }
 
   [[nodiscard]] double time() const { return time_; }
@@ -127,6 +132,11 @@ class WorldReader {
       if (a.kind != ActorKind::Pedestrian && snap.actors.back().present) ++vehicles_present;
     }
     snap.other_vehicles = static_cast<int>(running_) - vehicles_present;
+    if (time_ >= next_wait_count_ - 1e-9) {  // once a simulated second
+      long_waiting_ = count_long_waiting();
+      next_wait_count_ = std::floor(time_ + 1e-9) + 1.0;
+    }
+    snap.long_waiting = long_waiting_;
     read_nearby(actors, snap);
     if (colliding_ > 0)
       for (const auto& c : sumo::Simulation::getCollisions())
@@ -135,6 +145,18 @@ class WorldReader {
   }
 
  private:
+  // Vehicles standing for longer than kLongWait: only the edges with halting vehicles are
+  // looked into, so the cost follows the queues, not the traffic.
+  int count_long_waiting() {
+    int n = 0;
+    for (const auto& e : edges_) {
+      if (sumo::Edge::getLastStepHaltingNumber(e) == 0) continue;
+      for (const auto& v : sumo::Edge::getLastStepVehicleIDs(e))
+        if (sumo::Vehicle::getWaitingTime(v) > engine::kLongWait) ++n;
+    }
+    return n;
+  }
+
   // Subscribes to an actor that SUMO has just inserted; its results are there at once.
   void follow(const std::string& id, bool person) {
     static const std::vector<int> vehicle_vars = {tc::VAR_POSITION,     tc::VAR_ANGLE,        tc::VAR_SPEED,
@@ -227,6 +249,9 @@ class WorldReader {
   std::unordered_map<std::string, bool> followed_;         // subscribed actors: true = person
   std::vector<std::string> pending_persons_;               // scenario pedestrians not yet departed
   long long running_ = 0;                                  // SUMO vehicles on the road
+  std::vector<std::string> edges_;                         // normal edges of the net
+  double next_wait_count_ = 0;                             // s: when long waits are counted next
+  int long_waiting_ = 0;
   int colliding_ = 0;                                      // vehicles in a collision in the last step
   double time_ = 0;
 };

@@ -64,12 +64,17 @@ struct NearbyVehicle {
   double width = 0;
 };
 
+inline constexpr double kLongWait = 60.0;  // s
+
 struct WorldSnapshot {
   double time = 0;
   std::vector<ActorState> actors;  // same order as the tracked actors
   std::vector<SimCollision> collisions;
   std::vector<NearbyVehicle> nearby;  // background vehicles close to any actor
   int other_vehicles = 0;  // SUMO vehicles that are not scenario actors
+  // Vehicles standing still for more than kLongWait seconds (a junction that does not
+  // clear), counted once a simulated second; the last count in between.
+  int long_waiting = 0;
 
   [[nodiscard]] const ActorState* find(ActorId id) const {
     for (const auto& a : actors)

@@ -16,6 +16,7 @@ namespace {
 
 constexpr double kConnectionSimplify = 0.02;  // m, as the lane shapes
 constexpr int kOverridePriority = 100;
+constexpr double kParallelCos = 0.9848;  // cos 10 deg
 
 std::string junction_id(int zone) { return fmt::format("J{}", zone); }
 
@@ -81,6 +82,27 @@ std::vector<Vec2> passage_shape(const WaypointRoute& route, const JunctionPassag
     }
   pts.push_back(to);
   return Polyline(std::move(pts)).simplified(kConnectionSimplify).points();
+}
+
+// How far a free lane end may be extended straight (up to `wanted`) before the extension
+// comes within a lane width of another route at an angle: a lane reaching into another
+// road would put SUMO's vehicles on it on top of that road's.
+double free_extension(const WaypointFile& wf, const RoutePiece& piece, bool start, double wanted) {
+  const Polyline& line = piece.line.line;
+  const Vec2 end = start ? line.point(0) : line.points().back();
+  const double chord = std::min(2.0, line.length());
+  const Vec2 dir = start ? Vec2((line.point(0) - line.point_at(chord)).normalized())
+                         : Vec2((end - line.point_at(line.length() - chord)).normalized());
+  for (double d = 1.0; d <= wanted + 1e-9; d += 1.0) {
+    const Vec2 p = end + d * dir;
+    for (const WaypointRoute& r : wf.routes) {
+      const Polyline::Projection pr = r.line.project(p);
+      if (pr.distance >= kConflictReach || pr.before_start || pr.after_end) continue;
+      if (std::abs(r.line.tangent_at(pr.s).dot(dir)) > kParallelCos) continue;  // beside it: a neighbour
+      return std::max(0.0, d - 1.0);
+    }
+  }
+  return wanted;
 }
 
 class JunctionPlanner {
@@ -232,7 +254,9 @@ NetPlan plan_net(const WaypointFile& waypoints, const NetPlanSettings& settings,
   for (const RoutePiece& p : pieces.pieces) {
     lines.routes.push_back(p.line);
     info.push_back({p.routes, p.from_zone >= 0 ? junction_id(p.from_zone) : "",
-                    p.to_zone >= 0 ? junction_id(p.to_zone) : ""});
+                    p.to_zone >= 0 ? junction_id(p.to_zone) : "",
+                    p.from_zone >= 0 ? -1.0 : free_extension(waypoints, p, true, settings.lane_extension),
+                    p.to_zone >= 0 ? -1.0 : free_extension(waypoints, p, false, settings.lane_extension)});
   }
   plan_corridors(lines, &info, settings, plan);
   JunctionPlanner(waypoints, pieces, zones.count, junctions).plan(plan);

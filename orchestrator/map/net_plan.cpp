@@ -140,8 +140,13 @@ class CorridorPlanner {
       std::tie(m.line, m.first_wp_s) = extend_straight(m.route->line, ext, ext);
       if (info) m.info = &(*info)[i];
       // A lane that ends at a junction ends exactly there: the junction's internal lanes go on.
-      m.lane_start = m.first_wp_s - (m.end_node(true).empty() ? st.lane_extension : 0.0);
-      m.lane_end = m.first_wp_s + m.route->line.length() + (m.end_node(false).empty() ? st.lane_extension : 0.0);
+      const auto reach = [&](bool start) {
+        if (!m.end_node(start).empty()) return 0.0;
+        const double limit = m.info ? (start ? m.info->start_extension : m.info->end_extension) : -1.0;
+        return limit < 0 ? st.lane_extension : std::min(limit, st.lane_extension);
+      };
+      m.lane_start = m.first_wp_s - reach(true);
+      m.lane_end = m.first_wp_s + m.route->line.length() + reach(false);
       members_.push_back(std::move(m));
     }
   }
@@ -378,11 +383,11 @@ class CorridorPlanner {
       const PlannedEdge& from = out.edges[static_cast<std::size_t>(edge_of_segment[c - 1])];
       const PlannedEdge& to = out.edges[static_cast<std::size_t>(edge_of_segment[c])];
       for (const Member& m : members_)
-        if (m.active_in(c - 1) && m.active_in(c)) out.connections.push_back({from.id, to.id, lane_of(from, m), lane_of(to, m)});
+        if (m.active_in(c - 1) && m.active_in(c)) out.connections.push_back({from.id, to.id, lane_of(from, m), lane_of(to, m), {}});
       for (const auto& [before, after] : continuations_) {
         const Member& b = members_[before];
         const Member& a = members_[after];
-        if (b.end_cut == c && a.start_cut == c) out.connections.push_back({from.id, to.id, lane_of(from, b), lane_of(to, a)});
+        if (b.end_cut == c && a.start_cut == c) out.connections.push_back({from.id, to.id, lane_of(from, b), lane_of(to, a), {}});
       }
     }
   }

@@ -116,6 +116,10 @@ struct CorridorLine {
   std::vector<std::string> routes;
   std::string start_node;
   std::string end_node;
+  // Free ends: how far the lane may reach beyond them (< 0: lane_extension). Shorter where
+  // the straight extension would run into another road.
+  double start_extension = -1;
+  double end_extension = -1;
 };
 // Plans the corridors of `lines` into `out` (edges, own nodes, connections within corridors).
 void plan_corridors(const WaypointFile& lines, const std::vector<CorridorLine>* info, const NetPlanSettings& settings,

@@ -18,6 +18,10 @@ std::vector<std::string> sumo_arguments(const SimulatorConfig& c) {
       "--collision.check-junctions", "true",
       "--collision.mingap-factor", "0",
       "--time-to-teleport", "-1",
+      // A vehicle standing inside a junction for this long no longer blocks the vehicles
+      // with right of way behind it: dense traffic cannot lock a junction up for good
+      // (counts.csv counts vehicles standing longer than 60 s).
+      "--ignore-junction-blocker", "20",
       "--no-step-log", "true",
       "--duration-log.disable", "true",
   };

@@ -26,7 +26,7 @@ TrafficTrace::~TrafficTrace() {
 }
 
 void TrafficTrace::record(const engine::WorldSnapshot& snap) {
-  fmt::print(counts_, "{:.3f},{},{}\n", snap.time, snap.other_vehicles, snap.nearby.size());
+  fmt::print(counts_, "{:.3f},{},{},{}\n", snap.time, snap.other_vehicles, snap.nearby.size(), snap.long_waiting);
   if (background_) {
     for (const auto& v : snap.nearby) {
       fmt::print(background_, "{:.3f},{},{:.3f},{:.3f},{:.4f},{:.3f},{:.3f},{:.3f}\n", snap.time, v.sumo_id,

@@ -16,7 +16,7 @@ namespace orch {
 
 class TrafficTrace {
  public:
-  static constexpr const char* kCountsHeader = "time,background_vehicles,nearby_vehicles";
+  static constexpr const char* kCountsHeader = "time,background_vehicles,nearby_vehicles,waiting_over_60s";
   static constexpr const char* kBackgroundHeader = "time,vehicle_id,x,y,heading,speed,length,width";
 
   TrafficTrace(const std::filesystem::path& dir, bool background_rows);
