@@ -1,0 +1,134 @@
+// The urban samples (scenarios/urban_*.json on sumo_nets/urban, a map with junctions) run
+// through the CLI on both backends: each reaches its ending scene, the traces are
+// byte-identical, the scripted actors stay on their routes' lanes through the junctions,
+// and SUMO's drivers keep the right of way rules towards them.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <set>
+
+#include "support/cli_runner.hpp"
+#include "support/trace_csv.hpp"
+
+using namespace orch::test;
+
+namespace {
+
+double distance(const Trace::Row& a, const Trace::Row& b) {
+  return std::hypot(a.num("x") - b.num("x"), a.num("y") - b.num("y"));
+}
+
+std::set<std::string> edges_of(const std::vector<Trace::Row>& rows) {
+  std::set<std::string> out;
+  for (const auto& r : rows) out.insert(r.str("edge"));
+  return out;
+}
+
+bool drives_through(const std::vector<Trace::Row>& rows, const std::string& junction) {
+  for (const auto& e : edges_of(rows))
+    if (e.rfind(":" + junction + "_", 0) == 0) return true;
+  return false;
+}
+
+struct UrbanRun {
+  TempDir out{"urban"};
+  CliResult cli;
+  nlohmann::json result;
+  UrbanRun(const std::string& sample, std::vector<std::string> extra = {}) {
+    cli = run_scenario(source_path("scenarios/" + sample), out, std::move(extra));
+    result = read_json(out / "result.json");
+  }
+};
+
+}  // namespace
+
+class UrbanSamples : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(UrbanSamples, ReachTheEndingSceneWithIdenticalTracesOnBothBackends) {
+  UrbanRun libsumo(GetParam());
+  UrbanRun traci(GetParam(), {"--backend", "traci"});
+  ASSERT_EQ(libsumo.cli.exit_code, 0) << libsumo.cli.output;
+  EXPECT_EQ(libsumo.result["verdict"], "success");
+  ASSERT_EQ(traci.cli.exit_code, 0) << traci.cli.output;
+  EXPECT_EQ(slurp(libsumo.out / "trace.csv"), slurp(traci.out / "trace.csv"));
+  EXPECT_EQ(slurp(libsumo.out / "counts.csv"), slurp(traci.out / "counts.csv"));
+  // Scripted vehicles were where the scenario put them on every step, junctions included.
+  EXPECT_EQ(slurp(libsumo.out / "run.log").find("SUMO placed actor"), std::string::npos);
+  EXPECT_TRUE(libsumo.result["collisions"].empty() ||
+              libsumo.result["collisions"][0]["counted"] == false) << libsumo.result["collisions"].dump();
+}
+
+INSTANTIATE_TEST_SUITE_P(All, UrbanSamples,
+                         ::testing::Values("urban_blind_corner.json", "urban_left_turn.json",
+                                           "urban_pedestrian_junction.json", "urban_loop_follow.json"));
+
+TEST(UrbanBehaviour, TheEgoWaitsForTheCarWithPriorityBeforeItTurnsAcrossItsPath) {
+  UrbanRun run("urban_blind_corner.json");
+  ASSERT_EQ(run.cli.exit_code, 0) << run.cli.output;
+  Trace trace(run.out / "trace.csv");
+  const auto ego = trace.actor(0);
+  const auto car = trace.actor(1);
+  ASSERT_EQ(ego.size(), car.size());
+  // The ego comes to a stop while the car is still east of the side street, and only
+  // crosses the westbound lane (y > 0) once the car is past it (x < 112: beyond the junction).
+  bool stopped_before_car_passed = false;
+  for (std::size_t i = 0; i < ego.size(); ++i) {
+    if (ego[i].num("speed") < 0.5 && car[i].num("x") > 118) stopped_before_car_passed = true;
+    if (ego[i].num("y") > 0) EXPECT_LT(car[i].num("x"), 112.0) << "t=" << ego[i].str("time");
+  }
+  EXPECT_TRUE(stopped_before_car_passed);
+  EXPECT_TRUE(drives_through(ego, "J1"));
+  EXPECT_TRUE(drives_through(car, "J1"));
+}
+
+TEST(UrbanBehaviour, TheEgoBrakesForThePedestrianCrossingPastTheJunction) {
+  UrbanRun run("urban_pedestrian_junction.json");
+  ASSERT_EQ(run.cli.exit_code, 0) << run.cli.output;
+  Trace trace(run.out / "trace.csv");
+  const auto ego = trace.actor(0);
+  const auto walker = trace.actor(1);
+  double slowest = 1e9;
+  double nearest = 1e9;
+  for (std::size_t i = 40; i < ego.size() && i < walker.size(); ++i) {
+    slowest = std::min(slowest, ego[i].num("speed"));
+    nearest = std::min(nearest, distance(ego[i], walker[i]));
+  }
+  EXPECT_LT(slowest, 6.0);  // from 50 km/h (13.9 m/s)
+  EXPECT_GT(nearest, 2.0);  // no contact
+}
+
+TEST(UrbanBehaviour, TheFollowerKeepsItsGapAroundTheLoopThroughEveryJunction) {
+  UrbanRun run("urban_loop_follow.json");
+  ASSERT_EQ(run.cli.exit_code, 0) << run.cli.output;
+  Trace trace(run.out / "trace.csv");
+  const auto ego = trace.actor(0);
+  const auto car = trace.actor(1);
+  for (const char* j : {"J0", "J1", "J2"}) {
+    EXPECT_TRUE(drives_through(ego, j)) << j;
+    EXPECT_TRUE(drives_through(car, j)) << j;
+  }
+  // After the first 20 s the follower is never nearer than 8 m nor (in a straight line)
+  // farther than 25 m: it follows along the road through the turns.
+  for (std::size_t i = 400; i < ego.size() && i < car.size(); ++i) {
+    const double d = distance(ego[i], car[i]);
+    EXPECT_GT(d, 8.0) << "t=" << ego[i].str("time");
+    EXPECT_LT(d, 25.0) << "t=" << ego[i].str("time");
+  }
+}
+
+class UrbanDenseTraffic : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(UrbanDenseTraffic, TheSampleStillEndsWellAndTheJunctionsKeepFlowing) {
+  UrbanRun run(GetParam(), {"--traffic", "dense"});
+  ASSERT_EQ(run.cli.exit_code, 0) << run.cli.output;
+  EXPECT_EQ(run.result["verdict"], "success");
+  Trace counts(run.out / "counts.csv");
+  ASSERT_FALSE(counts.rows().empty());
+  EXPECT_GT(counts.rows().back().integer("background_vehicles"), 30);
+  // Nobody has been standing for a minute (these runs are shorter than two minutes).
+  EXPECT_EQ(counts.rows().back().integer("waiting_over_60s"), 0);
+}
+
+INSTANTIATE_TEST_SUITE_P(All, UrbanDenseTraffic,
+                         ::testing::Values("urban_blind_corner.json", "urban_left_turn.json",
+                                           "urban_pedestrian_junction.json"));

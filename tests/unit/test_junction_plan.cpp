@@ -1,0 +1,179 @@
+// The junction step of `map build` on the team's own waypoint files (tests/data/waypoints,
+// written by scripts/urban_waypoints.py), without SUMO: where the junctions are, which
+// stretches become one lane for several routes, and that the lanes through a junction are
+// the routes' own points.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <map>
+#include <set>
+
+#include "core/errors.hpp"
+#include "map/junction_pieces.hpp"
+#include "map/junction_plan.hpp"
+#include "map/junction_zones.hpp"
+#include "map/net_plan.hpp"
+#include "map/waypoint_file.hpp"
+#include "unit/synthetic_roads.hpp"
+
+using namespace orch;
+
+namespace {
+
+WaypointFile fixture(const std::string& name) {
+  return load_waypoint_file(std::string(ORCH_SOURCE_DIR) + "/tests/data/waypoints/" + name + ".waypoint.json");
+}
+
+WaypointFile urban() { return load_waypoint_file(std::string(ORCH_SOURCE_DIR) + "/sumo_nets/urban/urban.waypoint.json"); }
+
+const PlannedLane* lane_of_routes(const NetPlan& plan, const std::set<std::string>& routes) {
+  for (const auto& e : plan.edges)
+    for (const auto& l : e.lanes) {
+      const std::set<std::string> here(l.routes.begin(), l.routes.end());
+      if (here == routes) return &l;
+    }
+  return nullptr;
+}
+
+std::set<std::string> junction_nodes(const NetPlan& plan) {
+  std::set<std::string> ids;
+  for (const auto& n : plan.nodes)
+    if (!n.type.empty()) ids.insert(n.id);
+  return ids;
+}
+
+// Largest distance from the route's waypoints to the nearest planned lane or connection
+// shape: every waypoint, junction interiors included, must lie under the net.
+double max_distance_to_plan(const NetPlan& plan, const WaypointRoute& route) {
+  std::vector<Polyline> shapes;
+  for (const auto& e : plan.edges)
+    for (const auto& l : e.lanes) {
+      const auto& ids = l.routes.empty() ? std::vector<std::string>{l.route_id} : l.routes;
+      if (std::find(ids.begin(), ids.end(), route.id) != ids.end()) shapes.push_back(l.shape);
+    }
+  for (const auto& c : plan.connections)
+    if (c.shape.size() >= 2) shapes.emplace_back(c.shape);
+  double worst = 0;
+  for (const Vec2& p : route.line.points()) {
+    double best = 1e9;
+    for (const auto& s : shapes) best = std::min(best, s.project(p).distance);
+    worst = std::max(worst, best);
+  }
+  return worst;
+}
+
+}  // namespace
+
+TEST(JunctionPlan, ACrossingOfTwoTwoWayStreetsIsOneJunctionWithStraightConnections) {
+  const WaypointFile wf = fixture("crossing");
+  const NetPlan plan = plan_net(wf, NetPlanSettings{});
+  EXPECT_EQ(plan.junctions, 1);
+  EXPECT_EQ(junction_nodes(plan), std::set<std::string>{"J0"});
+  ASSERT_EQ(plan.connections.size(), 4u);  // one straight connection per direction
+  for (const auto& c : plan.connections) {
+    ASSERT_GE(c.shape.size(), 2u);
+    const Vec2 d = c.shape.back() - c.shape.front();
+    EXPECT_GT(d.norm(), 2 * kConflictReach) << c.from << " -> " << c.to;  // across the whole junction
+  }
+  // Each route: a lane into the junction and one out of it, nothing shared (no two routes
+  // drive the same lane here).
+  EXPECT_EQ(plan.edges.size(), 8u);
+  for (const auto& r : wf.routes) EXPECT_LE(max_distance_to_plan(plan, r), 0.03) << r.id;
+}
+
+TEST(JunctionPlan, RoutesSharingTheirFirstStretchShareOneLaneUntilTheyBranch) {
+  const WaypointFile wf = fixture("branch_merge");
+  const NetPlan plan = plan_net(wf, NetPlanSettings{});
+  // "exit" is drawn 3 cm beside "main" up to its right turn: one lane for both before it,
+  // and after the junction "entry" joins "main" on one lane (a merge).
+  EXPECT_NE(lane_of_routes(plan, {"main", "exit"}), nullptr);
+  EXPECT_NE(lane_of_routes(plan, {"main", "entry"}), nullptr);
+  EXPECT_NE(lane_of_routes(plan, {"exit"}), nullptr);
+  EXPECT_NE(lane_of_routes(plan, {"entry"}), nullptr);
+  EXPECT_EQ(lane_of_routes(plan, {"main"}), nullptr);  // "main" never has a lane of its own
+  EXPECT_GE(plan.junctions, 1);
+  for (const auto& r : wf.routes) EXPECT_LE(max_distance_to_plan(plan, r), 0.05) << r.id;
+}
+
+TEST(JunctionPlan, AClosedLoopBecomesACycleOfEdgesThroughTwoJunctions) {
+  const WaypointFile wf = fixture("loop");
+  ASSERT_TRUE(is_closed_route(wf.routes[0]));
+  const NetPlan plan = plan_net(wf, NetPlanSettings{});
+  EXPECT_EQ(plan.junctions, 2);
+  // Every junction has exactly one lane in and one out, connected: the ring is closed.
+  std::map<std::string, int> ins;
+  std::map<std::string, int> outs;
+  for (const auto& e : plan.edges) {
+    ++outs[e.from];
+    ++ins[e.to];
+  }
+  for (const auto& id : junction_nodes(plan)) {
+    EXPECT_EQ(ins[id], 1) << id;
+    EXPECT_EQ(outs[id], 1) << id;
+  }
+  EXPECT_EQ(plan.connections.size(), 2u);
+  EXPECT_LE(max_distance_to_plan(plan, wf.routes[0]), 0.03);
+}
+
+TEST(JunctionPlan, TheUrbanGridHasItsThreeJunctionsAndEveryWaypointLiesUnderTheNet) {
+  const WaypointFile wf = urban();
+  const JunctionZones zones = find_junction_zones(wf);
+  EXPECT_EQ(zones.count, 3);  // the 4-way, the T junction, the loop's junction on the cross street
+  const NetPlan plan = plan_net(wf, NetPlanSettings{});
+  EXPECT_EQ(plan.junctions, 3);
+  // The loop overlaps the straight route in the middle (between the 4-way and the T) and
+  // leaves it; the straight route's first stretch is shared with two turning routes.
+  EXPECT_NE(lane_of_routes(plan, {"EB_left", "EB_straight", "T_in"}), nullptr);
+  bool loop_shares_main_street = false;
+  for (const auto& e : plan.edges)
+    for (const auto& l : e.lanes)
+      if (std::count(l.routes.begin(), l.routes.end(), "LOOP") && std::count(l.routes.begin(), l.routes.end(), "EB_straight"))
+        loop_shares_main_street = true;
+  EXPECT_TRUE(loop_shares_main_street);
+  for (const auto& r : wf.routes) EXPECT_LE(max_distance_to_plan(plan, r), 0.10) << r.id;
+}
+
+TEST(JunctionPlan, PlanningIsDeterministic) {
+  const WaypointFile wf = urban();
+  const NetPlan a = plan_net(wf, NetPlanSettings{});
+  const NetPlan b = plan_net(wf, NetPlanSettings{});
+  ASSERT_EQ(a.edges.size(), b.edges.size());
+  for (std::size_t i = 0; i < a.edges.size(); ++i) {
+    EXPECT_EQ(a.edges[i].id, b.edges[i].id);
+    ASSERT_EQ(a.edges[i].lanes.size(), b.edges[i].lanes.size());
+    for (std::size_t l = 0; l < a.edges[i].lanes.size(); ++l)
+      EXPECT_EQ(a.edges[i].lanes[l].shape.points(), b.edges[i].lanes[l].shape.points());
+  }
+  ASSERT_EQ(a.connections.size(), b.connections.size());
+  for (std::size_t i = 0; i < a.connections.size(); ++i) EXPECT_EQ(a.connections[i].shape, b.connections[i].shape);
+}
+
+TEST(JunctionPlan, MapJsonSetsTheTypeAndTheRoadWithPriority) {
+  const WaypointFile wf = fixture("crossing");
+  JunctionSettings js;
+  js.overrides.push_back({"", Vec2(1, 1), "allway_stop", {"NB", "SB"}});
+  const NetPlan plan = plan_net(wf, NetPlanSettings{}, js);
+  const auto node = std::find_if(plan.nodes.begin(), plan.nodes.end(), [](const auto& n) { return n.id == "J0"; });
+  ASSERT_NE(node, plan.nodes.end());
+  EXPECT_EQ(node->type, "allway_stop");
+  for (const auto& e : plan.edges) {
+    const bool cross_street = e.lanes.front().route_id == "NB" || e.lanes.front().route_id == "SB";
+    EXPECT_EQ(e.priority > 100, cross_street) << e.id;
+  }
+  js.overrides = {{"J7", std::nullopt, "traffic_light", {}}};
+  EXPECT_THROW(plan_net(wf, NetPlanSettings{}, js), MapError);  // no such junction
+}
+
+TEST(JunctionPlan, RoadsWithoutJunctionsArePlannedAsBefore) {
+  // A plain two-lane road: no zones, no shared lanes, no junction nodes, no shapes.
+  test::RoadShape road;
+  std::vector<test::SyntheticRoute> routes = {{"right", test::road_points(road, 0, 0, 300)},
+                                              {"left", test::road_points(road, 3.5, 0, 300)}};
+  test::TempDir dir("junction_none");
+  const WaypointFile wf = load_waypoint_file(test::write_waypoint_file(dir.path(), "plain", routes).string());
+  EXPECT_TRUE(find_junction_zones(wf).empty());
+  const NetPlan plan = plan_net(wf, NetPlanSettings{});
+  EXPECT_EQ(plan.junctions, 0);
+  EXPECT_TRUE(junction_nodes(plan).empty());
+  for (const auto& c : plan.connections) EXPECT_TRUE(c.shape.empty());
+}
