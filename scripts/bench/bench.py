@@ -201,6 +201,28 @@ def hour(binary, work):
                 late[-1] if late else 0, peak))
 
 
+URBAN_SCENARIO = os.path.join(ROOT, "scenarios", "urban_loop_follow.json")
+
+
+def urban(binary, work, repeat, steps=2000):
+    """The junction map with dense traffic: urban_loop_follow.json (the ego and a follower
+    round the block through three junctions) against bare SUMO on the same net and traffic,
+    interleaved rounds, best times."""
+    runs = {"bare": [], "orch": []}
+    for _ in range(repeat):
+        runs["bare"].append(measure([binary, "baseline", "urban", "--traffic", "dense", "--steps", str(steps),
+                                     "--step", "%g" % STEP, "--out", os.path.join(work, "urban_bare")],
+                                    os.path.join(work, "urban_bare.log")))
+        runs["orch"].append(measure([binary, "run", URBAN_SCENARIO, "--out", os.path.join(work, "urban_orch"), "-q",
+                                     "--traffic", "dense", "--max-time", "%g" % (steps * STEP)],
+                                    os.path.join(work, "urban_orch.log")))
+    mean, _ = vehicles(os.path.join(work, "urban_orch", "counts.csv"))
+    best = {k: min(m[0] for m in v) for k, v in runs.items()}
+    each = [a[0] / b[0] for a, b in zip(runs["orch"], runs["bare"])]
+    return ("| urban (junctions), dense (%.0f) | %d | %.2f s | %.2f s | **%.2f** (%.2f-%.2f) |" % (
+        mean, steps, best["bare"], best["orch"], best["orch"] / best["bare"], min(each), max(each)))
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--binary", default=os.path.join(ROOT, "build-bench", "bin", "orchestrator"))
@@ -209,6 +231,7 @@ def main():
     ap.add_argument("--hour", action="store_true", help="also the one-hour dense run (memory; ~10 min)")
     ap.add_argument("--hour-only", action="store_true", help="only the one-hour run")
     ap.add_argument("--keep", help="keep outputs in this folder")
+    ap.add_argument("--urban-only", action="store_true", help="only the junction map row")
     a = ap.parse_args()
     work = a.keep or tempfile.mkdtemp(prefix="orch_bench_")
     os.makedirs(work, exist_ok=True)
@@ -216,6 +239,13 @@ def main():
     if a.hour_only:
         print("Machine: " + header)
         print(hour(a.binary, work))
+        return
+    urban_header = ("| map, traffic (vehicles, mean) | steps | bare SUMO (libsumo) | orchestrator libsumo | orch / bare |\n"
+                    "|---|---|---|---|---|")
+    if a.urban_only:
+        print("Machine: " + header)
+        print(urban_header)
+        print(urban(a.binary, work, max(1, a.repeat)))
         return
     rows = bench(a.binary, a.quick, max(1, a.repeat), work)
     print("Machine: " + header)
@@ -229,6 +259,9 @@ def main():
           "and range of the rounds: both measured in one process at the same moments, so the machine's "
           "changing speed cancels out.\n" % (MAP, STEP, max(1, a.repeat)))
     print(table(rows))
+    print()
+    print(urban_header)
+    print(urban(a.binary, work, max(1, a.repeat)))
     if a.hour:
         print()
         print(hour(a.binary, work))

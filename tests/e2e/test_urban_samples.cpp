@@ -31,7 +31,7 @@ bool drives_through(const std::vector<Trace::Row>& rows, const std::string& junc
 }
 
 struct UrbanRun {
-  TempDir out{"urban"};
+  TempDir out;
   CliResult cli;
   nlohmann::json result;
   UrbanRun(const std::string& sample, std::vector<std::string> extra = {}) {
@@ -74,7 +74,9 @@ TEST(UrbanBehaviour, TheEgoWaitsForTheCarWithPriorityBeforeItTurnsAcrossItsPath)
   bool stopped_before_car_passed = false;
   for (std::size_t i = 0; i < ego.size(); ++i) {
     if (ego[i].num("speed") < 0.5 && car[i].num("x") > 118) stopped_before_car_passed = true;
-    if (ego[i].num("y") > 0) EXPECT_LT(car[i].num("x"), 112.0) << "t=" << ego[i].str("time");
+    if (ego[i].num("y") > 0) {
+      EXPECT_LT(car[i].num("x"), 112.0) << "t=" << ego[i].str("time");
+    }
   }
   EXPECT_TRUE(stopped_before_car_passed);
   EXPECT_TRUE(drives_through(ego, "J1"));

@@ -56,8 +56,11 @@ TEST_P(JunctionMaps, EveryWaypointLiesOnItsLaneInsideJunctionsToo) {
           << r.id << ": " << lanes.lane(rl.lanes[i]).id << " -> " << lanes.lane(rl.lanes[i + 1]).id;
     }
     // Waypoints inside a junction are placed on the internal lane with the route's own shape.
-    for (std::size_t i = 0; i < rl.points.size(); ++i)
-      if (lanes.lane(rl.points[i].lane).internal) EXPECT_LE(rl.points[i].distance, 0.05) << r.id << " wp " << i;
+    for (std::size_t i = 0; i < rl.points.size(); ++i) {
+      if (lanes.lane(rl.points[i].lane).internal) {
+        EXPECT_LE(rl.points[i].distance, 0.05) << r.id << " wp " << i;
+      }
+    }
   }
 }
 

@@ -45,7 +45,7 @@ class Conditions : public ::testing::Test {
     ConditionContext ctx{now, before, actors_, waypoints_,
                          [this](ActorId) { return waypoints_.find("Waypoint02"); },
                          [this](ActorId id) { return id == collided_; },
-                         {}};
+                         {}, {}};
     return evaluate(Condition{k, "", {}}, ctx);
   }
   Scenario scenario_;
@@ -117,7 +117,7 @@ TEST_F(Conditions, TraveledDistanceCountsInTheActorsDirectionOfTravel) {
   // a target at smaller x is ahead of it.
   const auto now = snap(1, {car(0, 40, -8, 0), car(1, 10, -8, 0)});
   ConditionContext ctx{now, nullptr, actors_, waypoints_, [this](ActorId) { return waypoints_.find("Waypoint02"); },
-                       [](ActorId) { return false; }, [](ActorId id) { return id == 0 ? -1 : 1; }};
+                       [](ActorId) { return false; }, [](ActorId id) { return id == 0 ? -1 : 1; }, {}};
   DistanceCondition ahead{0, 1, DistanceType::Traveled, Comparison::Greater, 29.9, MeasureType::Center};
   EXPECT_TRUE(evaluate(Condition{ahead, "", {}}, ctx).holds);
   ctx.direction_of = nullptr;  // the same pair seen along the route as drawn: target behind
@@ -143,9 +143,29 @@ TEST_F(Conditions, TimeHeadwayAtSpeedZeroAndAfterPassing) {
 
 TEST_F(Conditions, CollisionUsesTheReportedContacts) {
   const auto now = snap(1, {car(0, 0, -8, 0)});
-  EXPECT_FALSE(eval(CollisionCondition{0}, now).holds);
+  EXPECT_FALSE(eval(CollisionCondition{0, {}}, now).holds);
   collided_ = 0;
-  EXPECT_TRUE(eval(CollisionCondition{0}, now).holds);
+  EXPECT_TRUE(eval(CollisionCondition{0, {}}, now).holds);
+}
+
+TEST_F(Conditions, CollisionWithATargetHoldsOnlyForThatPair) {
+  // Real files write "target_actor_id" on collision conditions: then only a contact of the
+  // actor with that target counts, not one with anybody else.
+  const auto now = snap(1, {car(0, 0, -8, 0), car(1, 4, -8, 0)});
+  std::pair<ActorId, ActorId> touching{-1, -1};
+  ConditionContext ctx{now, nullptr, actors_, waypoints_, [this](ActorId) { return waypoints_.find("Waypoint02"); },
+                       [](ActorId) { return true; }, {},
+                       [&](ActorId a, ActorId b) {
+                         return (a == touching.first && b == touching.second) ||
+                                (a == touching.second && b == touching.first);
+                       }};
+  const CollisionCondition with_1{0, ActorId{1}};
+  EXPECT_FALSE(evaluate(Condition{with_1, "", {}}, ctx).holds);  // the ego touches something else
+  touching = {1, 0};
+  const auto outcome = evaluate(Condition{with_1, "", {}}, ctx);
+  EXPECT_TRUE(outcome.holds);
+  EXPECT_EQ(outcome.detail, "actor 0 collided with actor 1");
+  EXPECT_FALSE(evaluate(Condition{CollisionCondition{0, ActorId{2}}, "", {}}, ctx).holds);
 }
 
 TEST_F(Conditions, AbsentActorsNeverSatisfyAConditionAboutThem) {
@@ -177,7 +197,7 @@ TEST(ConditionGroups, AndOrAndNesting) {
     ego.present = true;
     ego.speed = speed;
     now.actors = {ego};
-    ConditionContext ctx{now, nullptr, actors, wps, [](ActorId) { return nullptr; }, [](ActorId) { return false; }, {}};
+    ConditionContext ctx{now, nullptr, actors, wps, [](ActorId) { return nullptr; }, [](ActorId) { return false; }, {}, {}};
     std::vector<std::string> fired;
     return evaluate(s.find_scene(1)->conditions, ctx, &fired);
   };

@@ -200,3 +200,16 @@ TEST(LoaderConditions, StopConditionsAreReadLikeSceneConditions) {
   EXPECT_EQ(stop.where.line, 14);
   EXPECT_DOUBLE_EQ(std::get<SimulationTimeCondition>(std::get<Condition>(stop.items.at(0).node).kind).value, 60);
 }
+
+TEST(LoaderConditions, CollisionKeepsTheTargetActorRealFilesWrite) {
+  const auto g = conditions_of(R"({"and": [{"collision": {"actor_id": 0, "target_actor_id": 1}},
+{"collision": {"actor_id": 1}}]})");
+  ASSERT_EQ(g.items.size(), 2u);
+  const auto& with_target = std::get<CollisionCondition>(std::get<Condition>(g.items[0].node).kind);
+  EXPECT_EQ(with_target.actor, 0);
+  ASSERT_TRUE(with_target.target.has_value());
+  EXPECT_EQ(*with_target.target, 1);
+  EXPECT_FALSE(std::get<CollisionCondition>(std::get<Condition>(g.items[1].node).kind).target.has_value());
+  const auto d = errors_of(R"({"and": [{"collision": {"actor_id": 0, "target_actor_id": "one"}}]})");
+  EXPECT_TRUE(d.has_errors());
+}

@@ -261,14 +261,22 @@ TEST(NetPlan, LaneDrawnAsConsecutiveRoutesIsConnected) {
   for (const char* r : {"A", "B", "C"}) EXPECT_LE(max_distance_to_own_lanes(p, r), 0.02 + 1e-9) << r;
 }
 
-TEST(NetPlan, ClosedLoopIsRefusedWithAReason) {
+TEST(NetPlan, ClosedLoopBecomesARingOfEdges) {
+  // A ring road drawn as one route ending on its first point: the lane cannot close on
+  // itself in one node, so the junction step splits it at two plain junctions.
   std::vector<Vec2> ring;
   for (int i = 0; i <= 600; ++i) ring.emplace_back(100 * std::cos(i * 2 * std::numbers::pi / 600), 100 * std::sin(i * 2 * std::numbers::pi / 600));
-  try {
-    plan_routes({{"ring", ring}});
-    FAIL() << "expected a MapError";
-  } catch (const MapError& e) {
-    EXPECT_NE(std::string(e.what()).find("\"ring\" is a closed loop"), std::string::npos) << e.what();
+  const Planned p = plan_routes({{"ring", ring}});
+  EXPECT_EQ(p.plan.junctions, 2);
+  ASSERT_GE(p.plan.edges.size(), 2u);
+  for (const auto& e : p.plan.edges) EXPECT_NE(e.from, e.to);
+  EXPECT_EQ(p.plan.connections.size(), p.plan.edges.size());  // every edge leads on to the next
+  // Every waypoint lies on a lane or on a junction's connection (the ring's own points).
+  for (const Vec2& pt : p.waypoints.find("ring")->line.points()) {
+    double best = 1e9;
+    for (const auto& e : p.plan.edges) best = std::min(best, e.lanes.front().shape.project(pt).distance);
+    for (const auto& c : p.plan.connections) best = std::min(best, Polyline(c.shape).project(pt).distance);
+    EXPECT_LE(best, 0.05);
   }
 }
 
