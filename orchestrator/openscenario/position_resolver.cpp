@@ -17,15 +17,14 @@ double oriented(const std::optional<Orientation>& orientation, double reference)
   return orientation->relative ? reference + orientation->h : orientation->h;
 }
 
-// Lane id `d_lane` lanes from `lane` (positive = towards higher ids), skipping the centre 0.
+}  // namespace
+
 int shifted_lane(int lane, int d_lane) {
   int result = lane + d_lane;
   if (lane < 0 && result >= 0) ++result;
   if (lane > 0 && result <= 0) --result;
   return result;
 }
-
-}  // namespace
 
 ResolvedPosition PositionResolver::locate(const Pose2& pose) const {
   ResolvedPosition r{pose, roads_.to_road(pose.x, pose.y), std::nullopt};

@@ -21,6 +21,10 @@ struct ResolvedPosition {
 // Pose of an entity's reference point by name; nullopt when the entity has none yet.
 using EntityPoseLookup = std::function<std::optional<opendrive::Pose2>(const std::string&)>;
 
+// Lane id `d_lane` lanes from `lane` counted in lane ids (positive = towards higher ids),
+// skipping the centre lane 0.
+int shifted_lane(int lane, int d_lane);
+
 class PositionResolver {
  public:
   explicit PositionResolver(const opendrive::RoadNetwork& roads) : roads_(roads) {}

@@ -8,6 +8,7 @@
 
 #include "core/suggest.hpp"
 #include "openscenario/reader_context.hpp"
+#include "openscenario/rule.hpp"
 
 namespace orch::openscenario {
 namespace fs = std::filesystem;
@@ -31,27 +32,15 @@ void read_header(Element& root, Scenario& scenario) {
   header.finish();
 }
 
-bool holds(Rule rule, int comparison) {  // comparison: <0, 0, >0 of value against bound
-  switch (rule) {
-    case Rule::EqualTo: return comparison == 0;
-    case Rule::NotEqualTo: return comparison != 0;
-    case Rule::GreaterThan: return comparison > 0;
-    case Rule::LessThan: return comparison < 0;
-    case Rule::GreaterOrEqual: return comparison >= 0;
-    case Rule::LessOrEqual: return comparison <= 0;
-  }
-  return false;
-}
-
-int compare(const std::string& type, const std::string& value, const std::string& bound, Element& at) {
-  if (type == "string" || type == "boolean" || type == "dateTime") return value.compare(bound) < 0 ? -1 : value == bound ? 0 : 1;
+bool holds(Rule rule, const std::string& type, const std::string& value, const std::string& bound, Element& at) {
+  if (type == "string" || type == "boolean" || type == "dateTime") return satisfies(rule, value, bound);
   double a = 0;
   double b = 0;
   std::from_chars(value.data(), value.data() + value.size(), a);
   const auto [end, ec] = std::from_chars(bound.data(), bound.data() + bound.size(), b);
   if (ec != std::errc() || end != bound.data() + bound.size())
     at.fail_attribute("value", fmt::format("expected a number, found \"{}\"", bound));
-  return a < b ? -1 : a > b ? 1 : 0;
+  return satisfies(rule, a, b);
 }
 
 // Declarations in order, then the overrides, then every ConstraintGroup (OR of ANDs) on the
@@ -103,7 +92,7 @@ std::vector<Parameter> read_parameters(Element& root, const LoadOptions& options
       for (Element c : group.children("ValueConstraint")) {
         const Rule rule = reading::read_rule(c);
         const std::string bound = c.text("value");
-        if (!holds(rule, compare(p.type, p.value, bound, c))) {
+        if (!holds(rule, p.type, p.value, bound, c)) {
           all = false;
           if (violated.empty()) violated = fmt::format("{} {}", c.node().attribute("rule").value(), bound);
         }

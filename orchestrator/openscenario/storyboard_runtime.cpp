@@ -1,0 +1,338 @@
+#include "openscenario/storyboard_runtime.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "core/errors.hpp"
+#include "openscenario/action_start.hpp"
+#include "openscenario/entity_measures.hpp"
+#include "openscenario/rule.hpp"
+
+namespace orch::openscenario {
+namespace {
+
+// Where an event sits in the storyboard, for roll-ups and priorities.
+struct EventSlot {
+  const Event* event;
+  const Maneuver* maneuver;
+};
+
+struct Record {
+  ElementState state = ElementState::Standby;
+  int executions = 0;
+  // (transition, step at which conditions see it)
+  std::vector<std::pair<std::string, long>> transitions;
+};
+
+struct ConditionMemory {
+  bool has_previous = false;
+  bool previous = false;
+  std::vector<std::pair<double, bool>> history;  // edged value per evaluation, for delays
+};
+
+}  // namespace
+
+struct StoryboardRuntime::Impl {
+  const Scenario& scenario;
+  const opendrive::RoadNetwork& roads;
+  PositionResolver resolver;
+  double t = 0;
+  long step_index = 0;
+  bool finished = false;
+  std::map<std::string, EntityState> entities;
+  std::vector<TransitionLog> log;
+  std::map<std::pair<std::string, std::string>, Record> records;
+  std::map<const Condition*, ConditionMemory> memory;
+  std::vector<RunningAction> running;
+
+  Impl(const Scenario& s, const opendrive::RoadNetwork& r) : scenario(s), roads(r), resolver(r) {}
+
+  ActionContext context() { return ActionContext{scenario, roads, resolver, entities, t}; }
+
+  Record& record(const std::string& type, const std::string& name) { return records[{type, name}]; }
+
+  void transition(const std::string& type, const std::string& name, const std::string& what, ElementState to) {
+    Record& r = record(type, name);
+    r.state = to;
+    r.transitions.emplace_back(what, step_index);
+    if (r.transitions.size() > 8) r.transitions.erase(r.transitions.begin());
+    log.push_back({t, type, name, what});
+  }
+
+  // ---- conditions ---------------------------------------------------------------------
+  bool value_of(const Condition& c) {
+    return std::visit(
+        [&](const auto& kind) -> bool {
+          using T = std::decay_t<decltype(kind)>;
+          if constexpr (std::is_same_v<T, SimulationTimeCondition>) {
+            // Times are k * dt: compare with a tolerance far below one step.
+            if (std::abs(t - kind.value) < 1e-9) return satisfies(kind.rule, kind.value, kind.value);
+            return satisfies(kind.rule, t, kind.value);
+          } else if constexpr (std::is_same_v<T, StoryboardElementStateCondition>) {
+            const Record& r = record(kind.type, kind.ref);
+            if (kind.state == "standbyState") return r.state == ElementState::Standby;
+            if (kind.state == "runningState") return r.state == ElementState::Running;
+            if (kind.state == "completeState") return r.state == ElementState::Complete;
+            return std::any_of(r.transitions.begin(), r.transitions.end(),
+                               [&](const auto& e) { return e.first == kind.state && e.second == step_index; });
+          } else if constexpr (std::is_same_v<T, ParameterCondition>) {
+            for (const Parameter& p : scenario.parameters)
+              if (p.name == kind.parameter) {
+                if (p.type == "string" || p.type == "boolean" || p.type == "dateTime")
+                  return satisfies(kind.rule, p.value, kind.value);
+                return satisfies(kind.rule, std::stod(p.value), std::stod(kind.value));
+              }
+            return false;
+          } else {
+            return by_entity(kind);
+          }
+        },
+        c.kind);
+  }
+
+  bool by_entity(const ByEntityCondition& c) {
+    bool any = false;
+    bool all = true;
+    for (const std::string& name : c.triggering_entities) {
+      const EntityState& self = entities.at(name);
+      bool holds = false;
+      if (const auto* speed = std::get_if<SpeedCondition>(&c.condition)) {
+        holds = self.placed && satisfies(speed->rule, self.speed, speed->value);
+      } else if (const auto* d = std::get_if<RelativeDistanceCondition>(&c.condition)) {
+        const EntityState& other = entities.at(d->entity);
+        if (self.placed && other.placed) {
+          const double distance =
+              relative_distance({&self, &scenario.entity(name)->box}, {&other, &scenario.entity(d->entity)->box},
+                                d->distance_type, d->coordinate_system, d->freespace);
+          holds = satisfies(d->rule, distance, d->value);
+        }
+      }
+      any = any || holds;
+      all = all && holds;
+    }
+    return c.all ? all : any;
+  }
+
+  bool evaluate(const Condition& c) {
+    ConditionMemory& m = memory[&c];
+    const bool now = value_of(c);
+    bool edged = now;
+    switch (c.edge) {
+      case Edge::None: break;
+      case Edge::Rising: edged = m.has_previous && !m.previous && now; break;
+      case Edge::Falling: edged = m.has_previous && m.previous && !now; break;
+      case Edge::RisingOrFalling: edged = m.has_previous && m.previous != now; break;
+    }
+    m.has_previous = true;
+    m.previous = now;
+    if (c.delay <= 0) return edged;
+    m.history.emplace_back(t, edged);
+    // The edged value as it was `delay` seconds ago.
+    const double then = t - c.delay + 1e-9;
+    bool delayed = false;
+    for (const auto& [time, value] : m.history) {
+      if (time > then) break;
+      delayed = value;
+    }
+    return delayed;
+  }
+
+  bool fires(const std::optional<Trigger>& trigger) {
+    if (!trigger) return true;
+    bool any = false;
+    for (const auto& group : trigger->groups) {  // every condition is evaluated: edges need history
+      bool all = true;
+      for (const Condition& c : group) all = evaluate(c) && all;
+      any = any || all;
+    }
+    return any;
+  }
+
+  // ---- storyboard elements ------------------------------------------------------------
+  void start_event(const Event& e) {
+    Record& r = record("event", e.name);
+    ++r.executions;
+    transition("event", e.name, "startTransition", ElementState::Running);
+    for (const Action& a : e.actions) {
+      transition("action", a.name, "startTransition", ElementState::Running);
+      for (const std::string& actor : a.actors) {
+        ActionContext ctx = context();
+        // An action that takes over an entity's motion ends the one it replaces.
+        for (const std::string& replaced : start_action(a.action, actor, a.name, ctx, running))
+          if (record("action", replaced).state == ElementState::Running)
+            transition("action", replaced, "stopTransition", ElementState::Complete);
+      }
+      if (std::none_of(running.begin(), running.end(), [&](const RunningAction& r2) { return r2.action == a.name; }))
+        transition("action", a.name, "endTransition", ElementState::Complete);
+    }
+  }
+
+  void stop_action(const std::string& name) {
+    std::erase_if(running, [&](const RunningAction& r) { return r.action == name; });
+    if (record("action", name).state == ElementState::Running)
+      transition("action", name, "stopTransition", ElementState::Complete);
+  }
+
+  void stop_event(const Event& e) {
+    for (const Action& a : e.actions) stop_action(a.name);
+    transition("event", e.name, "stopTransition", ElementState::Complete);
+  }
+
+  void start_group(const ManeuverGroup& g) {
+    ++record("maneuverGroup", g.name).executions;
+    transition("maneuverGroup", g.name, "startTransition", ElementState::Running);
+    for (const Maneuver& m : g.maneuvers) {
+      transition("maneuver", m.name, "startTransition", ElementState::Running);
+      for (const Event& e : m.events) {
+        record("event", e.name) = Record{};
+        for (const Action& a : e.actions) record("action", a.name).state = ElementState::Standby;
+      }
+    }
+  }
+
+  void stop_act(const Act& act) {
+    for (const ManeuverGroup& g : act.groups) {
+      for (const Maneuver& m : g.maneuvers) {
+        for (const Event& e : m.events)
+          if (record("event", e.name).state != ElementState::Complete) stop_event(e);
+        if (record("maneuver", m.name).state != ElementState::Complete)
+          transition("maneuver", m.name, "stopTransition", ElementState::Complete);
+      }
+      if (record("maneuverGroup", g.name).state != ElementState::Complete)
+        transition("maneuverGroup", g.name, "stopTransition", ElementState::Complete);
+    }
+    transition("act", act.name, "stopTransition", ElementState::Complete);
+  }
+
+  bool complete(const std::string& type, const std::string& name) {
+    return record(type, name).state == ElementState::Complete;
+  }
+
+  // Ends every element whose children have all ended, bottom-up.
+  void settle() {
+    for (const Story& story : scenario.storyboard.stories) {
+      bool acts_done = true;
+      for (const Act& act : story.acts) {
+        if (record("act", act.name).state == ElementState::Running) {
+          bool groups_done = true;
+          for (const ManeuverGroup& g : act.groups) {
+            if (record("maneuverGroup", g.name).state != ElementState::Running) continue;
+            bool maneuvers_done = true;
+            for (const Maneuver& m : g.maneuvers) {
+              if (record("maneuver", m.name).state != ElementState::Running) continue;
+              bool events_done = true;
+              for (const Event& e : m.events) {
+                Record& r = record("event", e.name);
+                if (r.state == ElementState::Running &&
+                    std::all_of(e.actions.begin(), e.actions.end(), [&](const Action& a) { return complete("action", a.name); })) {
+                  const bool again = r.executions < e.maximum_execution_count;
+                  transition("event", e.name, "endTransition", again ? ElementState::Standby : ElementState::Complete);
+                }
+                events_done = events_done && complete("event", e.name);
+              }
+              if (events_done) transition("maneuver", m.name, "endTransition", ElementState::Complete);
+              maneuvers_done = maneuvers_done && complete("maneuver", m.name);
+            }
+            if (maneuvers_done) {
+              const bool again = record("maneuverGroup", g.name).executions < g.maximum_execution_count;
+              transition("maneuverGroup", g.name, "endTransition", ElementState::Complete);
+              if (again) start_group(g);
+            }
+            groups_done = groups_done && complete("maneuverGroup", g.name);
+          }
+          if (groups_done) transition("act", act.name, "endTransition", ElementState::Complete);
+        }
+        acts_done = acts_done && complete("act", act.name);
+      }
+      if (acts_done && record("story", story.name).state == ElementState::Running)
+        transition("story", story.name, "endTransition", ElementState::Complete);
+    }
+  }
+
+  void evaluate_storyboard() {
+    if (fires(scenario.storyboard.stop_trigger)) {
+      finished = true;
+      log.push_back({t, "storyboard", "", "stopTransition"});
+      return;
+    }
+    for (const Story& story : scenario.storyboard.stories) {
+      if (record("story", story.name).state != ElementState::Running) continue;
+      for (const Act& act : story.acts) {
+        const ElementState state = record("act", act.name).state;
+        if (state == ElementState::Standby && fires(act.start_trigger)) {
+          transition("act", act.name, "startTransition", ElementState::Running);
+          for (const ManeuverGroup& g : act.groups) start_group(g);
+        } else if (state == ElementState::Running && act.stop_trigger && fires(act.stop_trigger)) {
+          stop_act(act);
+          continue;
+        }
+        if (record("act", act.name).state != ElementState::Running) continue;
+        for (const ManeuverGroup& g : act.groups)
+          for (const Maneuver& m : g.maneuvers) {
+            if (record("maneuver", m.name).state != ElementState::Running) continue;
+            for (const Event& e : m.events) {
+              if (record("event", e.name).state != ElementState::Standby || !fires(e.start_trigger)) continue;
+              const auto running_other = [&] {
+                return std::any_of(m.events.begin(), m.events.end(), [&](const Event& o) {
+                  return &o != &e && record("event", o.name).state == ElementState::Running;
+                });
+              };
+              if (e.priority == Priority::Skip && running_other()) {
+                transition("event", e.name, "skipTransition", ElementState::Standby);
+                continue;
+              }
+              if (e.priority == Priority::Overwrite)
+                for (const Event& o : m.events)
+                  if (&o != &e && record("event", o.name).state == ElementState::Running) stop_event(o);
+              start_event(e);
+            }
+          }
+      }
+    }
+    settle();
+  }
+
+  void run_init() {
+    for (const InitAction& a : scenario.storyboard.init) {
+      ActionContext ctx = context();
+      (void)start_action(a.action, a.entity, "", ctx, running);
+    }
+    for (const Story& story : scenario.storyboard.stories)
+      transition("story", story.name, "startTransition", ElementState::Running);
+  }
+
+  void step(double dt) {
+    if (finished) return;
+    ++step_index;
+    t = static_cast<double>(step_index) * dt;
+    for (auto& [name, state] : entities) advance(state, roads, t, dt);
+    ActionContext ctx = context();
+    for (const std::string& ended : update_running_actions(ctx, running))
+      if (!ended.empty()) transition("action", ended, "endTransition", ElementState::Complete);
+    settle();
+    evaluate_storyboard();
+  }
+};
+
+StoryboardRuntime::StoryboardRuntime(const Scenario& scenario, const opendrive::RoadNetwork& roads)
+    : impl_(std::make_unique<Impl>(scenario, roads)) {
+  for (const Entity& e : scenario.entities) impl_->entities[e.name] = EntityState{};
+  impl_->run_init();
+  impl_->evaluate_storyboard();
+}
+
+StoryboardRuntime::~StoryboardRuntime() = default;
+
+void StoryboardRuntime::step(double dt) { impl_->step(dt); }
+double StoryboardRuntime::time() const { return impl_->t; }
+bool StoryboardRuntime::finished() const { return impl_->finished; }
+const std::map<std::string, EntityState>& StoryboardRuntime::entities() const { return impl_->entities; }
+const std::vector<TransitionLog>& StoryboardRuntime::log() const { return impl_->log; }
+ElementState StoryboardRuntime::state(const std::string& type, const std::string& name) const {
+  const auto it = impl_->records.find({type, name});
+  return it == impl_->records.end() ? ElementState::Standby : it->second.state;
+}
+
+}  // namespace orch::openscenario
