@@ -16,6 +16,21 @@ Rule read_rule(Element& e) {
 
 namespace {
 
+const std::vector<std::pair<std::string, std::string>> kDistanceTypes = {{"longitudinal", "longitudinal"},
+                                                                          {"lateral", "lateral"},
+                                                                          {"cartesianDistance", "cartesianDistance"},
+                                                                          {"euclidianDistance", "euclidianDistance"}};
+
+std::string read_coordinate_system(Element& e) {
+  const std::string system = e.optional_choice<std::string>("coordinateSystem", {{"entity", "entity"},
+                                                                                 {"lane", "lane"},
+                                                                                 {"road", "road"},
+                                                                                 {"trajectory", "trajectory"}})
+                                 .value_or("entity");
+  if (system == "trajectory") e.fail_attribute("coordinateSystem", "trajectory is not supported");
+  return system;
+}
+
 [[noreturn]] void unsupported(Element& e) {
   e.fail(fmt::format("{} is an OpenSCENARIO element the orchestrator does not run (not supported)", e.name()));
 }
@@ -75,21 +90,52 @@ Condition read_by_entity(Element& holder, Condition c) {
   } else if (e.name() == "RelativeDistanceCondition") {
     RelativeDistanceCondition r;
     r.entity = e.text("entityRef");
-    r.distance_type = e.choice<std::string>("relativeDistanceType", {{"longitudinal", "longitudinal"},
-                                                                     {"lateral", "lateral"},
-                                                                     {"cartesianDistance", "cartesianDistance"},
-                                                                     {"euclidianDistance", "euclidianDistance"}});
-    r.coordinate_system = e.optional_choice<std::string>("coordinateSystem", {{"entity", "entity"},
-                                                                              {"lane", "lane"},
-                                                                              {"road", "road"},
-                                                                              {"trajectory", "trajectory"}})
-                              .value_or("entity");
-    if (r.coordinate_system == "trajectory") e.fail_attribute("coordinateSystem", "trajectory is not supported");
+    r.distance_type = e.choice<std::string>("relativeDistanceType", kDistanceTypes);
+    r.coordinate_system = read_coordinate_system(e);
     r.freespace = e.boolean("freespace");
     r.rule = read_rule(e);
     r.value = e.number("value");
     if (e.has("routingAlgorithm")) e.fail_attribute("routingAlgorithm", "routingAlgorithm is not supported");
     by.condition = r;
+  } else if (e.name() == "TraveledDistanceCondition") {
+    by.condition = TraveledDistanceCondition{e.number("value")};
+  } else if (e.name() == "StandStillCondition") {
+    by.condition = StandStillCondition{e.number("duration")};
+  } else if (e.name() == "EndOfRoadCondition") {
+    by.condition = EndOfRoadCondition{e.number("duration")};
+  } else if (e.name() == "OffroadCondition") {
+    by.condition = OffroadCondition{e.number("duration")};
+  } else if (e.name() == "AccelerationCondition") {
+    if (e.has("direction")) e.fail_attribute("direction", "an acceleration direction is not supported");
+    by.condition = AccelerationCondition{read_rule(e), e.number("value")};
+  } else if (e.name() == "RelativeSpeedCondition") {
+    if (e.has("direction")) e.fail_attribute("direction", "a speed direction is not supported");
+    by.condition = RelativeSpeedCondition{e.text("entityRef"), read_rule(e), e.number("value")};
+  } else if (e.name() == "ReachPositionCondition") {
+    Element position = e.child("Position");
+    by.condition = ReachPositionCondition{read_position(position), e.number("tolerance")};
+  } else if (e.name() == "TimeHeadwayCondition") {
+    TimeHeadwayCondition h;
+    h.entity = e.text("entityRef");
+    h.freespace = e.boolean("freespace");
+    h.coordinate_system = read_coordinate_system(e);
+    if (e.has("alongRoute") && e.boolean("alongRoute")) e.fail_attribute("alongRoute", "alongRoute is not supported");
+    if (e.has("relativeDistanceType") && e.text("relativeDistanceType") != "longitudinal")
+      e.fail_attribute("relativeDistanceType", "only a longitudinal headway is supported");
+    h.rule = read_rule(e);
+    h.value = e.number("value");
+    by.condition = h;
+  } else if (e.name() == "DistanceCondition") {
+    DistanceCondition d;
+    Element position = e.child("Position");
+    d.position = read_position(position);
+    d.freespace = e.boolean("freespace");
+    d.coordinate_system = read_coordinate_system(e);
+    d.distance_type = e.optional_choice<std::string>("relativeDistanceType", kDistanceTypes).value_or("euclidianDistance");
+    if (e.has("alongRoute") && e.boolean("alongRoute")) e.fail_attribute("alongRoute", "alongRoute is not supported");
+    d.rule = read_rule(e);
+    d.value = e.number("value");
+    by.condition = d;
   } else {
     unsupported(e);
   }

@@ -143,10 +143,35 @@ struct RelativeDistanceCondition {
   Rule rule = Rule::LessThan;
   double value = 0;
 };
+struct TraveledDistanceCondition { double value = 0; };
+struct StandStillCondition { double duration = 0; };
+struct EndOfRoadCondition { double duration = 0; };
+struct OffroadCondition { double duration = 0; };
+struct AccelerationCondition { Rule rule = Rule::GreaterThan; double value = 0; };
+struct ReachPositionCondition { Position position; double tolerance = 0; };
+struct RelativeSpeedCondition { std::string entity; Rule rule = Rule::GreaterThan; double value = 0; };
+struct TimeHeadwayCondition {
+  std::string entity;
+  bool freespace = false;
+  std::string coordinate_system = "entity";
+  Rule rule = Rule::LessThan;
+  double value = 0;
+};
+struct DistanceCondition {
+  Position position;
+  std::string distance_type = "euclidianDistance";
+  std::string coordinate_system = "entity";
+  bool freespace = false;
+  Rule rule = Rule::LessThan;
+  double value = 0;
+};
 struct ByEntityCondition {
   bool all = false;  // triggeringEntitiesRule
   std::vector<std::string> triggering_entities;
-  std::variant<SpeedCondition, RelativeDistanceCondition> condition;
+  std::variant<SpeedCondition, RelativeDistanceCondition, TraveledDistanceCondition, StandStillCondition,
+               EndOfRoadCondition, OffroadCondition, AccelerationCondition, ReachPositionCondition,
+               RelativeSpeedCondition, TimeHeadwayCondition, DistanceCondition>
+      condition;
 };
 struct Condition {
   std::string name;

@@ -190,7 +190,17 @@ class StoryboardReader {
         }
         if (const auto* b = std::get_if<ByEntityCondition>(&c.kind)) {
           for (const std::string& name : b->triggering_entities) check_entity(name, c, file);
-          if (const auto* r = std::get_if<RelativeDistanceCondition>(&b->condition)) check_entity(r->entity, c, file);
+          std::visit(
+              [&](const auto& kind) {
+                if constexpr (requires { kind.entity; }) check_entity(kind.entity, c, file);
+                if constexpr (requires { kind.position; })
+                  std::visit(
+                      [&](const auto& p) {
+                        if constexpr (requires { p.entity; }) check_entity(p.entity, c, file);
+                      },
+                      kind.position);
+              },
+              b->condition);
         }
       }
   }

@@ -27,6 +27,7 @@ struct Record {
 };
 
 struct ConditionMemory {
+  std::map<std::string, double> since;  // per entity: since when a duration condition holds
   bool has_previous = false;
   bool previous = false;
   std::vector<std::pair<double, bool>> history;  // edged value per evaluation, for delays
@@ -62,7 +63,7 @@ struct StoryboardRuntime::Impl {
   }
 
   // ---- conditions ---------------------------------------------------------------------
-  bool value_of(const Condition& c) {
+  bool value_of(const Condition& c, ConditionMemory& m) {
     return std::visit(
         [&](const auto& kind) -> bool {
           using T = std::decay_t<decltype(kind)>;
@@ -86,29 +87,91 @@ struct StoryboardRuntime::Impl {
               }
             return false;
           } else {
-            return by_entity(kind);
+            return by_entity(kind, m);
           }
         },
         c.kind);
   }
 
-  bool by_entity(const ByEntityCondition& c) {
+  // Whether `now` has held for `duration` seconds (per entity).
+  bool held_for(ConditionMemory& m, const std::string& entity, bool now, double duration) {
+    if (!now) {
+      m.since.erase(entity);
+      return false;
+    }
+    const double since = m.since.try_emplace(entity, t).first->second;
+    return t - since >= duration - 1e-9;
+  }
+
+  // A point as a body without extent (positions in Distance and ReachPosition conditions).
+  EntityState point_state(const Position& p) {
+    const ResolvedPosition r = resolver.resolve(p, [&](const std::string& name) -> std::optional<opendrive::Pose2> {
+      const EntityState& e = entities.at(name);
+      return e.placed ? std::optional(e.pose) : std::nullopt;
+    });
+    EntityState s;
+    s.placed = true;
+    s.pose = r.pose;
+    if (r.road) s.s = r.road->s, s.t = r.road->t;
+    return s;
+  }
+
+  bool entity_condition(const ByEntityCondition& c, const std::string& name, ConditionMemory& m) {
+    const EntityState& self = entities.at(name);
+    if (!self.placed) return false;
+    const Body me{&self, &scenario.entity(name)->box};
+    static const BoundingBox kPoint{};
+    return std::visit(
+        [&](const auto& k) -> bool {
+          using T = std::decay_t<decltype(k)>;
+          if constexpr (std::is_same_v<T, SpeedCondition>) return satisfies(k.rule, self.speed, k.value);
+          if constexpr (std::is_same_v<T, AccelerationCondition>) return satisfies(k.rule, self.acceleration, k.value);
+          if constexpr (std::is_same_v<T, TraveledDistanceCondition>) return self.odometer >= k.value - 1e-9;
+          if constexpr (std::is_same_v<T, StandStillCondition>)
+            return held_for(m, name, std::abs(self.speed) < 1e-6, k.duration);
+          if constexpr (std::is_same_v<T, EndOfRoadCondition>) {
+            const double length = roads.road(self.road_id).length;
+            return held_for(m, name, self.s <= 1e-6 || self.s >= length - 1e-6, k.duration);
+          }
+          if constexpr (std::is_same_v<T, OffroadCondition>)
+            return held_for(m, name, !resolver.locate(self.pose).lane.has_value(), k.duration);
+          if constexpr (std::is_same_v<T, ReachPositionCondition>) {
+            const EntityState target = point_state(k.position);
+            return std::hypot(target.pose.x - self.pose.x, target.pose.y - self.pose.y) <= k.tolerance;
+          }
+          if constexpr (std::is_same_v<T, DistanceCondition>) {
+            const EntityState target = point_state(k.position);
+            const double d = relative_distance(me, {&target, &kPoint}, k.distance_type, k.coordinate_system, k.freespace);
+            return satisfies(k.rule, d, k.value);
+          }
+          if constexpr (std::is_same_v<T, RelativeSpeedCondition>) {
+            const EntityState& other = entities.at(k.entity);
+            return other.placed && satisfies(k.rule, self.speed - other.speed, k.value);
+          }
+          if constexpr (std::is_same_v<T, TimeHeadwayCondition>) {
+            const EntityState& other = entities.at(k.entity);
+            if (!other.placed || self.speed <= 0) return false;
+            const double d = relative_distance(me, {&other, &scenario.entity(k.entity)->box}, "longitudinal",
+                                               k.coordinate_system, k.freespace);
+            return satisfies(k.rule, d / self.speed, k.value);
+          }
+          if constexpr (std::is_same_v<T, RelativeDistanceCondition>) {
+            const EntityState& other = entities.at(k.entity);
+            if (!other.placed) return false;
+            const double d = relative_distance(me, {&other, &scenario.entity(k.entity)->box}, k.distance_type,
+                                               k.coordinate_system, k.freespace);
+            return satisfies(k.rule, d, k.value);
+          }
+          return false;
+        },
+        c.condition);
+  }
+
+  bool by_entity(const ByEntityCondition& c, ConditionMemory& m) {
     bool any = false;
     bool all = true;
     for (const std::string& name : c.triggering_entities) {
-      const EntityState& self = entities.at(name);
-      bool holds = false;
-      if (const auto* speed = std::get_if<SpeedCondition>(&c.condition)) {
-        holds = self.placed && satisfies(speed->rule, self.speed, speed->value);
-      } else if (const auto* d = std::get_if<RelativeDistanceCondition>(&c.condition)) {
-        const EntityState& other = entities.at(d->entity);
-        if (self.placed && other.placed) {
-          const double distance =
-              relative_distance({&self, &scenario.entity(name)->box}, {&other, &scenario.entity(d->entity)->box},
-                                d->distance_type, d->coordinate_system, d->freespace);
-          holds = satisfies(d->rule, distance, d->value);
-        }
-      }
+      const bool holds = entity_condition(c, name, m);
       any = any || holds;
       all = all && holds;
     }
@@ -117,7 +180,7 @@ struct StoryboardRuntime::Impl {
 
   bool evaluate(const Condition& c) {
     ConditionMemory& m = memory[&c];
-    const bool now = value_of(c);
+    const bool now = value_of(c, m);
     bool edged = now;
     switch (c.edge) {
       case Edge::None: break;

@@ -191,5 +191,54 @@ TEST_F(Runtime, RelativeDistanceFreespaceTriggers) {
   EXPECT_NEAR(a().speed, 0.0, 1e-12);
 }
 
+std::string entity_condition(const std::string& name, const std::string& inner) {
+  return R"(<Condition name=")" + name + R"(" delay="0" conditionEdge="rising"><ByEntityCondition>
+    <TriggeringEntities triggeringEntitiesRule="any"><EntityRef entityRef="A"/></TriggeringEntities>
+    <EntityCondition>)" + inner + "</EntityCondition></ByEntityCondition></Condition>";
+}
+
+TEST_F(Runtime, EntityConditionsOnMotion) {
+  // A: s 10 at 10 m/s; B: s 50 at 10 m/s. Each event marks when its condition first held.
+  // The marking actions do not move anything.
+  const auto mark = [](const std::string& name, const std::string& inner) {
+    const std::string action = R"(<Action name=")" + name + R"(Action"><PrivateAction><ControllerAction>
+      <ActivateControllerAction lateral="false" longitudinal="false"/></ControllerAction></PrivateAction></Action>)";
+    return event(name, "parallel", action, entity_condition(name + "C", inner));
+  };
+  const auto first = [&](const std::string& name) {
+    const auto all = times(name, "startTransition");
+    return all.empty() ? -1.0 : all.front();
+  };
+  load(mark("Traveled", R"(<TraveledDistanceCondition value="25"/>)") +
+       mark("Reached", R"(<ReachPositionCondition tolerance="0.5"><Position><LanePosition roadId="0" laneId="-1" s="40" offset="0"/></Position></ReachPositionCondition>)") +
+       mark("Headway", R"(<TimeHeadwayCondition entityRef="B" value="3.0" freespace="false" coordinateSystem="road" rule="lessThan"/>)") +
+       mark("Near", R"(<DistanceCondition value="20" freespace="false" rule="lessThan"><Position><WorldPosition x="100" y="-1.75"/></Position></DistanceCondition>)") +
+       event("Brake", "parallel", speed_action("BrakeAction", 0, "linear", "time", 2.0), time_condition("T", 10.0)) +
+       mark("Decelerating", R"(<AccelerationCondition value="-4" rule="lessThan"/>)") +
+       mark("Slower", R"(<RelativeSpeedCondition entityRef="B" value="-8.9" rule="lessThan"/>)") +
+       mark("Stopped", R"(<StandStillCondition duration="1.0"/>)"));
+  run_until(15);
+  EXPECT_NEAR(first("Traveled"), 2.5, 1e-9);   // 25 m at 10 m/s
+  EXPECT_NEAR(first("Reached"), 2.95, 1e-9);   // s 39.5 at t 2.95
+  // Headway in s: (50 + 10 t - 10 - 10 t) / 10 = 4 s never drops below 3 s.
+  EXPECT_TRUE(times("Headway", "startTransition").empty());
+  EXPECT_NEAR(first("Near"), 7.05, 1e-9);           // x 80.5: 19.5 m from x 100
+  EXPECT_NEAR(first("Decelerating"), 10.05, 1e-9);  // -5 m/s^2
+  // A at 10 - 5 (t - 10) m/s, B at 10: below -8.9 m/s once t > 11.78.
+  EXPECT_NEAR(first("Slower"), 11.8, 1e-9);
+  EXPECT_NEAR(first("Stopped"), 13.0, 1e-9);  // still from 12.0
+}
+
+TEST_F(Runtime, HeadwayFallsWhenTheLeaderSlows) {
+  const std::string headway = entity_condition(
+      "H", R"(<TimeHeadwayCondition entityRef="B" value="3.0" freespace="false" coordinateSystem="road" rule="lessThan"/>)");
+  load(event("Faster", "parallel", speed_action("Up", 20, "step", "time", 0), time_condition("T", 1.0)) +
+       event("Close", "parallel", speed_action("Mark", 20, "step", "time", 0), headway));
+  run_until(5);
+  // From t = 1: gap 40 - 10 (t - 1) m at 20 m/s; below 3 s (60 m) at once.
+  ASSERT_EQ(times("Close", "startTransition").size(), 1u);
+  EXPECT_NEAR(times("Close", "startTransition")[0], 1.0, 1e-9);
+}
+
 }  // namespace
 }  // namespace orch::openscenario
