@@ -6,7 +6,11 @@
 #include <cmath>
 #include <filesystem>
 
+#include <pugixml.hpp>
+
+#include "opendrive/sumo_net.hpp"
 #include "opendrive/xodr_reader.hpp"
+#include "support/cli_runner.hpp"
 
 namespace {
 
@@ -60,6 +64,21 @@ TEST(OpenDriveAlksRoads, CurvedRoadLaneCentreLiesOnItsConcentricCircle) {
     ASSERT_TRUE(back.has_value());
     EXPECT_NEAR(back->s, s, 1e-6);
     EXPECT_NEAR(back->t, -8.0, 1e-6);
+  }
+}
+
+TEST(OpenDriveAlksRoads, ConvertedNetHasThreeMotorwayLanesAndAShoulderPerDirection) {
+  orch::test::TempDir cache;
+  const SumoNet net = convert_to_sumo_net(road_file("alks_road_right_radius_250m"), cache.path());
+  pugi::xml_document doc;
+  ASSERT_TRUE(doc.load_file(net.net_file.c_str()));
+  for (const char* edge : {"-0", "0"}) {
+    std::vector<pugi::xml_node> lanes;
+    for (const pugi::xml_node lane : doc.child("net").find_child_by_attribute("edge", "id", edge).children("lane"))
+      lanes.push_back(lane);
+    ASSERT_EQ(lanes.size(), 4u) << edge;
+    EXPECT_STREQ(lanes[0].attribute("allow").value(), "authority") << edge;  // the hard shoulder
+    for (std::size_t i = 1; i < 4; ++i) EXPECT_NEAR(lanes[i].attribute("speed").as_double(), 130 / 3.6, 0.01);
   }
 }
 
