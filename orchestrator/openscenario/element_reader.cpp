@@ -9,6 +9,7 @@
 #include "core/suggest.hpp"
 #include "openscenario/expression.hpp"
 #include "openscenario/standard_elements.hpp"
+#include "openscenario/text_number.hpp"
 
 namespace orch::openscenario {
 
@@ -43,10 +44,8 @@ void Element::missing_attribute(const char* attribute) const {
 std::optional<double> Element::optional_number(const char* attribute) {
   const auto value = raw(attribute);
   if (!value) return std::nullopt;
-  double d = 0;
-  const auto [end, ec] = std::from_chars(value->data(), value->data() + value->size(), d);
-  if (ec != std::errc() || end != value->data() + value->size() || !std::isfinite(d))
-    fail_attribute(attribute, fmt::format("expected a number, found \"{}\"", *value));
+  const auto d = parse_whole<double>(*value);
+  if (!d) fail_attribute(attribute, fmt::format("expected a number, found \"{}\"", *value));
   return d;
 }
 
@@ -60,10 +59,8 @@ std::optional<int> Element::optional_integer(const char* attribute) {
   const auto value = raw(attribute);
   if (!value) return std::nullopt;
   // "-4" and, from an expression, "-4" again (format_number writes integers bare).
-  int n = 0;
-  const auto [end, ec] = std::from_chars(value->data(), value->data() + value->size(), n);
-  if (ec != std::errc() || end != value->data() + value->size())
-    fail_attribute(attribute, fmt::format("expected a whole number, found \"{}\"", *value));
+  const auto n = parse_whole<int>(*value);
+  if (!n) fail_attribute(attribute, fmt::format("expected a whole number, found \"{}\"", *value));
   return n;
 }
 

@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 
 #include "core/suggest.hpp"
+#include "openscenario/text_number.hpp"
 
 namespace orch::openscenario {
 namespace {
@@ -124,13 +125,12 @@ class Parser {
     }
     if (*value == "true") return 1.0;
     if (*value == "false") return 0.0;
-    double number = 0.0;
-    const auto [end, ec] = std::from_chars(value->data(), value->data() + value->size(), number);
-    if (ec != std::errc() || end != value->data() + value->size()) {
+    const auto number = parse_whole<double>(*value);
+    if (!number) {
       pos_ = start;
       fail(fmt::format("parameter \"{}\" has the value \"{}\", not a number", name, *value));
     }
-    return number;
+    return *number;
   }
   double call(std::string_view name) {
     static const std::map<std::string, std::pair<int, double (*)(double, double)>, std::less<>> functions = {

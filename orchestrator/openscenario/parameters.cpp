@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include "openscenario/expression.hpp"
+#include "openscenario/text_number.hpp"
 
 namespace orch::openscenario {
 
@@ -37,10 +38,9 @@ std::string substitute(std::string_view raw, const ParameterScope& scope) {
 
 std::string check_parameter_value(const std::string& type, const std::string& value) {
   const auto whole_number = [&](long long low, long long high) -> std::string {
-    long long n = 0;
-    const auto [end, ec] = std::from_chars(value.data(), value.data() + value.size(), n);
-    if (ec != std::errc() || end != value.data() + value.size())
-      return fmt::format("\"{}\" is not a whole number", value);
+    const auto parsed = parse_whole<long long>(value);
+    if (!parsed) return fmt::format("\"{}\" is not a whole number", value);
+    const long long n = *parsed;
     if (n < low || n > high) return fmt::format("{} is outside [{}, {}]", value, low, high);
     return "";
   };
@@ -48,11 +48,7 @@ std::string check_parameter_value(const std::string& type, const std::string& va
   if (type == "unsignedInt") return whole_number(0, 4294967295LL);
   if (type == "unsignedShort") return whole_number(0, 65535);
   if (type == "double") {
-    double d = 0;
-    const auto [end, ec] = std::from_chars(value.data(), value.data() + value.size(), d);
-    if (ec != std::errc() || end != value.data() + value.size() || !std::isfinite(d))
-      return fmt::format("\"{}\" is not a number", value);
-    return "";
+    return parse_whole<double>(value) ? "" : fmt::format("\"{}\" is not a number", value);
   }
   if (type == "boolean") return value == "true" || value == "false" ? "" : fmt::format("\"{}\" is not true or false", value);
   if (type == "string" || type == "dateTime") return "";

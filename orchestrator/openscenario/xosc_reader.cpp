@@ -9,6 +9,7 @@
 #include "core/suggest.hpp"
 #include "openscenario/reader_context.hpp"
 #include "openscenario/rule.hpp"
+#include "openscenario/text_number.hpp"
 
 namespace orch::openscenario {
 namespace fs = std::filesystem;
@@ -34,13 +35,9 @@ void read_header(Element& root, Scenario& scenario) {
 
 bool holds(Rule rule, const std::string& type, const std::string& value, const std::string& bound, Element& at) {
   if (type == "string" || type == "boolean" || type == "dateTime") return satisfies(rule, value, bound);
-  double a = 0;
-  double b = 0;
-  std::from_chars(value.data(), value.data() + value.size(), a);
-  const auto [end, ec] = std::from_chars(bound.data(), bound.data() + bound.size(), b);
-  if (ec != std::errc() || end != bound.data() + bound.size())
-    at.fail_attribute("value", fmt::format("expected a number, found \"{}\"", bound));
-  return satisfies(rule, a, b);
+  const auto b = parse_whole<double>(bound);
+  if (!b) at.fail_attribute("value", fmt::format("expected a number, found \"{}\"", bound));
+  return satisfies(rule, parse_whole<double>(value).value_or(0.0), *b);
 }
 
 // Declarations in order, then the overrides, then every ConstraintGroup (OR of ANDs) on the

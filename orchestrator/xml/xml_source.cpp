@@ -1,18 +1,20 @@
 #include "xml/xml_source.hpp"
 
 #include <algorithm>
-#include <fstream>
 #include <memory>
-#include <sstream>
+
+#include "core/files.hpp"
 
 namespace orch::xml {
 
 XmlSource XmlSource::load(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw ScenarioError(SourceLocation{path, "", 0}, "cannot read the file");
-  std::ostringstream buffer;
-  buffer << in.rdbuf();
-  return parse(buffer.str(), path);
+  std::string text;
+  try {
+    text = read_file(path);
+  } catch (const OrchError& e) {
+    throw ScenarioError(SourceLocation{path, "", 0}, e.what());
+  }
+  return parse(std::move(text), path);
 }
 
 XmlSource XmlSource::parse(std::string text, const std::string& name) {
