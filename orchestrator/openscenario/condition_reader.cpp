@@ -58,7 +58,12 @@ Condition read_by_value(Element& holder, Condition c) {
                   {"standbyState", "standbyState"}});
     c.kind = s;
   } else if (e.name() == "ParameterCondition") {
-    c.kind = ParameterCondition{e.text("parameterRef"), read_rule(e), e.text("value")};
+    ParameterCondition p{e.text("parameterRef"), read_rule(e), e.text("value")};
+    const auto type = e.scope().type(p.parameter);
+    if (!type) e.fail_attribute("parameterRef", fmt::format("no parameter \"{}\" is declared", p.parameter));
+    const std::string problem = check_parameter_value(*type, p.value);
+    if (!problem.empty()) e.fail_attribute("value", fmt::format("{} ({} parameter {})", problem, *type, p.parameter));
+    c.kind = p;
   } else {
     unsupported(e);
   }

@@ -9,6 +9,7 @@
 #include "openscenario/action_start.hpp"
 #include "openscenario/entity_measures.hpp"
 #include "openscenario/rule.hpp"
+#include "openscenario/text_number.hpp"
 
 namespace orch::openscenario {
 namespace {
@@ -83,7 +84,9 @@ struct StoryboardRuntime::Impl {
               if (p.name == kind.parameter) {
                 if (p.type == "string" || p.type == "boolean" || p.type == "dateTime")
                   return satisfies(kind.rule, p.value, kind.value);
-                return satisfies(kind.rule, std::stod(p.value), std::stod(kind.value));
+                // Both texts were checked as numbers of the parameter's type at load.
+                return satisfies(kind.rule, parse_whole<double>(p.value).value_or(0.0),
+                                 parse_whole<double>(kind.value).value_or(0.0));
               }
             return false;
           } else {

@@ -216,6 +216,17 @@ TEST_F(XoscReader, StandardElementsNotRunAreNamed) {
       << message;
 }
 
+TEST_F(XoscReader, ParameterConditionsAreCheckedAgainstTheDeclaration) {
+  const std::string time = "<SimulationTimeCondition value=\"0\" rule=\"greaterThan\"/>";
+  EXPECT_EQ(error(time, "<ParameterCondition parameterRef=\"Lane\" value=\"-1\" rule=\"equalTo\"/>"), "no error");
+  EXPECT_NE(error(time, "<ParameterCondition parameterRef=\"Lane\" value=\"left\" rule=\"equalTo\"/>")
+                .find("\"left\" is not a whole number (integer parameter Lane)"),
+            std::string::npos);
+  EXPECT_NE(error(time, "<ParameterCondition parameterRef=\"Lan\" value=\"1\" rule=\"equalTo\"/>")
+                .find("no parameter \"Lan\" is declared"),
+            std::string::npos);
+}
+
 TEST_F(XoscReader, RevisionsOtherThanOneZeroToOneTwoAreErrors) {
   EXPECT_NE(error("revMajor=\"1\" revMinor=\"1\" date=\"2024-01-01T00:00:00\" author=\"t\" description=\"cut in\"",
                   "revMajor=\"2\" revMinor=\"0\" date=\"2024-01-01T00:00:00\" author=\"t\" description=\"cut in\"")
