@@ -31,6 +31,7 @@ struct ValidateOptions {
   std::vector<std::string> files;
   bool strict = false;  // warnings count as errors
   bool quiet = false;   // only errors and the summary
+  std::vector<std::string> parameters;  // --param NAME=VALUE (OpenSCENARIO files)
 };
 int validate_command(const ValidateOptions& o);
 

@@ -25,6 +25,8 @@ int main(int argc, char** argv) {
   v->add_option("files", validate.files, "Scenario files")->required()->check(CLI::ExistingFile);
   v->add_flag("--strict", validate.strict, "Treat warnings as errors");
   v->add_flag("-q,--quiet", validate.quiet, "Print only errors and the summary");
+  v->add_option("--param", validate.parameters, "NAME=VALUE: set an OpenSCENARIO parameter (repeatable)")
+      ->allow_extra_args(false);
   add_common(v, validate.common);
 
   orch::cli::RunOptions run;

@@ -12,6 +12,8 @@
 
 #include "cli/common.hpp"
 #include "core/errors.hpp"
+#include "core/scenario_format.hpp"
+#include "openscenario/scenario_check.hpp"
 #include "core/suggest.hpp"
 #include "scenario/loader_internal.hpp"
 #include "scenario/validator.hpp"
@@ -55,9 +57,12 @@ struct Shared {
   const Catalog& catalog;
   WaypointCache& waypoints;
   ValidationOptions options;
+  std::map<std::string, std::string> parameter_overrides;  // --param, OpenSCENARIO files only
 };
 
 Diagnostics validate_file(const std::string& path, Shared& shared) {
+  if (detect_scenario_format(path) == ScenarioFormat::OpenScenario)
+    return openscenario::check_scenario_file(path, {shared.parameter_overrides});
   Diagnostics diags;
   try {
     const JsonDocument doc = JsonDocument::load(path);
@@ -124,7 +129,14 @@ int validate_command(const ValidateOptions& o) {
   }
 
   WaypointCache waypoints;
-  Shared shared{*registry, *catalog, waypoints, ValidationOptions{o.strict}};
+  std::map<std::string, std::string> parameters;
+  try {
+    parameters = openscenario::parse_parameter_overrides(o.parameters);
+  } catch (const OrchError& e) {
+    std::cerr << "validate: " << e.what() << "\n";
+    return 2;
+  }
+  Shared shared{*registry, *catalog, waypoints, ValidationOptions{o.strict}, parameters};
   int failed = 0;
   for (const auto& path : o.files) {
     const Diagnostics diags = validate_file(path, shared);

@@ -11,6 +11,7 @@
 #include "core/errors.hpp"
 #include "core/files.hpp"
 #include "core/process.hpp"
+#include "core/sumo_output.hpp"
 #include "map/junction_plan.hpp"
 #include "map/net_plan.hpp"
 
@@ -77,20 +78,6 @@ std::string connections_xml(const NetPlan& plan, const MapManifest& m) {
                        xml_escape(c.to), c.from_lane, c.to_lane,
                        c.shape.empty() ? "" : fmt::format(" shape=\"{}\"", format_shape(c.shape)));
   return out + "</connections>\n";
-}
-
-// netconvert stamps the net with the time of the run ("<!-- generated on 2024-05-01
-// 12:00:00 by Eclipse SUMO netconvert ..."); drop the timestamp so that the same inputs
-// give the same bytes. Everything else it writes is already deterministic.
-std::string without_generation_date(std::string net) {
-  const std::string marker = "<!-- generated on ";
-  const auto start = net.find(marker);
-  if (start == std::string::npos) return net;
-  const auto by = net.find(" by ", start);
-  const auto eol = net.find('\n', start);
-  if (by == std::string::npos || (eol != std::string::npos && by > eol)) return net;
-  net.replace(start, by - start, "<!-- generated");
-  return net;
 }
 
 std::vector<std::string> lines_starting_with(const std::string& text, std::string_view prefix) {

@@ -1,0 +1,61 @@
+#pragma once
+// The OpenDRIVE reference line (planView): a sequence of geometry records, each a line,
+// arc, spiral (clothoid), cubic polynomial or parametric cubic, evaluated in the
+// OpenDRIVE inertial frame. Elevation and superelevation are ignored (2D).
+#include <variant>
+#include <vector>
+
+namespace orch::opendrive {
+
+struct Pose2 {
+  double x = 0.0;
+  double y = 0.0;
+  double heading = 0.0;  // rad, counter-clockwise from +x
+};
+
+struct Line {};
+struct Arc {
+  double curvature = 0.0;  // 1/m, positive = turning left
+};
+struct Spiral {  // curvature changes linearly with s from curv_start to curv_end
+  double curv_start = 0.0;
+  double curv_end = 0.0;
+};
+struct Poly3 {  // v(u) = a + b u + c u^2 + d u^3 in the local (u, v) frame
+  double a = 0.0, b = 0.0, c = 0.0, d = 0.0;
+};
+struct ParamPoly3 {  // u(p), v(p) cubics; p in [0, 1] (normalized) or [0, length] (arcLength)
+  double au = 0.0, bu = 0.0, cu = 0.0, du = 0.0;
+  double av = 0.0, bv = 0.0, cv = 0.0, dv = 0.0;
+  bool normalized = true;
+};
+using Shape = std::variant<Line, Arc, Spiral, Poly3, ParamPoly3>;
+
+struct Geometry {
+  double s = 0.0;  // start along the reference line
+  Pose2 start;
+  double length = 0.0;
+  Shape shape;
+};
+
+// Pose at `ds` metres along one geometry record (0 <= ds <= length).
+Pose2 evaluate(const Geometry& geometry, double ds);
+// Signed curvature (1/m) at `ds` along one geometry record.
+double curvature(const Geometry& geometry, double ds);
+
+class PlanView {
+ public:
+  PlanView() = default;
+  explicit PlanView(std::vector<Geometry> geometries);
+  [[nodiscard]] const std::vector<Geometry>& geometries() const { return geometries_; }
+  [[nodiscard]] double length() const;
+  // Pose of the reference line at `s` (clamped to [0, length]).
+  [[nodiscard]] Pose2 pose(double s) const;
+  [[nodiscard]] double curvature(double s) const;
+
+ private:
+  [[nodiscard]] const Geometry& record_at(double s) const;
+  std::vector<Geometry> geometries_;
+};
+
+}  // namespace orch::opendrive

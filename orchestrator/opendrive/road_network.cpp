@@ -1,0 +1,158 @@
+#include "opendrive/road_network.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <fmt/format.h>
+
+#include "core/errors.hpp"
+
+namespace orch::opendrive {
+
+const CubicRecord* record_at(const std::vector<CubicRecord>& records, double s) {
+  const CubicRecord* found = nullptr;
+  for (const CubicRecord& r : records) {
+    if (r.s <= s + 1e-9) found = &r;
+    else break;
+  }
+  return found;
+}
+
+double Lane::width(double ds_in_section) const {
+  const CubicRecord* r = record_at(widths, ds_in_section);
+  if (r == nullptr) return widths.empty() ? 0.0 : widths.front().value(0.0);
+  return r->value(ds_in_section - r->s);
+}
+
+const Lane* LaneSection::lane(int id) const {
+  const auto& side = id > 0 ? left : right;
+  for (const Lane& l : side)
+    if (l.id == id) return &l;
+  return nullptr;
+}
+
+const LaneSection& Road::section_at(double s) const {
+  if (sections.empty()) throw MapError(fmt::format("OpenDRIVE road {} has no lane section", id));
+  auto it = std::upper_bound(sections.begin(), sections.end(), s + 1e-9,
+                             [](double value, const LaneSection& section) { return value < section.s; });
+  if (it != sections.begin()) --it;
+  return *it;
+}
+
+double Road::lane_offset(double s) const {
+  const CubicRecord* r = record_at(lane_offsets, s);
+  return r == nullptr ? 0.0 : r->value(s - r->s);
+}
+
+std::pair<double, double> Road::lane_borders(int lane_id, double s) const {
+  const LaneSection& section = section_at(s);
+  const double ds = s - section.s;
+  const double sign = lane_id > 0 ? 1.0 : -1.0;
+  double inner = lane_offset(s);
+  if (lane_id == 0) return {inner, inner};
+  // Lanes are stacked outward from the centre lane: 1, 2, ... to the left, -1, -2, ... right.
+  const int step = lane_id > 0 ? 1 : -1;
+  for (int current = step; std::abs(current) <= std::abs(lane_id); current += step) {
+    const Lane* lane = section.lane(current);
+    if (lane == nullptr)
+      throw MapError(fmt::format("OpenDRIVE road {} has no lane {} at s={:.3f}", id, lane_id, s));
+    const double outer = inner + sign * lane->width(ds);
+    if (current == lane_id) return {inner, outer};
+    inner = outer;
+  }
+  throw MapError(fmt::format("OpenDRIVE road {} has no lane {} at s={:.3f}", id, lane_id, s));
+}
+
+double Road::lane_center_t(int lane_id, double s) const {
+  const auto [inner, outer] = lane_borders(lane_id, s);
+  return 0.5 * (inner + outer);
+}
+
+std::optional<int> Road::lane_at(double s, double t) const {
+  const LaneSection& section = section_at(s);
+  const double ds = s - section.s;
+  const double centre = lane_offset(s);
+  const bool left = t >= centre;
+  const auto& side = left ? section.left : section.right;
+  double inner = centre;
+  for (const Lane& lane : side) {
+    const double outer = inner + (left ? 1.0 : -1.0) * lane.width(ds);
+    if (left ? (t >= inner && t <= outer) : (t <= inner && t >= outer)) return lane.id;
+    inner = outer;
+  }
+  return std::nullopt;
+}
+
+Pose2 Road::world(double s, double t) const {
+  const Pose2 ref = plan_view.pose(s);
+  return {ref.x - t * std::sin(ref.heading), ref.y + t * std::cos(ref.heading), ref.heading};
+}
+
+RoadNetwork::RoadNetwork(std::vector<Road> roads) : roads_(std::move(roads)) {
+  for (std::size_t i = 0; i < roads_.size(); ++i) index_.emplace(roads_[i].id, i);
+}
+
+const Road* RoadNetwork::find(const std::string& road_id) const {
+  const auto it = index_.find(road_id);
+  return it == index_.end() ? nullptr : &roads_[it->second];
+}
+
+const Road& RoadNetwork::road(const std::string& road_id) const {
+  const Road* r = find(road_id);
+  if (r == nullptr) throw MapError(fmt::format("the OpenDRIVE network has no road {}", road_id));
+  return *r;
+}
+
+Pose2 RoadNetwork::lane_pose(const std::string& road_id, int lane_id, double s, double offset) const {
+  const Road& r = road(road_id);
+  return r.world(s, r.lane_center_t(lane_id, s) + offset);
+}
+
+RoadCoordinate project(const Road& road, double x, double y) {
+  // Coarse: the nearest of samples every ~1 m; fine: Newton on (q - p(s)) . T(s) = 0.
+  const double length = road.plan_view.length();
+  const int samples = std::max(2, static_cast<int>(std::ceil(length)) + 1);
+  double best_s = 0.0;
+  double best_d2 = std::numeric_limits<double>::infinity();
+  for (int i = 0; i < samples; ++i) {
+    const double s = length * i / (samples - 1);
+    const Pose2 p = road.plan_view.pose(s);
+    const double d2 = (x - p.x) * (x - p.x) + (y - p.y) * (y - p.y);
+    if (d2 < best_d2) best_d2 = d2, best_s = s;
+  }
+  double s = best_s;
+  for (int i = 0; i < 30; ++i) {
+    const Pose2 p = road.plan_view.pose(s);
+    const double along = (x - p.x) * std::cos(p.heading) + (y - p.y) * std::sin(p.heading);
+    const double across = -(x - p.x) * std::sin(p.heading) + (y - p.y) * std::cos(p.heading);
+    const double denom = 1.0 - road.plan_view.curvature(s) * across;
+    const double step = std::abs(denom) > 1e-6 ? along / denom : along;
+    const double next = std::clamp(s + step, 0.0, length);
+    if (std::abs(next - s) < 1e-10) break;
+    s = next;
+  }
+  const Pose2 p = road.plan_view.pose(s);
+  const double t = -(x - p.x) * std::sin(p.heading) + (y - p.y) * std::cos(p.heading);
+  return {road.id, s, t, p.heading};
+}
+
+std::optional<RoadCoordinate> RoadNetwork::to_road(double x, double y) const {
+  std::optional<RoadCoordinate> best;
+  bool best_on_lane = false;
+  double best_distance = std::numeric_limits<double>::infinity();
+  for (const Road& r : roads_) {
+    const RoadCoordinate c = project(r, x, y);
+    const Pose2 ref = r.world(c.s, c.t);
+    const double distance = std::hypot(ref.x - x, ref.y - y) + std::abs(c.t) * 1e-9;
+    const bool on_lane = r.lane_at(c.s, c.t).has_value() && distance < 1e-3;
+    if ((on_lane && !best_on_lane) || (on_lane == best_on_lane && distance < best_distance)) {
+      best = c;
+      best_on_lane = on_lane;
+      best_distance = distance;
+    }
+  }
+  return best;
+}
+
+}  // namespace orch::opendrive

@@ -1,0 +1,98 @@
+#pragma once
+// An OpenDRIVE road network as plain values: roads with their reference line, lane offset,
+// lane sections and lanes, and the frame conversions (road, lane, s, t) <-> (x, y, heading).
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "opendrive/plan_view.hpp"
+
+namespace orch::opendrive {
+
+// a + b ds + c ds^2 + d ds^3 with ds measured from `s` (laneOffset, width, speed records).
+struct CubicRecord {
+  double s = 0.0;  // start, in the unit the owner defines (road s or offset in the section)
+  double a = 0.0, b = 0.0, c = 0.0, d = 0.0;
+  [[nodiscard]] double value(double ds) const { return a + ds * (b + ds * (c + ds * d)); }
+  [[nodiscard]] double slope(double ds) const { return b + ds * (2 * c + ds * 3 * d); }
+};
+
+// The record in effect at `s` (the last starting at or before it), or nullptr.
+const CubicRecord* record_at(const std::vector<CubicRecord>& records, double s);
+
+struct SpeedRecord {
+  double s_offset = 0.0;  // from the section start
+  double max_mps = 0.0;
+};
+
+struct Lane {
+  int id = 0;
+  std::string type;                 // "driving", "stop", "border", "shoulder", "sidewalk", ...
+  std::vector<CubicRecord> widths;  // s = sOffset from the section start
+  std::vector<SpeedRecord> speeds;
+  [[nodiscard]] double width(double ds_in_section) const;
+};
+
+struct LaneSection {
+  double s = 0.0;
+  std::vector<Lane> left;   // ids 1, 2, ... (sorted outward)
+  std::vector<Lane> right;  // ids -1, -2, ... (sorted outward)
+  [[nodiscard]] const Lane* lane(int id) const;
+};
+
+struct Road {
+  std::string id;
+  std::string name;
+  double length = 0.0;
+  std::string junction = "-1";
+  bool left_hand_traffic = false;
+  std::optional<double> type_speed_mps;  // road <type><speed max>, when given
+  PlanView plan_view;
+  std::vector<CubicRecord> lane_offsets;  // s = road s
+  std::vector<LaneSection> sections;      // sorted by s
+
+  [[nodiscard]] const LaneSection& section_at(double s) const;
+  [[nodiscard]] double lane_offset(double s) const;
+  // Lateral position t of a lane's inner and outer border at s (t grows to the left).
+  // Throws MapError when the lane does not exist at s.
+  [[nodiscard]] std::pair<double, double> lane_borders(int lane_id, double s) const;
+  [[nodiscard]] double lane_center_t(int lane_id, double s) const;
+  // The lane holding lateral position t at s (0 = on the reference line with no lane).
+  [[nodiscard]] std::optional<int> lane_at(double s, double t) const;
+  // Point at (s, t) in the inertial frame; heading is the reference line's heading at s.
+  [[nodiscard]] Pose2 world(double s, double t) const;
+};
+
+// A position in the road frame of one road.
+struct RoadCoordinate {
+  std::string road_id;
+  double s = 0.0;
+  double t = 0.0;
+  double road_heading = 0.0;  // heading of the reference line at s
+};
+
+class RoadNetwork {
+ public:
+  RoadNetwork() = default;
+  explicit RoadNetwork(std::vector<Road> roads);
+  [[nodiscard]] const std::vector<Road>& roads() const { return roads_; }
+  [[nodiscard]] const Road* find(const std::string& road_id) const;
+  // Throws MapError naming the road when it is missing.
+  [[nodiscard]] const Road& road(const std::string& road_id) const;
+
+  // Inertial pose of the centre of `lane_id` at s, moved `offset` metres to the left of it.
+  [[nodiscard]] Pose2 lane_pose(const std::string& road_id, int lane_id, double s, double offset) const;
+  // The road point nearest to (x, y): the road whose reference line is closest and on whose
+  // lanes the point lies (any road when none holds it), s and t on it.
+  [[nodiscard]] std::optional<RoadCoordinate> to_road(double x, double y) const;
+
+ private:
+  std::vector<Road> roads_;
+  std::map<std::string, std::size_t> index_;
+};
+
+// Projection of (x, y) onto one road's reference line: nearest s in [0, length] and signed t.
+RoadCoordinate project(const Road& road, double x, double y);
+
+}  // namespace orch::opendrive

@@ -1,0 +1,142 @@
+#include "opendrive/sumo_net.hpp"
+
+#include <unistd.h>
+
+#include <cstdlib>
+#include <sstream>
+
+#include <fmt/format.h>
+
+#include "core/errors.hpp"
+#include "core/files.hpp"
+#include "core/process.hpp"
+#include "core/sumo_output.hpp"
+#include "xml/xml_source.hpp"
+
+namespace orch::opendrive {
+namespace fs = std::filesystem;
+
+namespace {
+
+// Bump when the conversion changes, so that old cache entries are not reused.
+constexpr std::string_view kConversionVersion = "opendrive-sumo-net 1";
+
+bool carries_traffic(std::string_view lane_type) {
+  for (const std::string_view t : {"driving", "entry", "exit", "onRamp", "offRamp", "mwyEntry", "mwyExit"})
+    if (lane_type == t) return true;
+  return false;
+}
+
+}  // namespace
+
+double speed_for_road_type(std::string_view road_type) {
+  // km/h; the common limits of the road classes (motorway: the usual advisory 130 km/h).
+  struct Entry {
+    std::string_view type;
+    double kmh;
+  };
+  static constexpr Entry kSpeeds[] = {
+      {"motorway", 130}, {"rural", 100},        {"townExpressway", 80}, {"town", 50},
+      {"townArterial", 50}, {"townCollector", 50}, {"townLocal", 30},     {"townPrivate", 30},
+      {"lowSpeed", 30},  {"townPlayStreet", 7}, {"bicycle", 25},        {"pedestrian", 5}};
+  for (const Entry& e : kSpeeds)
+    if (e.type == road_type) return e.kmh / 3.6;
+  return 100 / 3.6;  // no or an unknown road type: a rural road
+}
+
+std::string lane_type_map_xml() {
+  // Moving traffic on driving lanes (speeds come from the .xodr, see with_lane_speeds);
+  // hard shoulders ("stop"), shoulders and restricted lanes are kept for scripted entities
+  // but admit only the class "authority", so background traffic never uses them.
+  const std::string cars = "disallow=\"pedestrian rail rail_urban rail_electric rail_fast tram ship\"";
+  std::string out = "<types>\n";
+  for (const char* t : {"driving", "entry", "exit", "onRamp", "offRamp", "mwyEntry", "mwyExit"})
+    out += fmt::format("    <type id=\"{}\" priority=\"1\" speed=\"27.78\" width=\"3.50\" {}/>\n", t, cars);
+  for (const char* t : {"stop", "shoulder", "restricted"})
+    out += fmt::format("    <type id=\"{}\" priority=\"0\" speed=\"13.89\" width=\"2.50\" allow=\"authority\"/>\n", t);
+  out += "    <type id=\"parking\" priority=\"0\" speed=\"1.39\" width=\"2.50\" allow=\"authority\"/>\n";
+  out += "    <type id=\"sidewalk\" priority=\"-2\" speed=\"2.78\" width=\"2.00\" allow=\"pedestrian\"/>\n";
+  out += "    <type id=\"walking\" priority=\"-2\" speed=\"2.78\" width=\"2.00\" allow=\"pedestrian\"/>\n";
+  out += "    <type id=\"biking\" priority=\"-1\" speed=\"5.56\" width=\"1.50\" allow=\"bicycle\"/>\n";
+  out += "    <type id=\"tram\" priority=\"2\" speed=\"13.89\" width=\"3.50\" allow=\"tram\"/>\n";
+  out += "    <type id=\"rail\" priority=\"3\" speed=\"33.33\" width=\"3.50\" allow=\"rail rail_urban rail_electric rail_fast\"/>\n";
+  for (const char* t : {"none", "border", "median", "curb", "special1", "special2", "special3", "roadWorks",
+                        "bidirectional"})
+    out += fmt::format("    <type id=\"{}\" priority=\"0\" speed=\"1.39\" width=\"0.10\" disallow=\"all\" discard=\"true\"/>\n", t);
+  return out + "</types>\n";
+}
+
+std::string with_lane_speeds(const std::string& xodr_text, const std::string& file_name) {
+  const xml::XmlSource source = xml::XmlSource::parse(xodr_text, file_name);
+  for (pugi::xml_node road : source.root().children("road")) {
+    double speed = speed_for_road_type(road.child("type").attribute("type").as_string(""));
+    if (const pugi::xml_node record = road.child("type").child("speed")) {
+      const double max = record.attribute("max").as_double(0.0);
+      const std::string unit = record.attribute("unit").as_string("m/s");
+      speed = unit == "km/h" ? max / 3.6 : unit == "mph" ? max * 0.44704 : max;
+    }
+    for (pugi::xml_node section : road.child("lanes").children("laneSection"))
+      for (const char* side : {"left", "right"})
+        for (pugi::xml_node lane : section.child(side).children("lane")) {
+          if (!carries_traffic(lane.attribute("type").as_string("")) || lane.child("speed")) continue;
+          pugi::xml_node record = lane.append_child("speed");
+          record.append_attribute("sOffset") = "0";
+          record.append_attribute("max") = fmt::format("{:.4f}", speed).c_str();
+          record.append_attribute("unit") = "m/s";
+        }
+  }
+  std::ostringstream out;
+  source.root().root().print(out, "  ", pugi::format_default, pugi::encoding_utf8);
+  return out.str();
+}
+
+fs::path default_net_cache() {
+  if (const char* env = std::getenv("ORCH_CACHE"); env && *env) return fs::path(env) / "opendrive";
+  if (const char* env = std::getenv("XDG_CACHE_HOME"); env && *env) return fs::path(env) / "orchestrator" / "opendrive";
+  if (const char* env = std::getenv("HOME"); env && *env) return fs::path(env) / ".cache" / "orchestrator" / "opendrive";
+  return fs::temp_directory_path() / "orchestrator-cache" / "opendrive";
+}
+
+SumoNet convert_to_sumo_net(const fs::path& xodr_file, const fs::path& cache_root) {
+  const std::string text = read_file(xodr_file);
+  SumoNet net;
+  net.key = sha256_hex(std::string(kConversionVersion) + "\n" + lane_type_map_xml() + text);
+  const fs::path dir = cache_root / net.key;
+  net.net_file = dir / "net.net.xml";
+  std::error_code ec;
+  if (fs::is_regular_file(net.net_file, ec)) {
+    net.from_cache = true;
+    return net;
+  }
+  const std::string converted = with_lane_speeds(text, xodr_file.string());  // bad XML fails here
+  // Built in a private folder and renamed into place: parallel runs of a batch may convert
+  // the same road at once; one rename wins and the others find the finished entry.
+  const fs::path work = cache_root / fmt::format("{}.tmp{}", net.key, ::getpid());
+  fs::remove_all(work, ec);
+  fs::create_directories(work, ec);
+  if (ec) throw MapError(fmt::format("cannot create {}: {}", work.string(), ec.message()));
+  write_file_atomically(work / "road.xodr", converted);
+  write_file_atomically(work / "lanes.typ.xml", lane_type_map_xml());
+  // Relative paths: netconvert copies its arguments into the net's header.
+  const ProcessResult result = run_process(
+      "netconvert",
+      {"--opendrive-files", "road.xodr", "--type-files", "lanes.typ.xml", "--output-file", "net.net.xml",
+       // SUMO coordinates == OpenDRIVE coordinates.
+       "--offset.disable-normalization", "true", "--no-turnarounds", "true"},
+      work);
+  if (result.exit_code != 0) {
+    fs::remove_all(work, ec);
+    throw MapError(fmt::format("netconvert could not convert {} (exit status {}):\n{}", xodr_file.string(),
+                               result.exit_code, result.output));
+  }
+  write_file_atomically(work / "net.net.xml", without_generation_date(read_file(work / "net.net.xml")));
+  fs::rename(work, dir, ec);
+  if (ec) {
+    fs::remove_all(work, ec);  // another process finished first; its entry is the same bytes
+    if (!fs::is_regular_file(net.net_file))
+      throw MapError(fmt::format("cannot store the converted net of {} in {}", xodr_file.string(), dir.string()));
+  }
+  return net;
+}
+
+}  // namespace orch::opendrive

@@ -1,0 +1,164 @@
+#include "opendrive/xodr_reader.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <optional>
+#include <string_view>
+
+#include <fmt/format.h>
+
+#include "core/suggest.hpp"
+#include "xml/xml_source.hpp"
+
+namespace orch::opendrive {
+namespace {
+
+using xml::XmlSource;
+
+class Reader {
+ public:
+  explicit Reader(const XmlSource& source) : src_(source) {}
+
+  RoadNetwork read() {
+    const pugi::xml_node root = src_.root();
+    if (std::string_view(root.name()) != "OpenDRIVE")
+      src_.fail(root, fmt::format("expected the root element OpenDRIVE, found {}", root.name()));
+    const pugi::xml_node header = root.child("header");
+    if (header && header.attribute("revMajor") && number(header, "revMajor") != 1.0)
+      src_.fail(header, fmt::format("OpenDRIVE revMajor {} is not supported (expected 1)",
+                                    header.attribute("revMajor").value()));
+    std::vector<Road> roads;
+    for (const pugi::xml_node road : root.children("road")) roads.push_back(read_road(road));
+    if (roads.empty()) src_.fail(root, "the OpenDRIVE file holds no road");
+    return RoadNetwork(std::move(roads));
+  }
+
+ private:
+  double number(const pugi::xml_node& node, const char* name, std::optional<double> fallback = {}) const {
+    const pugi::xml_attribute a = node.attribute(name);
+    if (!a) {
+      if (fallback) return *fallback;
+      throw ScenarioError(src_.where(node, name), fmt::format("missing attribute {}", name));
+    }
+    const char* text = a.value();
+    char* end = nullptr;
+    const double value = std::strtod(text, &end);
+    if (end == text || *end != '\0' || !std::isfinite(value))
+      throw ScenarioError(src_.where(node, name), fmt::format("expected a number, found \"{}\"", text));
+    return value;
+  }
+
+  CubicRecord cubic(const pugi::xml_node& node, const char* start) const {
+    return {number(node, start), number(node, "a", 0.0), number(node, "b", 0.0), number(node, "c", 0.0),
+            number(node, "d", 0.0)};
+  }
+
+  Shape shape(const pugi::xml_node& geometry) const {
+    for (const pugi::xml_node child : geometry.children()) {
+      if (child.type() != pugi::node_element) continue;
+      const std::string_view kind = child.name();
+      if (kind == "line") return Line{};
+      if (kind == "arc") return Arc{number(child, "curvature")};
+      if (kind == "spiral") return Spiral{number(child, "curvStart"), number(child, "curvEnd")};
+      if (kind == "poly3")
+        return Poly3{number(child, "a"), number(child, "b"), number(child, "c"), number(child, "d")};
+      if (kind == "paramPoly3") {
+        const std::string range = child.attribute("pRange").as_string("normalized");
+        if (range != "normalized" && range != "arcLength")
+          throw ScenarioError(src_.where(child, "pRange"),
+                              fmt::format("expected pRange \"normalized\" or \"arcLength\", found \"{}\"", range));
+        return ParamPoly3{number(child, "aU"), number(child, "bU"), number(child, "cU"), number(child, "dU"),
+                          number(child, "aV"), number(child, "bV"), number(child, "cV"), number(child, "dV"),
+                          range == "normalized"};
+      }
+      src_.fail(child, fmt::format("unknown geometry {}{}", kind,
+                                   did_you_mean(kind, {"line", "arc", "spiral", "poly3", "paramPoly3"})));
+    }
+    src_.fail(geometry, "geometry without a shape (line, arc, spiral, poly3 or paramPoly3)");
+  }
+
+  double speed_mps(const pugi::xml_node& node) const {
+    const double max = number(node, "max");
+    const std::string unit = node.attribute("unit").as_string("m/s");
+    if (unit == "m/s") return max;
+    if (unit == "km/h") return max / 3.6;
+    if (unit == "mph") return max * 0.44704;
+    throw ScenarioError(src_.where(node, "unit"),
+                        fmt::format("expected a speed unit m/s, km/h or mph, found \"{}\"", unit));
+  }
+
+  Lane read_lane(const pugi::xml_node& node) const {
+    Lane lane;
+    lane.id = node.attribute("id").as_int();
+    lane.type = node.attribute("type").as_string("none");
+    if (node.child("border"))
+      src_.fail(node.child("border"), "lane border records are not supported (use width records)");
+    for (const pugi::xml_node w : node.children("width")) lane.widths.push_back(cubic(w, "sOffset"));
+    std::stable_sort(lane.widths.begin(), lane.widths.end(),
+                     [](const CubicRecord& a, const CubicRecord& b) { return a.s < b.s; });
+    for (const pugi::xml_node sp : node.children("speed"))
+      lane.speeds.push_back({number(sp, "sOffset", 0.0), speed_mps(sp)});
+    return lane;
+  }
+
+  LaneSection read_section(const pugi::xml_node& node) const {
+    LaneSection section;
+    section.s = number(node, "s");
+    for (const pugi::xml_node lane : node.child("left").children("lane")) section.left.push_back(read_lane(lane));
+    for (const pugi::xml_node lane : node.child("right").children("lane")) section.right.push_back(read_lane(lane));
+    std::sort(section.left.begin(), section.left.end(), [](const Lane& a, const Lane& b) { return a.id < b.id; });
+    std::sort(section.right.begin(), section.right.end(), [](const Lane& a, const Lane& b) { return a.id > b.id; });
+    // Lanes must be numbered 1..n to the left and -1..-n to the right without gaps.
+    for (std::size_t i = 0; i < section.left.size(); ++i)
+      if (section.left[i].id != static_cast<int>(i) + 1)
+        src_.fail(node, fmt::format("left lanes must be numbered 1..{} without gaps", section.left.size()));
+    for (std::size_t i = 0; i < section.right.size(); ++i)
+      if (section.right[i].id != -static_cast<int>(i) - 1)
+        src_.fail(node, fmt::format("right lanes must be numbered -1..-{} without gaps", section.right.size()));
+    return section;
+  }
+
+  Road read_road(const pugi::xml_node& node) const {
+    Road road;
+    road.id = node.attribute("id").as_string();
+    if (road.id.empty()) throw ScenarioError(src_.where(node, "id"), "road without an id");
+    road.name = node.attribute("name").as_string();
+    road.length = number(node, "length");
+    road.junction = node.attribute("junction").as_string("-1");
+    road.left_hand_traffic = std::string_view(node.attribute("rule").as_string("RHT")) == "LHT";
+    for (const pugi::xml_node type : node.children("type"))
+      if (const pugi::xml_node speed = type.child("speed")) road.type_speed_mps = speed_mps(speed);
+    std::vector<Geometry> geometries;
+    for (const pugi::xml_node g : node.child("planView").children("geometry"))
+      geometries.push_back(Geometry{number(g, "s"), {number(g, "x"), number(g, "y"), number(g, "hdg")},
+                                    number(g, "length"), shape(g)});
+    if (geometries.empty()) src_.fail(node, "road without planView geometry");
+    road.plan_view = PlanView(std::move(geometries));
+    const pugi::xml_node lanes = node.child("lanes");
+    for (const pugi::xml_node offset : lanes.children("laneOffset")) road.lane_offsets.push_back(cubic(offset, "s"));
+    std::stable_sort(road.lane_offsets.begin(), road.lane_offsets.end(),
+                     [](const CubicRecord& a, const CubicRecord& b) { return a.s < b.s; });
+    for (const pugi::xml_node section : lanes.children("laneSection")) road.sections.push_back(read_section(section));
+    if (road.sections.empty()) src_.fail(node, "road without a laneSection");
+    std::stable_sort(road.sections.begin(), road.sections.end(),
+                     [](const LaneSection& a, const LaneSection& b) { return a.s < b.s; });
+    return road;
+  }
+
+  const XmlSource& src_;
+};
+
+}  // namespace
+
+RoadNetwork read_xodr_file(const std::string& path) {
+  const XmlSource source = XmlSource::load(path);
+  return Reader(source).read();
+}
+
+RoadNetwork read_xodr_text(std::string text, const std::string& name) {
+  const XmlSource source = XmlSource::parse(std::move(text), name);
+  return Reader(source).read();
+}
+
+}  // namespace orch::opendrive

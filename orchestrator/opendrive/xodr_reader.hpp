@@ -1,0 +1,15 @@
+#pragma once
+// Reads an OpenDRIVE (.xodr) file into a RoadNetwork. Only what positions and lane types
+// need is read (planView, laneOffset, lane sections, widths, types, speeds); elevation,
+// road marks, objects and signals are ignored. Errors name file, line and element path.
+#include <string>
+
+#include "opendrive/road_network.hpp"
+
+namespace orch::opendrive {
+
+// Throws ScenarioError (bad file) naming file, line and element.
+RoadNetwork read_xodr_file(const std::string& path);
+RoadNetwork read_xodr_text(std::string text, const std::string& name);
+
+}  // namespace orch::opendrive

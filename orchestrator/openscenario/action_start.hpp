@@ -1,0 +1,44 @@
+#pragma once
+// What each private action does to an entity when it starts, and, for actions that take
+// time, each step until it ends (internal to the storyboard runtime).
+#include <map>
+#include <string>
+#include <vector>
+
+#include "openscenario/entity_motion.hpp"
+#include "openscenario/model.hpp"
+#include "openscenario/position_resolver.hpp"
+
+namespace orch::openscenario {
+
+struct ActionContext {
+  const Scenario& scenario;
+  const opendrive::RoadNetwork& roads;
+  const PositionResolver& resolver;
+  std::map<std::string, EntityState>& entities;
+  double t;
+};
+
+enum class MotionDomain { Longitudinal, Lateral };
+
+// An action still shaping one entity's motion.
+struct RunningAction {
+  std::string action;  // storyboard name; "" for Init actions
+  std::string entity;
+  MotionDomain domain = MotionDomain::Longitudinal;
+  bool continuous = false;  // never ends on its own (continuous targets)
+  const PrivateAction* spec = nullptr;
+};
+
+// Starts `action` for `entity`: immediate actions take effect now; actions that take time
+// are added to `running`. Returns the names of running storyboard actions it replaced
+// (same entity, same motion domain). Throws MapError when a position cannot be resolved.
+std::vector<std::string> start_action(const PrivateAction& action, const std::string& entity,
+                                      const std::string& action_name, ActionContext& ctx,
+                                      std::vector<RunningAction>& running);
+
+// After the entities moved to ctx.t: ends the actions whose motion is done (returns their
+// names once no actor of theirs is still running them) and keeps continuous ones on target.
+std::vector<std::string> update_running_actions(ActionContext& ctx, std::vector<RunningAction>& running);
+
+}  // namespace orch::openscenario

@@ -1,0 +1,112 @@
+// CatalogLocations, catalog files and CatalogReference resolution.
+#include <algorithm>
+#include <filesystem>
+
+#include <fmt/format.h>
+
+#include "core/suggest.hpp"
+#include "openscenario/reader_context.hpp"
+
+namespace orch::openscenario::reading {
+namespace fs = std::filesystem;
+
+namespace {
+
+void load_catalog_file(const fs::path& file, Context& context) {
+  auto source = std::make_unique<xml::XmlSource>(xml::XmlSource::load(file.string()));
+  Element root(*source, source->root(), context.global);
+  if (root.name() != "OpenSCENARIO") root.fail(fmt::format("expected OpenSCENARIO, found {}", root.name()));
+  root.ignore_children({"FileHeader"});
+  Element catalog = root.child("Catalog");
+  root.finish();
+  const std::string name = catalog.text("name");
+  auto& entries = context.catalogs[name];
+  for (const pugi::xml_node entry : catalog.node().children()) {
+    if (entry.type() != pugi::node_element) continue;
+    const std::string entry_name = entry.attribute("name").as_string();
+    if (entry_name.empty()) source->fail(entry, "catalog entry without a name");
+    if (!entries.emplace(entry_name, CatalogEntry{source.get(), entry}).second)
+      source->fail(entry, fmt::format("catalog {} holds two entries named {}", name, entry_name));
+  }
+  context.catalog_files.push_back(std::move(source));
+}
+
+}  // namespace
+
+void read_catalog_locations(Element& locations, const std::string& scenario_dir, Context& context) {
+  static const std::vector<std::string> kinds = {"VehicleCatalog", "ControllerCatalog", "PedestrianCatalog",
+                                                 "MiscObjectCatalog", "EnvironmentCatalog", "ManeuverCatalog",
+                                                 "TrajectoryCatalog", "RouteCatalog"};
+  for (const std::string& kind : kinds) {
+    for (Element location : locations.children(kind.c_str())) {
+      Element directory = location.child("Directory");
+      location.finish();
+      const std::string path = directory.text("path");
+      directory.finish();
+      fs::path dir = fs::path(path).is_absolute() ? fs::path(path) : fs::path(scenario_dir) / path;
+      std::error_code ec;
+      if (!fs::is_directory(dir, ec)) directory.fail_attribute("path", fmt::format("no directory {}", dir.string()));
+      std::vector<fs::path> files;
+      for (const auto& f : fs::directory_iterator(dir))
+        if (f.path().extension() == ".xosc") files.push_back(f.path());
+      std::sort(files.begin(), files.end());  // deterministic whatever the file system lists
+      for (const fs::path& f : files) load_catalog_file(f, context);
+    }
+  }
+  locations.finish();
+}
+
+Element Context::resolve(Element& reference, const std::vector<std::string>& kinds) {
+  const std::string catalog_name = reference.text("catalogName");
+  const std::string entry_name = reference.text("entryName");
+  const auto catalog = catalogs.find(catalog_name);
+  if (catalog == catalogs.end()) {
+    std::vector<std::string> names;
+    for (const auto& [n, c] : catalogs) names.push_back(n);
+    reference.fail_attribute("catalogName", fmt::format("no catalog named \"{}\" in the CatalogLocations{}",
+                                                        catalog_name, did_you_mean(catalog_name, names)));
+  }
+  const auto entry = catalog->second.find(entry_name);
+  if (entry == catalog->second.end()) {
+    std::vector<std::string> names;
+    for (const auto& [n, e] : catalog->second) names.push_back(n);
+    reference.fail_attribute("entryName", fmt::format("catalog \"{}\" has no entry \"{}\"{}", catalog_name,
+                                                      entry_name, did_you_mean(entry_name, names)));
+  }
+  const CatalogEntry& found = entry->second;
+  if (std::find(kinds.begin(), kinds.end(), found.node.name()) == kinds.end())
+    reference.fail(fmt::format("catalog entry \"{}\" is a {}, expected {}", entry_name, found.node.name(),
+                               quoted_list(kinds)));
+  // The entry's own parameters, with the reference's assignments (evaluated where the
+  // reference stands) replacing their defaults.
+  ParameterScope& scope = entry_scopes.emplace_back(&global);
+  Element entry_element(*found.source, found.node, scope);
+  std::vector<std::string> declared;
+  if (auto declarations = entry_element.optional_child("ParameterDeclarations")) {
+    for (Element d : declarations->children("ParameterDeclaration")) {
+      const std::string name = d.text("name");
+      scope.set(name, d.text("parameterType"), d.text("value"));
+      declared.push_back(name);
+      d.finish();
+    }
+    declarations->finish();
+  }
+  if (auto assignments = reference.optional_child("ParameterAssignments")) {
+    for (Element a : assignments->children("ParameterAssignment")) {
+      const std::string name = a.text("parameterRef");
+      if (!scope.declares(name))
+        a.fail_attribute("parameterRef", fmt::format("catalog entry \"{}\" declares no parameter \"{}\"{}",
+                                                     entry_name, name, did_you_mean(name, declared)));
+      const std::string value = a.text("value");
+      const std::string problem = check_parameter_value(*scope.type(name), value);
+      if (!problem.empty()) a.fail_attribute("value", problem);
+      scope.set(name, *scope.type(name), value);
+      a.finish();
+    }
+    assignments->finish();
+  }
+  reference.finish();
+  return entry_element;
+}
+
+}  // namespace orch::openscenario::reading

@@ -1,0 +1,65 @@
+#include "openscenario/entity_motion.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "openscenario/transition_shape.hpp"
+
+namespace orch::openscenario {
+
+double SpeedProfile::at(double t) const {
+  if (duration <= 0) return to;
+  return from + (to - from) * shape_value(shape, (t - start) / duration);
+}
+
+double LateralProfile::at(double t) const {
+  if (duration <= 0) return to;
+  return from + (to - from) * shape_value(shape, (t - start) / duration);
+}
+
+double LateralProfile::rate(double t) const {
+  if (duration <= 0) return 0.0;
+  return (to - from) * shape_slope(shape, (t - start) / duration) / duration;
+}
+
+int travel_direction(const opendrive::Road& road, int lane) {
+  const bool right = lane < 0;
+  return (right != road.left_hand_traffic) ? 1 : -1;
+}
+
+void update_pose(EntityState& state, const opendrive::RoadNetwork& roads) {
+  const opendrive::Road& road = roads.road(state.road_id);
+  const double s = std::clamp(state.s, 0.0, road.length);
+  state.t = road.lane_center_t(state.lane, s) + state.offset;
+  const opendrive::Pose2 p = road.world(s, state.t);
+  const int direction = travel_direction(road, state.lane);
+  const double along = std::sqrt(std::max(state.speed * state.speed - state.lateral_rate * state.lateral_rate, 0.0));
+  // Moving along +s, a leftward rate turns the heading left; along -s, right.
+  const double yaw = std::atan2(state.lateral_rate, along > 0 ? along : 1e-9);
+  double heading = direction > 0 ? p.heading + yaw : p.heading + M_PI - yaw;
+  heading = std::fmod(heading, 2 * M_PI);
+  if (heading < 0) heading += 2 * M_PI;
+  state.pose = {p.x, p.y, heading};
+}
+
+void advance(EntityState& state, const opendrive::RoadNetwork& roads, double t, double dt) {
+  if (!state.placed) return;
+  const double previous_speed = state.speed;
+  if (state.speed_profile) state.speed = state.speed_profile->at(t);
+  state.acceleration = dt > 0 ? (state.speed - previous_speed) / dt : 0.0;
+  state.lateral_rate = 0.0;
+  if (state.lateral_profile) {
+    state.offset = state.lateral_profile->at(t);
+    state.lateral_rate = state.lateral_profile->rate(t);
+  }
+  const opendrive::Road& road = roads.road(state.road_id);
+  const double along = std::sqrt(std::max(state.speed * state.speed - state.lateral_rate * state.lateral_rate, 0.0));
+  // The speed is along the entity's own path, at lateral position t: on a curve of
+  // curvature k that path is (1 - k t) times as long as the reference line.
+  const double stretch = 1.0 - road.plan_view.curvature(state.s) * state.t;
+  state.s += travel_direction(road, state.lane) * along * dt / (stretch > 0.1 ? stretch : 0.1);
+  state.odometer += std::abs(state.speed) * dt;
+  update_pose(state, roads);
+}
+
+}  // namespace orch::openscenario

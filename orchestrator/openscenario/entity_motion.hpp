@@ -1,0 +1,58 @@
+#pragma once
+// How the storyboard moves a scripted entity, in the OpenDRIVE road frame: along its lane
+// at the speed its speed profile gives, shifted laterally by lane changes and lane offsets.
+// The speed is the speed along the path: during a lateral shift the progress along s is
+// sqrt(v^2 - v_lat^2), as other OpenSCENARIO players move entities.
+#include <optional>
+#include <string>
+
+#include "opendrive/road_network.hpp"
+#include "openscenario/model.hpp"
+
+namespace orch::openscenario {
+
+// speed(t) = from + (to - from) * shape((t - start) / duration)
+struct SpeedProfile {
+  double start = 0, duration = 0, from = 0, to = 0;
+  DynamicsShape shape = DynamicsShape::Step;
+  [[nodiscard]] double at(double t) const;
+  [[nodiscard]] bool done(double t) const { return t - start >= duration - 1e-9; }
+};
+
+// lane offset(t) = from + (to - from) * shape((t - start) / duration), relative to `lane`'s centre.
+struct LateralProfile {
+  double start = 0, duration = 0, from = 0, to = 0;
+  DynamicsShape shape = DynamicsShape::Step;
+  [[nodiscard]] double at(double t) const;
+  [[nodiscard]] double rate(double t) const;  // m/s, positive to the left of the road
+  [[nodiscard]] bool done(double t) const { return t - start >= duration - 1e-9; }
+};
+
+struct EntityState {
+  bool placed = false;
+  std::string road_id;
+  double s = 0;
+  int lane = 0;
+  double offset = 0;  // from the lane centre, positive to the left (t direction)
+  double t = 0;       // lateral position on the road (lane centre + offset), set by update_pose
+  double speed = 0;
+  double acceleration = 0;
+  double lateral_rate = 0;
+  double odometer = 0;
+  opendrive::Pose2 pose;  // reference point in the inertial frame
+  std::optional<SpeedProfile> speed_profile;
+  std::optional<LateralProfile> lateral_profile;
+  bool controller_active = false;  // ActivateControllerAction (the ego's system under test)
+};
+
+// Direction of travel along s: +1 on right lanes, -1 on left lanes (right-hand traffic;
+// mirrored for left-hand traffic roads).
+int travel_direction(const opendrive::Road& road, int lane);
+
+// Advances `state` from t - dt to t along its road. Profiles that finish are left in place
+// (the runtime reads done() and ends their actions).
+void advance(EntityState& state, const opendrive::RoadNetwork& roads, double t, double dt);
+// Recomputes the inertial pose from (road, s, lane, offset) and the lateral rate.
+void update_pose(EntityState& state, const opendrive::RoadNetwork& roads);
+
+}  // namespace orch::openscenario

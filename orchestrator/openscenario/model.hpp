@@ -1,0 +1,251 @@
+#pragma once
+// A loaded OpenSCENARIO 1.x scenario as plain immutable values: parameters already
+// substituted, catalog references resolved, every entity reference checked. The storyboard
+// runtime (element states, edges, timers) lives apart from these values.
+#include <map>
+#include <optional>
+#include <string>
+#include <variant>
+#include <vector>
+
+namespace orch::openscenario {
+
+struct Place {  // where an element came from, for runtime messages
+  std::string path;
+  int line = 0;
+};
+
+struct Parameter {
+  std::string name;
+  std::string type;   // integer, double, string, unsignedInt, unsignedShort, boolean, dateTime
+  std::string value;  // after --param overrides
+  bool overridden = false;
+};
+
+// ---- Entities -----------------------------------------------------------------------
+struct BoundingBox {
+  double center_x = 0, center_y = 0, center_z = 0;  // relative to the reference point
+  double width = 0, length = 0, height = 0;
+};
+struct Performance {
+  double max_speed = 0, max_acceleration = 0, max_deceleration = 0;
+};
+struct Axle {
+  double max_steering = 0, wheel_diameter = 0, track_width = 0, position_x = 0, position_z = 0;
+};
+struct Controller {
+  std::string name;
+  std::map<std::string, std::string> properties;
+};
+enum class EntityKind { Vehicle, Pedestrian, MiscObject };
+struct Entity {
+  std::string name;
+  EntityKind kind = EntityKind::Vehicle;
+  std::string object_name;  // the Vehicle / Pedestrian / MiscObject's own name (catalog entry)
+  std::string category;     // vehicleCategory, pedestrianCategory or miscObjectCategory
+  BoundingBox box;
+  std::optional<Performance> performance;  // vehicles
+  std::optional<Axle> front_axle, rear_axle;
+  double mass = 0;
+  std::map<std::string, std::string> properties;
+  std::optional<Controller> controller;
+};
+
+// ---- Positions ----------------------------------------------------------------------
+struct Orientation {
+  bool relative = true;  // "relative" (to the road / reference) or "absolute"
+  double h = 0;
+};
+struct WorldPosition { double x = 0, y = 0; std::optional<double> h; };
+struct RelativeWorldPosition { std::string entity; double dx = 0, dy = 0; std::optional<Orientation> orientation; };
+struct RelativeObjectPosition { std::string entity; double dx = 0, dy = 0; std::optional<Orientation> orientation; };
+struct RoadPosition { std::string road_id; double s = 0, t = 0; std::optional<Orientation> orientation; };
+struct RelativeRoadPosition { std::string entity; double ds = 0, dt = 0; std::optional<Orientation> orientation; };
+struct LanePosition {
+  std::string road_id;
+  int lane_id = 0;
+  double s = 0, offset = 0;
+  std::optional<Orientation> orientation;
+};
+struct RelativeLanePosition {
+  std::string entity;
+  int d_lane = 0;
+  double ds = 0, offset = 0;
+  std::optional<Orientation> orientation;
+};
+using Position = std::variant<WorldPosition, RelativeWorldPosition, RelativeObjectPosition, RoadPosition,
+                              RelativeRoadPosition, LanePosition, RelativeLanePosition>;
+
+// ---- Actions ------------------------------------------------------------------------
+enum class DynamicsShape { Step, Linear, Cubic, Sinusoidal };
+enum class DynamicsDimension { Time, Distance, Rate };
+struct TransitionDynamics {
+  DynamicsShape shape = DynamicsShape::Step;
+  DynamicsDimension dimension = DynamicsDimension::Time;
+  double value = 0;
+};
+struct TeleportAction { Position position; };
+struct AbsoluteTargetSpeed { double value = 0; };
+struct RelativeTargetSpeed {
+  std::string entity;
+  double value = 0;
+  bool factor = false;  // speedTargetValueType: delta (false) or factor (true)
+  bool continuous = false;
+};
+struct SpeedAction {
+  TransitionDynamics dynamics;
+  std::variant<AbsoluteTargetSpeed, RelativeTargetSpeed> target;
+};
+struct LaneChangeAction {
+  TransitionDynamics dynamics;
+  std::optional<double> target_lane_offset;
+  // Relative: lanes counted from `entity`'s lane (positive = left); absolute: a lane id.
+  std::optional<std::string> relative_to;
+  int lane = 0;
+};
+struct LaneOffsetAction {
+  bool continuous = false;
+  DynamicsShape shape = DynamicsShape::Step;
+  std::optional<double> max_lateral_acc;
+  std::optional<std::string> relative_to;  // RelativeTargetLaneOffset entity, else absolute
+  double value = 0;
+};
+struct LongitudinalDistanceAction {
+  std::string entity;
+  std::optional<double> distance;
+  std::optional<double> time_gap;
+  bool freespace = false;
+  bool continuous = false;
+  std::string coordinate_system = "entity";
+  std::string displacement = "trailingReferencedEntity";
+  std::optional<double> max_acceleration, max_deceleration, max_speed;
+};
+struct ActivateControllerAction { std::optional<bool> lateral, longitudinal; };
+using PrivateAction = std::variant<TeleportAction, SpeedAction, LaneChangeAction, LaneOffsetAction,
+                                   LongitudinalDistanceAction, ActivateControllerAction>;
+
+// ---- Conditions and triggers --------------------------------------------------------
+enum class Rule { EqualTo, GreaterThan, LessThan, GreaterOrEqual, LessOrEqual, NotEqualTo };
+enum class Edge { None, Rising, Falling, RisingOrFalling };
+struct SimulationTimeCondition { Rule rule = Rule::GreaterOrEqual; double value = 0; };
+struct StoryboardElementStateCondition {
+  std::string type;   // story, act, maneuverGroup, maneuver, event, action
+  std::string ref;    // element name
+  std::string state;  // startTransition, endTransition, ..., runningState, completeState
+};
+struct ParameterCondition { std::string parameter; Rule rule = Rule::EqualTo; std::string value; };
+struct SpeedCondition { Rule rule = Rule::GreaterThan; double value = 0; };
+struct RelativeDistanceCondition {
+  std::string entity;
+  std::string distance_type;      // longitudinal, lateral, cartesianDistance, euclidianDistance
+  std::string coordinate_system;  // entity, road, lane
+  bool freespace = false;
+  Rule rule = Rule::LessThan;
+  double value = 0;
+};
+struct TraveledDistanceCondition { double value = 0; };
+struct StandStillCondition { double duration = 0; };
+struct EndOfRoadCondition { double duration = 0; };
+struct OffroadCondition { double duration = 0; };
+struct AccelerationCondition { Rule rule = Rule::GreaterThan; double value = 0; };
+struct ReachPositionCondition { Position position; double tolerance = 0; };
+struct RelativeSpeedCondition { std::string entity; Rule rule = Rule::GreaterThan; double value = 0; };
+struct TimeHeadwayCondition {
+  std::string entity;
+  bool freespace = false;
+  std::string coordinate_system = "entity";
+  Rule rule = Rule::LessThan;
+  double value = 0;
+};
+struct DistanceCondition {
+  Position position;
+  std::string distance_type = "euclidianDistance";
+  std::string coordinate_system = "entity";
+  bool freespace = false;
+  Rule rule = Rule::LessThan;
+  double value = 0;
+};
+struct ByEntityCondition {
+  bool all = false;  // triggeringEntitiesRule
+  std::vector<std::string> triggering_entities;
+  std::variant<SpeedCondition, RelativeDistanceCondition, TraveledDistanceCondition, StandStillCondition,
+               EndOfRoadCondition, OffroadCondition, AccelerationCondition, ReachPositionCondition,
+               RelativeSpeedCondition, TimeHeadwayCondition, DistanceCondition>
+      condition;
+};
+struct Condition {
+  std::string name;
+  double delay = 0;
+  Edge edge = Edge::None;
+  std::variant<SimulationTimeCondition, StoryboardElementStateCondition, ParameterCondition, ByEntityCondition> kind;
+  Place place;
+};
+// OR over groups, AND within a group; an absent trigger is nullopt.
+struct Trigger {
+  std::vector<std::vector<Condition>> groups;
+};
+
+// ---- Storyboard ---------------------------------------------------------------------
+struct Action {
+  std::string name;
+  std::vector<std::string> actors;  // filled for private actions from the maneuver group
+  PrivateAction action;
+  Place place;
+};
+enum class Priority { Overwrite, Skip, Parallel };
+struct Event {
+  std::string name;
+  Priority priority = Priority::Overwrite;
+  int maximum_execution_count = 1;
+  std::vector<Action> actions;
+  std::optional<Trigger> start_trigger;
+};
+struct Maneuver {
+  std::string name;
+  std::vector<Event> events;
+};
+struct ManeuverGroup {
+  std::string name;
+  int maximum_execution_count = 1;
+  bool select_triggering_entities = false;
+  std::vector<std::string> actors;
+  std::vector<Maneuver> maneuvers;
+};
+struct Act {
+  std::string name;
+  std::vector<ManeuverGroup> groups;
+  std::optional<Trigger> start_trigger;
+  std::optional<Trigger> stop_trigger;
+};
+struct Story {
+  std::string name;
+  std::vector<Act> acts;
+};
+struct InitAction {
+  std::string entity;
+  PrivateAction action;
+  Place place;
+};
+struct Storyboard {
+  std::vector<InitAction> init;
+  std::vector<Story> stories;
+  std::optional<Trigger> stop_trigger;
+};
+
+struct Scenario {
+  std::string file;  // as given
+  int rev_major = 1;
+  int rev_minor = 0;
+  std::string description;
+  std::vector<Parameter> parameters;
+  std::string road_file;  // absolute path of the .xodr ("" when none)
+  std::vector<Entity> entities;
+  Storyboard storyboard;
+  [[nodiscard]] const Entity* entity(const std::string& name) const {
+    for (const Entity& e : entities)
+      if (e.name == name) return &e;
+    return nullptr;
+  }
+};
+
+}  // namespace orch::openscenario

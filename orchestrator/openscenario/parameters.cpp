@@ -1,0 +1,58 @@
+#include "openscenario/parameters.hpp"
+
+#include <charconv>
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "openscenario/expression.hpp"
+#include "openscenario/text_number.hpp"
+
+namespace orch::openscenario {
+
+std::optional<std::string> ParameterScope::value(std::string_view name) const {
+  const auto it = values_.find(name);
+  if (it != values_.end()) return it->second.value;
+  return parent_ != nullptr ? parent_->value(name) : std::nullopt;
+}
+
+std::optional<std::string> ParameterScope::type(std::string_view name) const {
+  const auto it = values_.find(name);
+  if (it != values_.end()) return it->second.type;
+  return parent_ != nullptr ? parent_->type(name) : std::nullopt;
+}
+
+std::string substitute(std::string_view raw, const ParameterScope& scope) {
+  if (raw.size() >= 3 && raw.substr(0, 2) == "${" && raw.back() == '}') {
+    const double value =
+        evaluate_expression(raw.substr(2, raw.size() - 3), [&](std::string_view name) { return scope.value(name); });
+    return format_number(value);
+  }
+  if (!raw.empty() && raw.front() == '$') {
+    const std::string_view name = raw.substr(1);
+    if (const auto value = scope.value(name)) return *value;
+    throw ExpressionError(fmt::format("unknown parameter \"{}\"", name));
+  }
+  return std::string(raw);
+}
+
+std::string check_parameter_value(const std::string& type, const std::string& value) {
+  const auto whole_number = [&](long long low, long long high) -> std::string {
+    const auto parsed = parse_whole<long long>(value);
+    if (!parsed) return fmt::format("\"{}\" is not a whole number", value);
+    const long long n = *parsed;
+    if (n < low || n > high) return fmt::format("{} is outside [{}, {}]", value, low, high);
+    return "";
+  };
+  if (type == "integer") return whole_number(-2147483648LL, 2147483647LL);
+  if (type == "unsignedInt") return whole_number(0, 4294967295LL);
+  if (type == "unsignedShort") return whole_number(0, 65535);
+  if (type == "double") {
+    return parse_whole<double>(value) ? "" : fmt::format("\"{}\" is not a number", value);
+  }
+  if (type == "boolean") return value == "true" || value == "false" ? "" : fmt::format("\"{}\" is not true or false", value);
+  if (type == "string" || type == "dateTime") return "";
+  return fmt::format("unknown parameterType \"{}\"", type);
+}
+
+}  // namespace orch::openscenario

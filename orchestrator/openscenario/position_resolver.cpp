@@ -1,0 +1,94 @@
+#include "openscenario/position_resolver.hpp"
+
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "core/errors.hpp"
+
+namespace orch::openscenario {
+namespace {
+
+using opendrive::Pose2;
+
+// The heading an Orientation gives, relative to `reference` (road or entity heading).
+double oriented(const std::optional<Orientation>& orientation, double reference) {
+  if (!orientation) return reference;
+  return orientation->relative ? reference + orientation->h : orientation->h;
+}
+
+}  // namespace
+
+int shifted_lane(int lane, int d_lane) {
+  int result = lane + d_lane;
+  if (lane < 0 && result >= 0) ++result;
+  if (lane > 0 && result <= 0) --result;
+  return result;
+}
+
+ResolvedPosition PositionResolver::locate(const Pose2& pose) const {
+  ResolvedPosition r{pose, roads_.to_road(pose.x, pose.y), std::nullopt};
+  if (r.road) r.lane = roads_.road(r.road->road_id).lane_at(r.road->s, r.road->t);
+  return r;
+}
+
+ResolvedPosition PositionResolver::resolve(const Position& position, const EntityPoseLookup& entity_pose) const {
+  const auto pose_of = [&](const std::string& entity) {
+    const auto p = entity_pose(entity);
+    if (!p) throw MapError(fmt::format("entity \"{}\" has no position yet to place another relative to it", entity));
+    return *p;
+  };
+  const auto on_road = [&](const opendrive::Road& road, double s, double t, double heading) {
+    if (s < 0 || s > road.length)
+      throw MapError(fmt::format("s={:.3f} is outside road {} (length {:.3f})", s, road.id, road.length));
+    Pose2 p = road.world(s, t);
+    const double road_heading = p.heading;
+    p.heading = heading;
+    return ResolvedPosition{p, opendrive::RoadCoordinate{road.id, s, t, road_heading}, road.lane_at(s, t)};
+  };
+  return std::visit(
+      [&](const auto& kind) -> ResolvedPosition {
+        using T = std::decay_t<decltype(kind)>;
+        if constexpr (std::is_same_v<T, WorldPosition>) {
+          return locate(Pose2{kind.x, kind.y, kind.h.value_or(0.0)});
+        } else if constexpr (std::is_same_v<T, RelativeWorldPosition>) {
+          const Pose2 e = pose_of(kind.entity);
+          return locate(Pose2{e.x + kind.dx, e.y + kind.dy, oriented(kind.orientation, e.heading)});
+        } else if constexpr (std::is_same_v<T, RelativeObjectPosition>) {
+          const Pose2 e = pose_of(kind.entity);
+          const double c = std::cos(e.heading);
+          const double s = std::sin(e.heading);
+          return locate(Pose2{e.x + c * kind.dx - s * kind.dy, e.y + s * kind.dx + c * kind.dy,
+                              oriented(kind.orientation, e.heading)});
+        } else if constexpr (std::is_same_v<T, RoadPosition>) {
+          const opendrive::Road& road = roads_.road(kind.road_id);
+          const double heading = road.plan_view.pose(kind.s).heading;
+          return on_road(road, kind.s, kind.t, oriented(kind.orientation, heading));
+        } else if constexpr (std::is_same_v<T, RelativeRoadPosition>) {
+          const ResolvedPosition from = locate(pose_of(kind.entity));
+          if (!from.road) throw MapError(fmt::format("entity \"{}\" is on no road", kind.entity));
+          const opendrive::Road& road = roads_.road(from.road->road_id);
+          const double s = from.road->s + kind.ds;
+          return on_road(road, s, from.road->t + kind.dt, oriented(kind.orientation, road.plan_view.pose(s).heading));
+        } else if constexpr (std::is_same_v<T, LanePosition>) {
+          const opendrive::Road& road = roads_.road(kind.road_id);
+          const double heading = road.plan_view.pose(kind.s).heading;
+          return on_road(road, kind.s, road.lane_center_t(kind.lane_id, kind.s) + kind.offset,
+                         oriented(kind.orientation, heading));
+        } else {  // RelativeLanePosition
+          const ResolvedPosition from = locate(pose_of(kind.entity));
+          if (!from.road || !from.lane)
+            throw MapError(fmt::format("entity \"{}\" is on no lane", kind.entity));
+          const opendrive::Road& road = roads_.road(from.road->road_id);
+          const double s = from.road->s + kind.ds;
+          const int lane = shifted_lane(*from.lane, kind.d_lane);
+          if (s < 0 || s > road.length)
+            throw MapError(fmt::format("s={:.3f} is outside road {} (length {:.3f})", s, road.id, road.length));
+          return on_road(road, s, road.lane_center_t(lane, s) + kind.offset,
+                         oriented(kind.orientation, road.plan_view.pose(s).heading));
+        }
+      },
+      position);
+}
+
+}  // namespace orch::openscenario

@@ -1,0 +1,60 @@
+#include "openscenario/scenario_check.hpp"
+
+#include <fmt/format.h>
+
+#include "core/errors.hpp"
+#include "opendrive/xodr_reader.hpp"
+
+namespace orch::openscenario {
+namespace {
+
+// The absolute positions of the storyboard with the place they are written at.
+void collect(const PrivateAction& action, const Place& place,
+             std::vector<std::pair<const Position*, Place>>& positions) {
+  if (const auto* teleport = std::get_if<TeleportAction>(&action)) positions.emplace_back(&teleport->position, place);
+}
+
+void check_position(const Position& position, const opendrive::RoadNetwork& roads, const std::string& file,
+                    const Place& place, Diagnostics& diags) {
+  const SourceLocation where{file, place.path, place.line};
+  try {
+    if (const auto* lane = std::get_if<LanePosition>(&position)) {
+      const opendrive::Road& road = roads.road(lane->road_id);
+      if (lane->s < 0 || lane->s > road.length)
+        diags.error(where, fmt::format("s={} is outside road {} (length {})", lane->s, road.id, road.length));
+      else
+        (void)road.lane_center_t(lane->lane_id, lane->s);
+    } else if (const auto* on_road = std::get_if<RoadPosition>(&position)) {
+      const opendrive::Road& road = roads.road(on_road->road_id);
+      if (on_road->s < 0 || on_road->s > road.length)
+        diags.error(where, fmt::format("s={} is outside road {} (length {})", on_road->s, road.id, road.length));
+    }
+  } catch (const MapError& e) {
+    diags.error(where, e.what());
+  }
+}
+
+}  // namespace
+
+Diagnostics check_scenario_file(const std::string& path, const LoadOptions& options) {
+  Diagnostics diags;
+  try {
+    const Scenario scenario = load_scenario(path, options);
+    if (scenario.road_file.empty()) return diags;
+    const opendrive::RoadNetwork roads = opendrive::read_xodr_file(scenario.road_file);
+    std::vector<std::pair<const Position*, Place>> positions;
+    for (const InitAction& a : scenario.storyboard.init) collect(a.action, a.place, positions);
+    for (const Story& story : scenario.storyboard.stories)
+      for (const Act& act : story.acts)
+        for (const ManeuverGroup& g : act.groups)
+          for (const Maneuver& m : g.maneuvers)
+            for (const Event& e : m.events)
+              for (const Action& a : e.actions) collect(a.action, a.place, positions);
+    for (const auto& [position, place] : positions) check_position(*position, roads, path, place, diags);
+  } catch (const ScenarioError& e) {
+    diags.append(e.diagnostics());
+  }
+  return diags;
+}
+
+}  // namespace orch::openscenario

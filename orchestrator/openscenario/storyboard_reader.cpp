@@ -1,0 +1,244 @@
+// Storyboard: Init, Stories, Acts, ManeuverGroups, Maneuvers, Events, Actions and the
+// triggers; entity and storyboard element references are checked here, at load.
+#include <set>
+
+#include <fmt/format.h>
+
+#include "core/suggest.hpp"
+#include "openscenario/reader_context.hpp"
+
+namespace orch::openscenario::reading {
+namespace {
+
+// Entities a private action refers to besides its actors.
+std::vector<std::string> referenced_entities(const PrivateAction& action) {
+  std::vector<std::string> names;
+  const auto position_ref = [&](const Position& p) {
+    std::visit(
+        [&](const auto& kind) {
+          if constexpr (requires { kind.entity; }) names.push_back(kind.entity);
+        },
+        p);
+  };
+  std::visit(
+      [&](const auto& a) {
+        using T = std::decay_t<decltype(a)>;
+        if constexpr (std::is_same_v<T, TeleportAction>) position_ref(a.position);
+        if constexpr (std::is_same_v<T, SpeedAction>)
+          if (const auto* r = std::get_if<RelativeTargetSpeed>(&a.target)) names.push_back(r->entity);
+        if constexpr (std::is_same_v<T, LaneChangeAction> || std::is_same_v<T, LaneOffsetAction>)
+          if (a.relative_to) names.push_back(*a.relative_to);
+        if constexpr (std::is_same_v<T, LongitudinalDistanceAction>) names.push_back(a.entity);
+      },
+      action);
+  return names;
+}
+
+class StoryboardReader {
+ public:
+  explicit StoryboardReader(const Scenario& scenario) : scenario_(scenario) {
+    for (const Entity& e : scenario.entities) entity_names_.push_back(e.name);
+  }
+
+  Storyboard read(Element& storyboard) {
+    Storyboard board;
+    Element init = storyboard.child("Init");
+    Element actions = init.child("Actions");
+    init.finish();
+    for (Element p : actions.children("Private")) {
+      const std::string entity = entity_ref(p, "entityRef");
+      for (Element a : p.children("PrivateAction")) {
+        const Place place = a.place();
+        board.init.push_back({entity, read_private_action(a), place});
+        check_action_references(board.init.back().action, place);
+      }
+      p.finish();
+    }
+    for (Element g : actions.children("GlobalAction")) unsupported(g);
+    for (Element u : actions.children("UserDefinedAction")) unsupported(u);
+    actions.finish();
+    for (Element story : storyboard.children("Story")) board.stories.push_back(read_story(story));
+    Element stop = storyboard.child("StopTrigger");
+    board.stop_trigger = read_trigger(stop);
+    storyboard.finish();
+    check_state_references(board);
+    return board;
+  }
+
+ private:
+  [[noreturn]] static void unsupported(Element& e) {
+    e.fail(fmt::format("{} is an OpenSCENARIO element the orchestrator does not run (not supported)", e.name()));
+  }
+
+  std::string entity_ref(Element& e, const char* attribute) {
+    const std::string name = e.text(attribute);
+    if (scenario_.entity(name) == nullptr)
+      e.fail_attribute(attribute, fmt::format("no entity named \"{}\"{}", name, did_you_mean(name, entity_names_)));
+    return name;
+  }
+
+  void declare(const std::string& type, Element& e, const std::string& name) {
+    if (!names_[type].insert(name).second) e.fail(fmt::format("a second {} named \"{}\"", type, name));
+  }
+
+  std::optional<Trigger> trigger(Element& owner, const char* name) {
+    auto t = owner.optional_child(name);
+    if (!t) return std::nullopt;
+    return read_trigger(*t);
+  }
+
+  Story read_story(Element& e) {
+    Story story{e.text("name"), {}};
+    declare("story", e, story.name);
+    if (e.optional_child("ParameterDeclarations"))
+      e.fail("ParameterDeclarations in a Story are not supported (declare them at the top)");
+    for (Element act : e.children("Act")) story.acts.push_back(read_act(act));
+    if (story.acts.empty()) e.fail("a Story needs at least one Act");
+    e.finish();
+    return story;
+  }
+
+  Act read_act(Element& e) {
+    Act act;
+    act.name = e.text("name");
+    declare("act", e, act.name);
+    for (Element g : e.children("ManeuverGroup")) act.groups.push_back(read_group(g));
+    if (act.groups.empty()) e.fail("an Act needs at least one ManeuverGroup");
+    act.start_trigger = trigger(e, "StartTrigger");
+    if (!act.start_trigger) e.fail("an Act needs a StartTrigger");
+    act.stop_trigger = trigger(e, "StopTrigger");
+    e.finish();
+    return act;
+  }
+
+  ManeuverGroup read_group(Element& e) {
+    ManeuverGroup g;
+    g.name = e.text("name");
+    declare("maneuverGroup", e, g.name);
+    g.maximum_execution_count = e.integer("maximumExecutionCount");
+    if (g.maximum_execution_count < 1) e.fail_attribute("maximumExecutionCount", "must be at least 1");
+    Element actors = e.child("Actors");
+    g.select_triggering_entities = actors.boolean("selectTriggeringEntities");
+    if (g.select_triggering_entities)
+      actors.fail_attribute("selectTriggeringEntities", "selectTriggeringEntities=\"true\" is not supported");
+    for (Element ref : actors.children("EntityRef")) {
+      g.actors.push_back(entity_ref(ref, "entityRef"));
+      ref.finish();
+    }
+    actors.finish();
+    for (Element c : e.children("CatalogReference"))
+      c.fail("maneuvers from a catalog (CatalogReference in a ManeuverGroup) are not supported");
+    for (Element m : e.children("Maneuver")) g.maneuvers.push_back(read_maneuver(m, g.actors));
+    e.finish();
+    return g;
+  }
+
+  Maneuver read_maneuver(Element& e, const std::vector<std::string>& actors) {
+    Maneuver m{e.text("name"), {}};
+    declare("maneuver", e, m.name);
+    if (e.optional_child("ParameterDeclarations"))
+      e.fail("ParameterDeclarations in a Maneuver are not supported (declare them at the top)");
+    for (Element ev : e.children("Event")) m.events.push_back(read_event(ev, actors));
+    if (m.events.empty()) e.fail("a Maneuver needs at least one Event");
+    e.finish();
+    return m;
+  }
+
+  Event read_event(Element& e, const std::vector<std::string>& actors) {
+    Event ev;
+    ev.name = e.text("name");
+    declare("event", e, ev.name);
+    ev.priority = e.choice<Priority>("priority", {{"overwrite", Priority::Overwrite},
+                                                  {"override", Priority::Overwrite},
+                                                  {"skip", Priority::Skip},
+                                                  {"parallel", Priority::Parallel}});
+    ev.maximum_execution_count = e.optional_integer("maximumExecutionCount").value_or(1);
+    if (ev.maximum_execution_count < 1) e.fail_attribute("maximumExecutionCount", "must be at least 1");
+    for (Element a : e.children("Action")) {
+      Action action;
+      action.name = a.text("name");
+      declare("action", a, action.name);
+      action.place = a.place();
+      Element kind = a.one_of({"PrivateAction", "GlobalAction", "UserDefinedAction"});
+      if (kind.name() != "PrivateAction") unsupported(kind);
+      if (actors.empty()) a.fail("a private action needs actors in its ManeuverGroup");
+      action.actors = actors;
+      action.action = read_private_action(kind);
+      check_action_references(action.action, action.place);
+      a.finish();
+      ev.actions.push_back(std::move(action));
+    }
+    if (ev.actions.empty()) e.fail("an Event needs at least one Action");
+    ev.start_trigger = trigger(e, "StartTrigger");
+    e.finish();
+    return ev;
+  }
+
+  // Every StoryboardElementStateCondition names an element of its type that exists.
+  void check_trigger(const std::optional<Trigger>& t, const std::string& file) {
+    if (!t) return;
+    for (const auto& group : t->groups)
+      for (const Condition& c : group) {
+        if (const auto* s = std::get_if<StoryboardElementStateCondition>(&c.kind)) {
+          const auto& known = names_[s->type];
+          if (!known.contains(s->ref)) {
+            const std::vector<std::string> choices(known.begin(), known.end());
+            throw ScenarioError(SourceLocation{file, c.place.path, c.place.line},
+                                fmt::format("no {} named \"{}\" in the storyboard{}", s->type, s->ref,
+                                            did_you_mean(s->ref, choices)));
+          }
+        }
+        if (const auto* b = std::get_if<ByEntityCondition>(&c.kind)) {
+          for (const std::string& name : b->triggering_entities) check_entity(name, c, file);
+          std::visit(
+              [&](const auto& kind) {
+                if constexpr (requires { kind.entity; }) check_entity(kind.entity, c, file);
+                if constexpr (requires { kind.position; })
+                  std::visit(
+                      [&](const auto& p) {
+                        if constexpr (requires { p.entity; }) check_entity(p.entity, c, file);
+                      },
+                      kind.position);
+              },
+              b->condition);
+        }
+      }
+  }
+  void check_entity(const std::string& name, const Condition& c, const std::string& file) const {
+    if (scenario_.entity(name) == nullptr)
+      throw ScenarioError(SourceLocation{file, c.place.path, c.place.line},
+                          fmt::format("no entity named \"{}\"{}", name, did_you_mean(name, entity_names_)));
+  }
+
+  void check_action_references(const PrivateAction& action, const Place& place) const {
+    for (const std::string& name : referenced_entities(action))
+      if (scenario_.entity(name) == nullptr)
+        throw ScenarioError(SourceLocation{scenario_.file, place.path, place.line},
+                            fmt::format("no entity named \"{}\"{}", name, did_you_mean(name, entity_names_)));
+  }
+
+  void check_state_references(const Storyboard& board) {
+    const std::string& file = scenario_.file;
+    check_trigger(board.stop_trigger, file);
+    for (const Story& story : board.stories)
+      for (const Act& act : story.acts) {
+        check_trigger(act.start_trigger, file);
+        check_trigger(act.stop_trigger, file);
+        for (const ManeuverGroup& g : act.groups)
+          for (const Maneuver& m : g.maneuvers)
+            for (const Event& ev : m.events) check_trigger(ev.start_trigger, file);
+      }
+  }
+
+  const Scenario& scenario_;
+  std::vector<std::string> entity_names_;
+  std::map<std::string, std::set<std::string>> names_;
+};
+
+}  // namespace
+
+Storyboard read_storyboard(Element& storyboard, const Scenario& scenario) {
+  return StoryboardReader(scenario).read(storyboard);
+}
+
+}  // namespace orch::openscenario::reading

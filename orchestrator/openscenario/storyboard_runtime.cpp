@@ -1,0 +1,404 @@
+#include "openscenario/storyboard_runtime.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "core/errors.hpp"
+#include "openscenario/action_start.hpp"
+#include "openscenario/entity_measures.hpp"
+#include "openscenario/rule.hpp"
+#include "openscenario/text_number.hpp"
+
+namespace orch::openscenario {
+namespace {
+
+// Where an event sits in the storyboard, for roll-ups and priorities.
+struct EventSlot {
+  const Event* event;
+  const Maneuver* maneuver;
+};
+
+struct Record {
+  ElementState state = ElementState::Standby;
+  int executions = 0;
+  // (transition, step at which conditions see it)
+  std::vector<std::pair<std::string, long>> transitions;
+};
+
+struct ConditionMemory {
+  std::map<std::string, double> since;  // per entity: since when a duration condition holds
+  bool has_previous = false;
+  bool previous = false;
+  std::vector<std::pair<double, bool>> history;  // edged value per evaluation, for delays
+};
+
+}  // namespace
+
+struct StoryboardRuntime::Impl {
+  const Scenario& scenario;
+  const opendrive::RoadNetwork& roads;
+  PositionResolver resolver;
+  double t = 0;
+  long step_index = 0;
+  bool finished = false;
+  std::map<std::string, EntityState> entities;
+  std::vector<TransitionLog> log;
+  std::map<std::pair<std::string, std::string>, Record> records;
+  std::map<const Condition*, ConditionMemory> memory;
+  std::vector<RunningAction> running;
+
+  Impl(const Scenario& s, const opendrive::RoadNetwork& r) : scenario(s), roads(r), resolver(r) {}
+
+  ActionContext context() { return ActionContext{scenario, roads, resolver, entities, t}; }
+
+  Record& record(const std::string& type, const std::string& name) { return records[{type, name}]; }
+
+  void transition(const std::string& type, const std::string& name, const std::string& what, ElementState to) {
+    Record& r = record(type, name);
+    r.state = to;
+    r.transitions.emplace_back(what, step_index);
+    if (r.transitions.size() > 8) r.transitions.erase(r.transitions.begin());
+    log.push_back({t, type, name, what});
+  }
+
+  // ---- conditions ---------------------------------------------------------------------
+  bool value_of(const Condition& c, ConditionMemory& m) {
+    return std::visit(
+        [&](const auto& kind) -> bool {
+          using T = std::decay_t<decltype(kind)>;
+          if constexpr (std::is_same_v<T, SimulationTimeCondition>) {
+            // Times are k * dt: compare with a tolerance far below one step.
+            if (std::abs(t - kind.value) < 1e-9) return satisfies(kind.rule, kind.value, kind.value);
+            return satisfies(kind.rule, t, kind.value);
+          } else if constexpr (std::is_same_v<T, StoryboardElementStateCondition>) {
+            const Record& r = record(kind.type, kind.ref);
+            if (kind.state == "standbyState") return r.state == ElementState::Standby;
+            if (kind.state == "runningState") return r.state == ElementState::Running;
+            if (kind.state == "completeState") return r.state == ElementState::Complete;
+            return std::any_of(r.transitions.begin(), r.transitions.end(),
+                               [&](const auto& e) { return e.first == kind.state && e.second == step_index; });
+          } else if constexpr (std::is_same_v<T, ParameterCondition>) {
+            for (const Parameter& p : scenario.parameters)
+              if (p.name == kind.parameter) {
+                if (p.type == "string" || p.type == "boolean" || p.type == "dateTime")
+                  return satisfies(kind.rule, p.value, kind.value);
+                // Both texts were checked as numbers of the parameter's type at load.
+                return satisfies(kind.rule, parse_whole<double>(p.value).value_or(0.0),
+                                 parse_whole<double>(kind.value).value_or(0.0));
+              }
+            return false;
+          } else {
+            return by_entity(kind, m);
+          }
+        },
+        c.kind);
+  }
+
+  // Whether `now` has held for `duration` seconds (per entity).
+  bool held_for(ConditionMemory& m, const std::string& entity, bool now, double duration) {
+    if (!now) {
+      m.since.erase(entity);
+      return false;
+    }
+    const double since = m.since.try_emplace(entity, t).first->second;
+    return t - since >= duration - 1e-9;
+  }
+
+  // A point as a body without extent (positions in Distance and ReachPosition conditions).
+  EntityState point_state(const Position& p) {
+    const ResolvedPosition r = resolver.resolve(p, [&](const std::string& name) -> std::optional<opendrive::Pose2> {
+      const EntityState& e = entities.at(name);
+      return e.placed ? std::optional(e.pose) : std::nullopt;
+    });
+    EntityState s;
+    s.placed = true;
+    s.pose = r.pose;
+    if (r.road) s.s = r.road->s, s.t = r.road->t;
+    return s;
+  }
+
+  bool entity_condition(const ByEntityCondition& c, const std::string& name, ConditionMemory& m) {
+    const EntityState& self = entities.at(name);
+    if (!self.placed) return false;
+    const Body me{&self, &scenario.entity(name)->box};
+    static const BoundingBox kPoint{};
+    return std::visit(
+        [&](const auto& k) -> bool {
+          using T = std::decay_t<decltype(k)>;
+          if constexpr (std::is_same_v<T, SpeedCondition>) return satisfies(k.rule, self.speed, k.value);
+          if constexpr (std::is_same_v<T, AccelerationCondition>) return satisfies(k.rule, self.acceleration, k.value);
+          if constexpr (std::is_same_v<T, TraveledDistanceCondition>) return self.odometer >= k.value - 1e-9;
+          if constexpr (std::is_same_v<T, StandStillCondition>)
+            return held_for(m, name, std::abs(self.speed) < 1e-6, k.duration);
+          if constexpr (std::is_same_v<T, EndOfRoadCondition>) {
+            const double length = roads.road(self.road_id).length;
+            return held_for(m, name, self.s <= 1e-6 || self.s >= length - 1e-6, k.duration);
+          }
+          if constexpr (std::is_same_v<T, OffroadCondition>)
+            return held_for(m, name, !resolver.locate(self.pose).lane.has_value(), k.duration);
+          if constexpr (std::is_same_v<T, ReachPositionCondition>) {
+            const EntityState target = point_state(k.position);
+            return std::hypot(target.pose.x - self.pose.x, target.pose.y - self.pose.y) <= k.tolerance;
+          }
+          if constexpr (std::is_same_v<T, DistanceCondition>) {
+            const EntityState target = point_state(k.position);
+            const double d = relative_distance(me, {&target, &kPoint}, k.distance_type, k.coordinate_system, k.freespace);
+            return satisfies(k.rule, d, k.value);
+          }
+          if constexpr (std::is_same_v<T, RelativeSpeedCondition>) {
+            const EntityState& other = entities.at(k.entity);
+            return other.placed && satisfies(k.rule, self.speed - other.speed, k.value);
+          }
+          if constexpr (std::is_same_v<T, TimeHeadwayCondition>) {
+            const EntityState& other = entities.at(k.entity);
+            if (!other.placed || self.speed <= 0) return false;
+            const double d = relative_distance(me, {&other, &scenario.entity(k.entity)->box}, "longitudinal",
+                                               k.coordinate_system, k.freespace);
+            return satisfies(k.rule, d / self.speed, k.value);
+          }
+          if constexpr (std::is_same_v<T, RelativeDistanceCondition>) {
+            const EntityState& other = entities.at(k.entity);
+            if (!other.placed) return false;
+            const double d = relative_distance(me, {&other, &scenario.entity(k.entity)->box}, k.distance_type,
+                                               k.coordinate_system, k.freespace);
+            return satisfies(k.rule, d, k.value);
+          }
+          return false;
+        },
+        c.condition);
+  }
+
+  bool by_entity(const ByEntityCondition& c, ConditionMemory& m) {
+    bool any = false;
+    bool all = true;
+    for (const std::string& name : c.triggering_entities) {
+      const bool holds = entity_condition(c, name, m);
+      any = any || holds;
+      all = all && holds;
+    }
+    return c.all ? all : any;
+  }
+
+  bool evaluate(const Condition& c) {
+    ConditionMemory& m = memory[&c];
+    const bool now = value_of(c, m);
+    bool edged = now;
+    switch (c.edge) {
+      case Edge::None: break;
+      case Edge::Rising: edged = m.has_previous && !m.previous && now; break;
+      case Edge::Falling: edged = m.has_previous && m.previous && !now; break;
+      case Edge::RisingOrFalling: edged = m.has_previous && m.previous != now; break;
+    }
+    m.has_previous = true;
+    m.previous = now;
+    if (c.delay <= 0) return edged;
+    m.history.emplace_back(t, edged);
+    // The edged value as it was `delay` seconds ago.
+    const double then = t - c.delay + 1e-9;
+    bool delayed = false;
+    for (const auto& [time, value] : m.history) {
+      if (time > then) break;
+      delayed = value;
+    }
+    return delayed;
+  }
+
+  bool fires(const std::optional<Trigger>& trigger) {
+    if (!trigger) return true;
+    bool any = false;
+    for (const auto& group : trigger->groups) {  // every condition is evaluated: edges need history
+      bool all = true;
+      for (const Condition& c : group) all = evaluate(c) && all;
+      any = any || all;
+    }
+    return any;
+  }
+
+  // ---- storyboard elements ------------------------------------------------------------
+  void start_event(const Event& e) {
+    Record& r = record("event", e.name);
+    ++r.executions;
+    transition("event", e.name, "startTransition", ElementState::Running);
+    for (const Action& a : e.actions) {
+      transition("action", a.name, "startTransition", ElementState::Running);
+      for (const std::string& actor : a.actors) {
+        ActionContext ctx = context();
+        // An action that takes over an entity's motion ends the one it replaces.
+        for (const std::string& replaced : start_action(a.action, actor, a.name, ctx, running))
+          if (record("action", replaced).state == ElementState::Running)
+            transition("action", replaced, "stopTransition", ElementState::Complete);
+      }
+      if (std::none_of(running.begin(), running.end(), [&](const RunningAction& r2) { return r2.action == a.name; }))
+        transition("action", a.name, "endTransition", ElementState::Complete);
+    }
+  }
+
+  void stop_action(const std::string& name) {
+    std::erase_if(running, [&](const RunningAction& r) { return r.action == name; });
+    if (record("action", name).state == ElementState::Running)
+      transition("action", name, "stopTransition", ElementState::Complete);
+  }
+
+  void stop_event(const Event& e) {
+    for (const Action& a : e.actions) stop_action(a.name);
+    transition("event", e.name, "stopTransition", ElementState::Complete);
+  }
+
+  void start_group(const ManeuverGroup& g) {
+    ++record("maneuverGroup", g.name).executions;
+    transition("maneuverGroup", g.name, "startTransition", ElementState::Running);
+    for (const Maneuver& m : g.maneuvers) {
+      transition("maneuver", m.name, "startTransition", ElementState::Running);
+      for (const Event& e : m.events) {
+        record("event", e.name) = Record{};
+        for (const Action& a : e.actions) record("action", a.name).state = ElementState::Standby;
+      }
+    }
+  }
+
+  void stop_act(const Act& act) {
+    for (const ManeuverGroup& g : act.groups) {
+      for (const Maneuver& m : g.maneuvers) {
+        for (const Event& e : m.events)
+          if (record("event", e.name).state != ElementState::Complete) stop_event(e);
+        if (record("maneuver", m.name).state != ElementState::Complete)
+          transition("maneuver", m.name, "stopTransition", ElementState::Complete);
+      }
+      if (record("maneuverGroup", g.name).state != ElementState::Complete)
+        transition("maneuverGroup", g.name, "stopTransition", ElementState::Complete);
+    }
+    transition("act", act.name, "stopTransition", ElementState::Complete);
+  }
+
+  bool complete(const std::string& type, const std::string& name) {
+    return record(type, name).state == ElementState::Complete;
+  }
+
+  // Ends every element whose children have all ended, bottom-up.
+  void settle() {
+    for (const Story& story : scenario.storyboard.stories) {
+      bool acts_done = true;
+      for (const Act& act : story.acts) {
+        if (record("act", act.name).state == ElementState::Running) {
+          bool groups_done = true;
+          for (const ManeuverGroup& g : act.groups) {
+            if (record("maneuverGroup", g.name).state != ElementState::Running) continue;
+            bool maneuvers_done = true;
+            for (const Maneuver& m : g.maneuvers) {
+              if (record("maneuver", m.name).state != ElementState::Running) continue;
+              bool events_done = true;
+              for (const Event& e : m.events) {
+                Record& r = record("event", e.name);
+                if (r.state == ElementState::Running &&
+                    std::all_of(e.actions.begin(), e.actions.end(), [&](const Action& a) { return complete("action", a.name); })) {
+                  const bool again = r.executions < e.maximum_execution_count;
+                  transition("event", e.name, "endTransition", again ? ElementState::Standby : ElementState::Complete);
+                }
+                events_done = events_done && complete("event", e.name);
+              }
+              if (events_done) transition("maneuver", m.name, "endTransition", ElementState::Complete);
+              maneuvers_done = maneuvers_done && complete("maneuver", m.name);
+            }
+            if (maneuvers_done) {
+              const bool again = record("maneuverGroup", g.name).executions < g.maximum_execution_count;
+              transition("maneuverGroup", g.name, "endTransition", ElementState::Complete);
+              if (again) start_group(g);
+            }
+            groups_done = groups_done && complete("maneuverGroup", g.name);
+          }
+          if (groups_done) transition("act", act.name, "endTransition", ElementState::Complete);
+        }
+        acts_done = acts_done && complete("act", act.name);
+      }
+      if (acts_done && record("story", story.name).state == ElementState::Running)
+        transition("story", story.name, "endTransition", ElementState::Complete);
+    }
+  }
+
+  void evaluate_storyboard() {
+    if (fires(scenario.storyboard.stop_trigger)) {
+      finished = true;
+      log.push_back({t, "storyboard", "", "stopTransition"});
+      return;
+    }
+    for (const Story& story : scenario.storyboard.stories) {
+      if (record("story", story.name).state != ElementState::Running) continue;
+      for (const Act& act : story.acts) {
+        const ElementState state = record("act", act.name).state;
+        if (state == ElementState::Standby && fires(act.start_trigger)) {
+          transition("act", act.name, "startTransition", ElementState::Running);
+          for (const ManeuverGroup& g : act.groups) start_group(g);
+        } else if (state == ElementState::Running && act.stop_trigger && fires(act.stop_trigger)) {
+          stop_act(act);
+          continue;
+        }
+        if (record("act", act.name).state != ElementState::Running) continue;
+        for (const ManeuverGroup& g : act.groups)
+          for (const Maneuver& m : g.maneuvers) {
+            if (record("maneuver", m.name).state != ElementState::Running) continue;
+            for (const Event& e : m.events) {
+              if (record("event", e.name).state != ElementState::Standby || !fires(e.start_trigger)) continue;
+              const auto running_other = [&] {
+                return std::any_of(m.events.begin(), m.events.end(), [&](const Event& o) {
+                  return &o != &e && record("event", o.name).state == ElementState::Running;
+                });
+              };
+              if (e.priority == Priority::Skip && running_other()) {
+                transition("event", e.name, "skipTransition", ElementState::Standby);
+                continue;
+              }
+              if (e.priority == Priority::Overwrite)
+                for (const Event& o : m.events)
+                  if (&o != &e && record("event", o.name).state == ElementState::Running) stop_event(o);
+              start_event(e);
+            }
+          }
+      }
+    }
+    settle();
+  }
+
+  void run_init() {
+    for (const InitAction& a : scenario.storyboard.init) {
+      ActionContext ctx = context();
+      (void)start_action(a.action, a.entity, "", ctx, running);
+    }
+    for (const Story& story : scenario.storyboard.stories)
+      transition("story", story.name, "startTransition", ElementState::Running);
+  }
+
+  void step(double dt) {
+    if (finished) return;
+    ++step_index;
+    t = static_cast<double>(step_index) * dt;
+    for (auto& [name, state] : entities) advance(state, roads, t, dt);
+    ActionContext ctx = context();
+    for (const std::string& ended : update_running_actions(ctx, running))
+      if (!ended.empty()) transition("action", ended, "endTransition", ElementState::Complete);
+    settle();
+    evaluate_storyboard();
+  }
+};
+
+StoryboardRuntime::StoryboardRuntime(const Scenario& scenario, const opendrive::RoadNetwork& roads)
+    : impl_(std::make_unique<Impl>(scenario, roads)) {
+  for (const Entity& e : scenario.entities) impl_->entities[e.name] = EntityState{};
+  impl_->run_init();
+  impl_->evaluate_storyboard();
+}
+
+StoryboardRuntime::~StoryboardRuntime() = default;
+
+void StoryboardRuntime::step(double dt) { impl_->step(dt); }
+double StoryboardRuntime::time() const { return impl_->t; }
+bool StoryboardRuntime::finished() const { return impl_->finished; }
+const std::map<std::string, EntityState>& StoryboardRuntime::entities() const { return impl_->entities; }
+const std::vector<TransitionLog>& StoryboardRuntime::log() const { return impl_->log; }
+ElementState StoryboardRuntime::state(const std::string& type, const std::string& name) const {
+  const auto it = impl_->records.find({type, name});
+  return it == impl_->records.end() ? ElementState::Standby : it->second.state;
+}
+
+}  // namespace orch::openscenario

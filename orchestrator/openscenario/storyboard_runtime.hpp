@@ -1,0 +1,55 @@
+#pragma once
+// The OpenSCENARIO storyboard as it runs: element states (standby, running, complete) and
+// transitions, triggers with condition edges and delays, and the scripted entities moved
+// by their actions in the OpenDRIVE frame. Pure: no simulator call; the world it reads is
+// its own entity states (a simulator adapter overwrites the ego's from SUMO).
+//
+// One step at time t: (A) entities advance from t - dt to t and actions whose motion is
+// done end; (B) the storyboard's stop trigger, then act stop and start triggers, then event
+// start triggers are evaluated on the states at t, and started actions take effect at t.
+// A StoryboardElementStateCondition on a transition is true in the step the transition
+// happened (for transitions of (B), in conditions evaluated after it).
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "opendrive/road_network.hpp"
+#include "openscenario/entity_motion.hpp"
+#include "openscenario/model.hpp"
+#include "openscenario/position_resolver.hpp"
+
+namespace orch::openscenario {
+
+enum class ElementState { Standby, Running, Complete };
+
+// One line of the storyboard log: an element's transition at a time.
+struct TransitionLog {
+  double time = 0;
+  std::string type;        // story, act, maneuverGroup, maneuver, event, action
+  std::string name;
+  std::string transition;  // startTransition, endTransition, stopTransition, skipTransition
+};
+
+class StoryboardRuntime {
+ public:
+  // Throws MapError when an Init position cannot be placed on the roads.
+  StoryboardRuntime(const Scenario& scenario, const opendrive::RoadNetwork& roads);
+  ~StoryboardRuntime();
+  StoryboardRuntime(const StoryboardRuntime&) = delete;
+  StoryboardRuntime& operator=(const StoryboardRuntime&) = delete;
+
+  // One step of `dt` seconds (see above). Does nothing once finished().
+  void step(double dt);
+  [[nodiscard]] double time() const;
+  [[nodiscard]] bool finished() const;  // the Storyboard's StopTrigger fired
+  [[nodiscard]] const std::map<std::string, EntityState>& entities() const;
+  [[nodiscard]] const std::vector<TransitionLog>& log() const;
+  [[nodiscard]] ElementState state(const std::string& type, const std::string& name) const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace orch::openscenario

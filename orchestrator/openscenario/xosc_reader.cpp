@@ -1,0 +1,164 @@
+#include "openscenario/xosc_reader.hpp"
+
+#include <algorithm>
+#include <charconv>
+#include <filesystem>
+
+#include <fmt/format.h>
+
+#include "core/suggest.hpp"
+#include "openscenario/reader_context.hpp"
+#include "openscenario/rule.hpp"
+#include "openscenario/text_number.hpp"
+
+namespace orch::openscenario {
+namespace fs = std::filesystem;
+using reading::Context;
+
+namespace {
+
+void read_header(Element& root, Scenario& scenario) {
+  Element header = root.child("FileHeader");
+  scenario.rev_major = header.integer("revMajor");
+  scenario.rev_minor = header.integer("revMinor");
+  if (scenario.rev_major != 1)
+    header.fail_attribute("revMajor", fmt::format("OpenSCENARIO {}.{} is not supported: this reads 1.0 to 1.2",
+                                                  scenario.rev_major, scenario.rev_minor));
+  if (scenario.rev_minor < 0 || scenario.rev_minor > 2)
+    header.fail_attribute("revMinor", fmt::format("OpenSCENARIO 1.{} is not supported: this reads 1.0 to 1.2",
+                                                  scenario.rev_minor));
+  scenario.description = header.optional_text("description").value_or("");
+  header.ignore_attributes({"date", "author"});
+  header.ignore_children({"License", "Properties"});
+  header.finish();
+}
+
+bool holds(Rule rule, const std::string& type, const std::string& value, const std::string& bound, Element& at) {
+  if (type == "string" || type == "boolean" || type == "dateTime") return satisfies(rule, value, bound);
+  const auto b = parse_whole<double>(bound);
+  if (!b) at.fail_attribute("value", fmt::format("expected a number, found \"{}\"", bound));
+  return satisfies(rule, parse_whole<double>(value).value_or(0.0), *b);
+}
+
+// Declarations in order, then the overrides, then every ConstraintGroup (OR of ANDs) on the
+// final values: a constraint may use other parameters.
+std::vector<Parameter> read_parameters(Element& root, const LoadOptions& options, ParameterScope& scope) {
+  std::vector<Parameter> parameters;
+  auto declarations = root.optional_child("ParameterDeclarations");
+  std::vector<Element> elements = declarations ? declarations->children("ParameterDeclaration") : std::vector<Element>{};
+  if (declarations) declarations->finish();
+  for (Element& d : elements) {
+    Parameter p;
+    p.name = d.text("name");
+    p.type = d.choice<std::string>("parameterType", {{"integer", "integer"}, {"double", "double"},
+                                                     {"string", "string"}, {"unsignedInt", "unsignedInt"},
+                                                     {"unsignedShort", "unsignedShort"}, {"boolean", "boolean"},
+                                                     {"dateTime", "dateTime"}});
+    p.value = d.text("value");
+    const std::string problem = check_parameter_value(p.type, p.value);
+    if (!problem.empty()) d.fail_attribute("value", problem);
+    for (const Parameter& other : parameters)
+      if (other.name == p.name) d.fail_attribute("name", fmt::format("parameter \"{}\" is declared twice", p.name));
+    scope.set(p.name, p.type, p.value);
+    parameters.push_back(p);
+  }
+  std::vector<std::string> names;
+  for (const Parameter& p : parameters) names.push_back(p.name);
+  for (const auto& [name, value] : options.parameter_overrides) {
+    auto it = std::find_if(parameters.begin(), parameters.end(), [&](const Parameter& p) { return p.name == name; });
+    if (it == parameters.end())
+      throw ScenarioError(SourceLocation{"--param", name, 0},
+                          fmt::format("the scenario declares no parameter \"{}\"{}", name, did_you_mean(name, names)));
+    const std::string problem = check_parameter_value(it->type, value);
+    if (!problem.empty())
+      throw ScenarioError(SourceLocation{"--param", name, 0}, fmt::format("{} ({} parameter)", problem, it->type));
+    it->value = value;
+    it->overridden = true;
+    scope.set(name, it->type, value);
+  }
+  for (std::size_t i = 0; i < elements.size(); ++i) {
+    Element& d = elements[i];
+    const Parameter& p = parameters[i];
+    std::vector<Element> groups = d.children("ConstraintGroup");
+    d.finish();
+    if (groups.empty()) continue;
+    bool any = false;
+    std::string violated;
+    for (Element& group : groups) {
+      bool all = true;
+      for (Element c : group.children("ValueConstraint")) {
+        const Rule rule = reading::read_rule(c);
+        const std::string bound = c.text("value");
+        if (!holds(rule, p.type, p.value, bound, c)) {
+          all = false;
+          if (violated.empty()) violated = fmt::format("{} {}", c.node().attribute("rule").value(), bound);
+        }
+        c.finish();
+      }
+      group.finish();
+      any = any || all;
+    }
+    if (!any)
+      throw ScenarioError(d.source().where(d.node(), "value"),
+                          fmt::format("parameter \"{}\" = {} violates its constraints ({}{})", p.name, p.value,
+                                      violated, p.overridden ? ", value given by --param" : ""));
+  }
+  return parameters;
+}
+
+}  // namespace
+
+std::map<std::string, std::string> parse_parameter_overrides(const std::vector<std::string>& texts) {
+  std::map<std::string, std::string> overrides;
+  for (const std::string& text : texts) {
+    const auto equals = text.find('=');
+    if (equals == std::string::npos || equals == 0)
+      throw OrchError(fmt::format("--param \"{}\": expected NAME=VALUE", text));
+    if (!overrides.emplace(text.substr(0, equals), text.substr(equals + 1)).second)
+      throw OrchError(fmt::format("--param {} is given twice", text.substr(0, equals)));
+  }
+  return overrides;
+}
+
+Scenario load_scenario(const std::string& path, const LoadOptions& options) {
+  const xml::XmlSource source = xml::XmlSource::load(path);
+  Context context;
+  Element root(source, source.root(), context.global);
+  if (root.name() != "OpenSCENARIO")
+    root.fail(fmt::format("expected the root element OpenSCENARIO, found {}", root.name()));
+  Scenario scenario;
+  scenario.file = path;
+  read_header(root, scenario);
+  if (root.optional_child("ParameterValueDistribution"))
+    root.fail("this is a parameter variation file (ParameterValueDistribution), not a scenario; "
+              "variation files are not run yet");
+  if (root.optional_child("Catalog")) root.fail("this is a catalog file, not a scenario");
+  scenario.parameters = read_parameters(root, options, context.global);
+  const std::string dir = fs::path(path).parent_path().string();
+  if (auto locations = root.optional_child("CatalogLocations")) reading::read_catalog_locations(*locations, dir, context);
+  Element network = root.child("RoadNetwork");
+  if (auto logic = network.optional_child("LogicFile")) {
+    const std::string file = logic->text("filepath");
+    const fs::path resolved = fs::path(file).is_absolute() ? fs::path(file) : fs::path(dir) / file;
+    std::error_code ec;
+    if (!fs::is_regular_file(resolved, ec))
+      logic->fail_attribute("filepath", fmt::format("no OpenDRIVE file {}", resolved.lexically_normal().string()));
+    scenario.road_file = fs::absolute(resolved).lexically_normal().string();
+    logic->finish();
+  }
+  network.ignore_children({"SceneGraphFile", "UsedArea"});
+  network.finish();
+  Element entities = root.child("Entities");
+  for (Element object : entities.children("ScenarioObject")) {
+    Entity entity = reading::read_entity(object, context);
+    if (scenario.entity(entity.name) != nullptr) object.fail(fmt::format("a second entity named \"{}\"", entity.name));
+    scenario.entities.push_back(std::move(entity));
+  }
+  entities.finish();
+  Element storyboard = root.child("Storyboard");
+  scenario.storyboard = reading::read_storyboard(storyboard, scenario);
+  root.finish();
+  return scenario;
+}
+
+}  // namespace orch::openscenario
