@@ -58,8 +58,6 @@ TEST(TrafficCli, CountsEveryStepAndBackgroundRowsOnlyWhenAsked) {
   Trace counts(plain / "counts.csv");
   ASSERT_EQ(static_cast<long long>(counts.rows().size()), result["steps"].get<long long>());
   EXPECT_EQ(counts.header(), "time,background_vehicles,nearby_vehicles,waiting_over_60s");
-  // The highway's traffic flows: nobody stands for a minute (the run is shorter anyway).
-  for (const auto& r : counts.rows()) EXPECT_EQ(r.integer("waiting_over_60s"), 0);
   EXPECT_EQ(counts.rows().front().integer("background_vehicles"), 0);  // traffic starts at t=1 s
   EXPECT_GT(counts.rows().back().integer("background_vehicles"), 100);  // 2 x 3 lanes x 2 km, dense
   int most_nearby = 0;

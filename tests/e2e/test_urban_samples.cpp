@@ -134,3 +134,21 @@ TEST_P(UrbanDenseTraffic, TheSampleStillEndsWellAndTheJunctionsKeepFlowing) {
 INSTANTIATE_TEST_SUITE_P(All, UrbanDenseTraffic,
                          ::testing::Values("urban_blind_corner.json", "urban_left_turn.json",
                                            "urban_pedestrian_junction.json"));
+
+TEST(UrbanDenseTrafficWaits, VehiclesStandingLongerThanAMinuteAreCounted) {
+  // Dense traffic on the loop's way: queues form at the junctions (a saturated minor road
+  // waits), and counts.csv says how many vehicles have been standing for over 60 s.
+  UrbanRun run("urban_loop_follow.json", {"--traffic", "dense", "--max-time", "120"});
+  ASSERT_TRUE(run.cli.exit_code == 0 || run.cli.exit_code == 1) << run.cli.output;
+  Trace counts(run.out / "counts.csv");
+  int most = 0;
+  for (const auto& r : counts.rows()) {
+    if (r.num("time") <= 60.0) {
+      EXPECT_EQ(r.integer("waiting_over_60s"), 0) << r.str("time");
+    }
+    most = std::max(most, r.integer("waiting_over_60s"));
+  }
+  EXPECT_GT(most, 0);
+  // ... but the junctions keep flowing: far fewer stand that long than are on the road.
+  EXPECT_LT(counts.rows().back().integer("waiting_over_60s"), counts.rows().back().integer("background_vehicles") / 2);
+}
