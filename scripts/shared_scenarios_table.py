@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Runs every real scenario file in ../shared/data/roadeditor/scenarios with the built
-orchestrator and rewrites the table between the shared-table markers in README.md.
+orchestrator and rewrites the table between the shared-table markers in docs/shared-scenarios.md.
 
 Usage: scripts/shared_scenarios_table.py [--binary build/bin/orchestrator] [--jobs 2]
 """
@@ -45,7 +45,7 @@ def main() -> None:
         raise SystemExit(f"no scenarios in {SHARED}")
     with tempfile.TemporaryDirectory() as tmp, concurrent.futures.ThreadPoolExecutor(args.jobs) as pool:
         rows = list(pool.map(lambda s: run_one(pathlib.Path(args.binary), s, pathlib.Path(tmp)), scenarios))
-    readme = ROOT / "README.md"
+    readme = ROOT / "docs" / "shared-scenarios.md"
     text = readme.read_text()
     start, end = text.index(BEGIN) + len(BEGIN), text.index(END)
     readme.write_text(text[:start] + "\n" + table(rows) + "\n" + text[end:])

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Writes the team's own urban RoadEditor waypoint files (README "Maps"): a street grid with
+"""Writes the team's own urban RoadEditor waypoint files (docs/maps.md): a street grid with
 a 4-way intersection, a T junction, a one-way loop around a block, two-way streets, a
 two-lane approach, turns with 8-12 m radii, routes that share their first or last stretch,
 branch, merge, overlap in the middle, cross, close on themselves and pass a place twice.

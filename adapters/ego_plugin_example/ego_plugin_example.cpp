@@ -3,7 +3,7 @@
 // vehicles around it through subscriptions, and each step commands one speed: the set speed,
 // or less to follow the vehicle ahead in its lane (Intelligent Driver Model). It keeps its
 // lane (the orchestrator lets SUMO make no lane change of its own) and switches SUMO's speed
-// checks off, so that the speed is the plug-in's alone. See README "External ego plug-in".
+// checks off, so that the speed is the plug-in's alone. See docs/ego-plugin.md.
 //
 //   ego_plugin_example --port 8813 [--host 127.0.0.1] [--speed KMH] [--range M] [--log FILE]
 #include <libsumo/libtraci.h>

@@ -1,6 +1,6 @@
 #pragma once
 // What the orchestrator reads from SUMO each step, through subscriptions only, so that its
-// cost does not grow with the background traffic (README "Performance"):
+// cost does not grow with the background traffic (docs/performance.md):
 //   - the simulation: time, the vehicles and persons that departed, how many arrived and
 //     whether any collided (the running count is kept from departures and arrivals:
 //     Vehicle::getIDCount builds the list of every vehicle id, O(n) each step);

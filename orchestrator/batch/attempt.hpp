@@ -1,6 +1,6 @@
 #pragma once
 // The verdict of one attempt of one run, from how its child process ended and the
-// result.json it wrote. The child's contract (README "Outputs"): exit 0 success, 1 failure,
+// result.json it wrote. The child's contract (docs/outputs.md): exit 0 success, 1 failure,
 // 2 error, result.json always written once the run started. Anything else -- a signal, a
 // timeout, a missing or unreadable result, an exit code that contradicts the result -- is an
 // `error` of the batch (could not run), never a test `failure`.

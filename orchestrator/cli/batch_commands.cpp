@@ -1,5 +1,5 @@
 // `orchestrator sample`, `orchestrator batch` and `orchestrator batch merge`: nightly
-// batches of logical scenarios (README "Nightly batches", orchestrator/batch/).
+// batches of logical scenarios (docs/batches.md, orchestrator/batch/).
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 #include <unistd.h>

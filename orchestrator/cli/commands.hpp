@@ -61,13 +61,13 @@ struct RunOptions {
   std::optional<double> max_time;
   bool strict = false;
   bool quiet = false;
-  // External ego plug-in (README "External ego plug-in"): with a port, a TraCI client drives
+  // External ego plug-in (docs/ego-plugin.md): with a port, a TraCI client drives
   // the ego in lockstep.
   std::optional<int> ego_port;           // --ego-port (0: any free port)
   std::string ego_address = "127.0.0.1";  // --ego-address: loopback unless asked otherwise
   double ego_wait = 60;                  // --ego-wait, s to wait for the plug-in to connect
   double ego_timeout = 30;               // --ego-timeout, s to wait for its next message
-  // Background traffic and backends (README "Background traffic", "Backends").
+  // Background traffic and backends (docs/background-traffic.md, "Backends").
   std::string traffic;            // --traffic LEVEL|VEH_PER_H_PER_LANE|FILE; empty: the scenario's own
   bool trace_background = false;  // --trace-background
   std::string backend;            // --backend libsumo|traci; empty: libsumo, traci with --gui/--connect
@@ -79,7 +79,7 @@ struct RunOptions {
 int run_command(const RunOptions& o);
 
 // `orchestrator baseline`: a map's background traffic in SUMO alone, no scenario; what
-// the benchmark measures the orchestrator against (README "Performance").
+// the benchmark measures the orchestrator against (docs/performance.md).
 struct BaselineOptions {
   CommonOptions common;
   std::string map;

@@ -1,4 +1,4 @@
-// `orchestrator map traffic` and `orchestrator baseline` (README "Background traffic",
+// `orchestrator map traffic` and `orchestrator baseline` (docs/background-traffic.md,
 // "Performance").
 #include <fmt/format.h>
 

@@ -2,7 +2,7 @@
 // Scene conditions as pure functions of two consecutive snapshots. No simulator calls: the
 // same inputs always give the same answer, which is what makes them unit-testable.
 //
-// Conventions (README "Conditions"):
+// Conventions (docs/scenario-format.md "Conditions"):
 // - positions are actor centres; "traveled" distances run along the road (arc length along
 //   the actor's route), + when the target is ahead of the actor;
 // - a negative distance value asks about a target behind the actor and compares the size of

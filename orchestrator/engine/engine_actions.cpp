@@ -1,5 +1,5 @@
 // Scene actions. Each actor has independent axes; a new action replaces the running one on
-// its axis only (README "Actions"):
+// its axis only (docs/scenario-format.md "Actions"):
 //   longitudinal: speed, traveled_distance       lateral: lane_change, lane_offset,
 //   route_move wp_offset                          route: route_move waypoint
 //   lights: light_state (per light)               sound: sound_state

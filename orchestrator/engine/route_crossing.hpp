@@ -9,7 +9,7 @@
 // each d measured along the actor's own route from its centre to X (+ while X lies ahead).
 // + means the target is nearer to X than the actor (it is "ahead" on the way there, or has
 // passed it); - that the actor gets there first. Where the routes meet more than once, the
-// meeting nearest to both actors counts. README "Conditions".
+// meeting nearest to both actors counts. docs/scenario-format.md "Conditions".
 #include <map>
 #include <optional>
 #include <utility>

@@ -1,5 +1,5 @@
 #pragma once
-// Background traffic for a map (README "Background traffic"): SUMO route files with plain
+// Background traffic for a map (docs/background-traffic.md): SUMO route files with plain
 // <flow> definitions, generated from the map's net (never hand-written) and run by SUMO's
 // own driver models. Every lane of every direction gets traffic:
 //   - an entry flow per lane at the start of each road (Poisson arrivals at the level's

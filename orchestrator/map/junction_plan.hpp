@@ -9,7 +9,7 @@
 // Right of way: a priority junction by default. Edges carry their number of lanes as SUMO
 // priority, so the wider road has priority and netconvert picks the straightest pair among
 // equals as the main road. map.json's "junctions" list sets a junction's type and which
-// routes' roads have priority (README "Maps").
+// routes' roads have priority (docs/maps.md).
 #include <optional>
 #include <string>
 #include <vector>

@@ -27,7 +27,7 @@ struct MapManifest {
   // m, longer stretches become several edges (net_plan.hpp); 0 = never. New map folders get
   // kDefaultMaxEdgeLength; a map.json without the setting keeps its single long edges.
   double max_edge_length = 0;
-  // Junction types and right of way set by the user (README "Maps"; "junctions" in map.json).
+  // Junction types and right of way set by the user (docs/maps.md; "junctions" in map.json).
   JunctionSettings junctions;
 
   [[nodiscard]] std::filesystem::path waypoint_path() const { return dir / waypoint_file; }

@@ -48,7 +48,7 @@ struct NetPlanSettings {
   // sublane model scans every vehicle of a lane for each vehicle's followers
   // (MSLane::getFollowersOnConsecutive), so a step costs O(n^2) in the vehicles per lane:
   // measured on a 10 km, 3-lane road with 820 vehicles, 177 ms per step with one edge,
-  // 32 ms with 500 m edges (README "Performance").
+  // 32 ms with 500 m edges (docs/performance.md).
   double max_edge_length = 0;       // m
 };
 

@@ -1,6 +1,6 @@
 #pragma once
 // result.json: the verdict of one run and everything needed to trace it back to its inputs
-// (README "Outputs"). Written atomically at the end of every run, whatever ended it.
+// (docs/outputs.md). Written atomically at the end of every run, whatever ended it.
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -32,7 +32,7 @@ struct RunResult {
   InputFile scenario;
   InputFile waypoints;
   InputFile net;
-  // Background traffic (README "Background traffic"): the --traffic value (or the
+  // Background traffic (docs/background-traffic.md): the --traffic value (or the
   // scenario's own), its route file (path empty: none), the SUMO command line the run used.
   std::string traffic = "none";
   InputFile traffic_file;
@@ -46,7 +46,7 @@ struct RunResult {
   std::vector<engine::HandOverRecord> hand_overs;
   std::optional<EgoLinkReport> ego_plugin;  // the external ego plug-in's connection (--ego-port)
   double wall_time_s = 0;
-  // Where the wall time went (README "Outputs"): measured inside the one process, so the
+  // Where the wall time went (docs/outputs.md): measured inside the one process, so the
   // orchestrator's own share does not depend on how fast the machine happens to be today.
   struct Timing {
     double start_s = 0;         // inputs, lane map, SUMO start, first commands

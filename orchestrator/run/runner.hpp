@@ -26,7 +26,7 @@ struct RunRequest {
   std::string catalog_file;                     // empty: the compiled-in catalog
   const std::atomic<bool>* interrupted = nullptr;  // set by a signal handler to end the run
   EgoLink* ego_link = nullptr;  // an external plug-in drives the ego (--ego-port); null: SUMO does
-  // Background traffic (README "Background traffic"): none, light, medium, dense, vehicles
+  // Background traffic (docs/background-traffic.md): none, light, medium, dense, vehicles
   // per hour and lane, or a SUMO route file; empty: the scenario's own "traffic", else none.
   std::string traffic;
   bool trace_background = false;  // background.csv: the background vehicles near the actors

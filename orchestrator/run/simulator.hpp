@@ -16,7 +16,7 @@ struct SimulatorConfig {
   double step = 0.05;       // s
   long long seed = 42;
   std::string log_file;     // SUMO's own messages go here, not to the terminal
-  // SUMO route files with background traffic (README "Background traffic"); empty: none.
+  // SUMO route files with background traffic (docs/background-traffic.md); empty: none.
   std::vector<std::string> route_files;
   std::vector<std::string> extra_args;  // appended to SUMO's command line
 };
@@ -29,7 +29,7 @@ class Simulator {
   virtual void advance() = 0;  // one step
   // The tracked actors' state now (same order); background vehicles near them
   // (WorldSnapshot::nearby) and the number of all others. Its cost must not grow with the
-  // number of background vehicles (README "Performance").
+  // number of background vehicles (docs/performance.md).
   virtual engine::WorldSnapshot read(const std::vector<engine::TrackedActor>& actors) = 0;
   virtual double time() = 0;
   [[nodiscard]] virtual std::string backend() const = 0;  // "libsumo", "traci"

@@ -1,6 +1,6 @@
 #pragma once
 // trace.csv: one row per present actor per step, a contract users script against
-// (README "Outputs"). Rows are written with fixed precision so the same run gives the
+// (docs/outputs.md). Rows are written with fixed precision so the same run gives the
 // same bytes, and flushed regularly so a crash keeps what was simulated.
 #include <cstdio>
 #include <filesystem>

@@ -1,5 +1,5 @@
 #pragma once
-// The background traffic's part of a run's outputs (README "Outputs"), beside trace.csv
+// The background traffic's part of a run's outputs (docs/outputs.md), beside trace.csv
 // whose rows stay the scenario actors':
 //   counts.csv      always: per step, how many background vehicles SUMO runs and how many
 //                   of them are near an actor;

@@ -225,7 +225,7 @@ struct Scenario {
   std::string map_id;
   // "traffic" (an extension of the format): the scenario's own background traffic, a SUMO
   // route file relative to the scenario file, or a level as `run --traffic` takes it;
-  // `run --traffic` overrides it (README "Background traffic").
+  // `run --traffic` overrides it (docs/background-traffic.md).
   std::string traffic;
   ActorSpec ego;
   std::vector<ActorSpec> others;

@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """The orchestrator's speed against bare SUMO, itself on the other backend, and a plain
 Python traci loop, on the same network, traffic, seed, step length and number of steps.
-Prints a Markdown table (README "Performance"). See scripts/bench/README.md.
+Prints a Markdown table (docs/performance.md). See scripts/bench/README.md.
 
 Usage: scripts/bench/run.sh [--quick] [--hour]   (builds first; or call this with --binary)
 """

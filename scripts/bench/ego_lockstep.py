@@ -4,7 +4,7 @@
 The same loop -- simulationStep, read one subscription, send one command -- runs with SUMO's
 Python client against `orchestrator run --ego-port` and against a plain `sumo --remote-port`
 on the same net with the same step and SUMO options. Prints steps per second of both and
-their ratio (orchestrator / plain SUMO): the figure README "External ego plug-in" quotes.
+their ratio (orchestrator / plain SUMO): the figure docs/ego-plugin.md quotes.
 
   ego_lockstep.py --orchestrator build/bin/orchestrator [--steps 2000]
 (run with /usr/bin/python3 and PYTHONPATH=/usr/share/sumo/tools; ego_bench.sh does that)
