@@ -144,6 +144,30 @@ JunctionPieces cut_into_pieces(const WaypointFile& wf, const JunctionZones& zone
       break;
     }
   }
+  // A shared lane lies in the middle of the routes drawn along it: each point of the
+  // longest one averaged with the feet on the others, so that routes drawn a few
+  // centimetres apart "on one lane" are each only half as far from it.
+  for (std::size_t p = 0; p < out.pieces.size(); ++p) {
+    if (owner[p] != static_cast<int>(p)) continue;
+    std::vector<const Polyline*> others;
+    for (std::size_t q = 0; q < out.pieces.size(); ++q)
+      if (q != p && owner[q] == static_cast<int>(p)) others.push_back(&out.pieces[q].line.line);
+    if (others.empty()) continue;
+    std::vector<WaypointPoint> pts = out.pieces[p].line.points;
+    for (WaypointPoint& pt : pts) {
+      Vec2 sum(pt.x, pt.y);
+      int n = 1;
+      for (const Polyline* o : others) {
+        const Polyline::Projection pr = o->project(Vec2(pt.x, pt.y));
+        if (pr.before_start || pr.after_end || pr.distance > kContainDistance) continue;
+        sum += o->point_at(pr.s);
+        ++n;
+      }
+      pt.x = sum.x() / n;
+      pt.y = sum.y() / n;
+    }
+    out.pieces[p].line = make_line(out.pieces[p].line.id, std::move(pts));
+  }
   // Renumber: only owners remain.
   std::vector<int> index(out.pieces.size(), -1);
   std::vector<RoutePiece> kept;
