@@ -108,7 +108,9 @@ int batch_command(const BatchCliOptions& o, const CLI::App& app) {
   b.out_stream = &std::cout;
   b.terminal = ::isatty(STDOUT_FILENO) == 1;
   try {
-    return batch::run_batch(b);
+    const int code = batch::run_batch(b);
+    announce_batch_report({b.out}, b.out);
+    return code;
   } catch (const ScenarioError& e) {
     std::cerr << e.diagnostics().format();
     return 2;
@@ -120,6 +122,7 @@ int merge_command(const MergeOptions& o) {
   const batch::BatchReport report = batch::collect_report(dirs);
   std::cout << batch::write_reports(report, o.out);
   std::cout << fmt::format("\nmerged {} folder(s) into {} (summary.json, junit.xml, summary.txt)\n", dirs.size(), o.out);
+  announce_batch_report(dirs, o.out);
   return batch::batch_exit_code(report.totals());
 }
 

@@ -69,6 +69,7 @@ int run_command(const RunOptions& o) {
   const RunResult result = run_scenario(req, sim);
   std::cout << "verdict: " << result.verdict << " (" << result.reason << ")\n"
             << "results: " << (req.out_dir / "result.json").string() << "\n";
+  if (!o.no_report) announce_run_report(req.out_dir);
   return exit_code_for(result);
 }
 

@@ -1,0 +1,67 @@
+// report.html of runs and batches (README "Looking at results"), and `orchestrator report`.
+#include <fmt/format.h>
+
+#include <iostream>
+#include <nlohmann/json.hpp>
+
+#include "batch/batch_report.hpp"
+#include "cli/commands.hpp"
+#include "core/files.hpp"
+#include "report/batch_page.hpp"
+#include "report/run_report.hpp"
+
+namespace orch::cli {
+
+namespace fs = std::filesystem;
+
+namespace {
+std::string file_url(const fs::path& p) { return "file://" + fs::absolute(p).lexically_normal().string(); }
+
+// The batch's wall time as summary.json recorded it (a report written later keeps it).
+std::optional<double> recorded_wall_time(const fs::path& out_dir) {
+  try {
+    const auto j = nlohmann::json::parse(read_file(out_dir / "summary.json"));
+    if (j.contains("wall_time_s") && j["wall_time_s"].is_number()) return j["wall_time_s"].get<double>();
+  } catch (const std::exception&) {
+  }
+  return std::nullopt;
+}
+}  // namespace
+
+bool announce_run_report(const fs::path& run_dir) {
+  try {
+    std::cout << "report: " << file_url(report::write_run_report(run_dir)) << "\n";
+    return true;
+  } catch (const std::exception& e) {
+    std::cerr << "warning: no report.html for " << run_dir.string() << ": " << e.what() << "\n";
+    return false;
+  }
+}
+
+bool announce_batch_report(const std::vector<fs::path>& batch_dirs, const fs::path& out_dir) {
+  try {
+    batch::BatchReport collected = batch::collect_report(batch_dirs);
+    collected.wall_time_s = recorded_wall_time(out_dir);
+    std::cout << "report: " << file_url(report::write_batch_report(collected, out_dir)) << "\n";
+    return true;
+  } catch (const std::exception& e) {
+    std::cerr << "warning: no report.html for " << out_dir.string() << ": " << e.what() << "\n";
+    return false;
+  }
+}
+
+int report_command(const ReportOptions& o) {
+  bool all = true;
+  for (const auto& d : o.dirs) {
+    const fs::path dir = d;
+    if (fs::exists(dir / "batch.json")) all = announce_batch_report({dir}, dir) && all;
+    else if (fs::exists(dir / "result.json")) all = announce_run_report(dir) && all;
+    else {
+      std::cerr << fmt::format("{}: neither a run folder (result.json) nor a batch folder (batch.json)\n", d);
+      all = false;
+    }
+  }
+  return all ? 0 : 2;
+}
+
+}  // namespace orch::cli
