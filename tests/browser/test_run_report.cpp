@@ -98,8 +98,8 @@ TEST_F(RunReportInBrowser, LoadsWithoutConsoleErrorsAndDrawsOneTrajectoryPerActo
   EXPECT_EQ(b.eval("return document.querySelector('.verdict').textContent;"), run.result["verdict"]);
   EXPECT_NE(b.eval("return document.body.innerText;").get<std::string>().find(run.result["reason"].get<std::string>()),
             std::string::npos);
-  b.resize(1400, 1250);
-  b.eval("window.orchReport.setTime(19.5);");
+  b.resize(1400, 1900);
+  b.eval("window.orchReport.setTime(20);");
   save_screenshot(b, "run_report.png");
   EXPECT_EQ(b.console_errors(), std::vector<std::string>{});
 }

@@ -73,7 +73,8 @@
         grid.append(el('div', { class: 'scatter-box' }, canvas));
         charts.push(new Chart(canvas, {
           type: 'scatter', data: { datasets },
-          options: { parsing: false,
+          // (parsed: Chart.js takes unparsed data to be sorted by x, which a parameter space is not)
+          options: {
             scales: { x: { title: { display: true, text: px } }, y: { title: { display: true, text: py } } },
             plugins: { legend: { display: !metric },
               title: { display: !!metric, text: metric ? `colour: ${metric} (${fmtNum(lo, 2)} … ${fmtNum(hi, 2)}), border: verdict` : '' },

@@ -64,7 +64,7 @@ function sortableTable(columns, rows, attrs) {
   return table;
 }
 
-function fmtCell(v) { return typeof v === 'number' ? fmtNum(v, Math.abs(v) >= 100 ? 1 : 3) : (v === null || v === undefined ? '–' : String(v)); }
+function fmtCell(v) { return typeof v === 'number' ? (Number.isInteger(v) ? String(v) : fmtNum(v, Math.abs(v) >= 100 ? 1 : 3)) : (v === null || v === undefined ? '–' : String(v)); }
 
 // Chart.js defaults: a report is read, not animated.
 Chart.defaults.animation = false;

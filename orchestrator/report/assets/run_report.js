@@ -90,7 +90,7 @@
     const lanes = svgEl('g', { class: 'lanes' });
     for (const l of REPORT.lanes || []) {
       lanes.append(svgEl('polyline', { class: 'lane' + (l.internal ? ' internal' : ''), 'data-lane': l.id,
-        points: l.xy.reduce((s, v, i) => s + (i % 2 ? ',' : (i ? ' ' : '')) + v, ''), 'stroke-width': l.width }));
+        points: l.xy.reduce((s, v, i) => s + (i % 2 ? ',' : (i ? ' ' : '')) + v, ''), 'stroke-width': Math.max(0.5, l.width - 0.25) }));  // the gap marks the lane's border
     }
     view.append(lanes);
     const trajectories = svgEl('g', { class: 'trajectories' });
@@ -150,7 +150,7 @@
       const r = (follow ? 4 : 5) / s;
       for (const m of markers.children) m.setAttribute('r', r);
     }
-    if (follow) state.scale = 6; else fit();
+    if (follow) state.scale = 4; else fit();
     // Pan by dragging, zoom by the wheel around the pointer.
     let drag = null;
     svg.addEventListener('mousedown', (e) => { drag = { x: e.clientX, y: e.clientY, cx: state.cx, cy: state.cy }; state.follow = false; });
@@ -250,7 +250,7 @@
         parsing: false, normalized: true, spanGaps: false,
         elements: { point: { radius: 0 }, line: { borderWidth: 1.6 } },
         interaction: { mode: 'nearest', axis: 'x', intersect: false },
-        scales: { x: { type: 'linear', min: tStart, max: tEnd, title: { display: true, text: 's' } },
+        scales: { x: { type: 'linear', min: Math.floor(tStart), max: tEnd, title: { display: true, text: 's' } },
                   y: { title: { display: true, text: yTitle } } },
         plugins: { tooltip: { callbacks: { title: (items) => 't = ' + fmtNum(items[0].parsed.x, 2) + ' s' } } },
         onClick: (e, items, chart) => setTime(chart.scales.x.getValueForPixel(e.x)),
@@ -275,7 +275,7 @@
       grid.append(lineChart('chart-gap', 'Ego: gap to the leader', [{ label: 'gap', borderColor: '#1f6fd1', data: ms('gap') }], 'm'));
       grid.append(lineChart('chart-ttc', 'Ego: time to collision and time headway', [
         { label: 'TTC', borderColor: '#d62f2f', data: ms('ttc') }, { label: 'THW', borderColor: '#2e9d46', data: ms('thw') }], 's',
-        { scales: { x: { type: 'linear', min: tStart, max: tEnd, title: { display: true, text: 's' } }, y: { min: 0, suggestedMax: 6, max: 15, title: { display: true, text: 's' } } } }));
+        { scales: { x: { type: 'linear', min: Math.floor(tStart), max: tEnd, title: { display: true, text: 's' } }, y: { min: 0, suggestedMax: 6, max: 15, title: { display: true, text: 's' } } } }));
     }
     c.append(grid);
     c.append(timeline());
@@ -293,8 +293,8 @@
     const canvas = el('canvas', { id: 'chart-timeline' });
     charts.push(new Chart(canvas, {
       type: 'scatter', data: { datasets },
-      options: { parsing: false,
-        scales: { x: { type: 'linear', min: tStart, max: tEnd }, y: { min: -0.5, max: 3.5, ticks: { stepSize: 1, callback: (v) => Object.keys(rows).find(k => rows[k] === v) || '' } } },
+      options: {
+        scales: { x: { type: 'linear', min: Math.floor(tStart), max: tEnd }, y: { min: -0.5, max: 3.5, ticks: { stepSize: 1, callback: (v) => Object.keys(rows).find(k => rows[k] === v) || '' } } },
         plugins: { legend: { display: false }, tooltip: { callbacks: { label: (item) => item.raw.text } } },
         onClick: (e, items, chart) => setTime(chart.scales.x.getValueForPixel(e.x)) },
       plugins: [sceneBands] }));
