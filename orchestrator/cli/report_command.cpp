@@ -1,6 +1,8 @@
 // report.html of runs and batches (README "Looking at results"), and `orchestrator report`.
 #include <fmt/format.h>
 
+#include <chrono>
+
 #include <iostream>
 #include <nlohmann/json.hpp>
 
@@ -17,6 +19,15 @@ namespace fs = std::filesystem;
 namespace {
 std::string file_url(const fs::path& p) { return "file://" + fs::absolute(p).lexically_normal().string(); }
 
+// "report: file://... (0.031 s)": what writing it cost, the figure docs/reports.md quotes.
+template <class Write>
+void announce(Write&& write) {
+  const auto start = std::chrono::steady_clock::now();
+  const fs::path written = write();
+  const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  std::cout << fmt::format("report: {} ({:.3f} s)\n", file_url(written), s);
+}
+
 // The batch's wall time as summary.json recorded it (a report written later keeps it).
 std::optional<double> recorded_wall_time(const fs::path& out_dir) {
   try {
@@ -30,7 +41,7 @@ std::optional<double> recorded_wall_time(const fs::path& out_dir) {
 
 bool announce_run_report(const fs::path& run_dir) {
   try {
-    std::cout << "report: " << file_url(report::write_run_report(run_dir)) << "\n";
+    announce([&] { return report::write_run_report(run_dir); });
     return true;
   } catch (const std::exception& e) {
     std::cerr << "warning: no report.html for " << run_dir.string() << ": " << e.what() << "\n";
@@ -40,9 +51,11 @@ bool announce_run_report(const fs::path& run_dir) {
 
 bool announce_batch_report(const std::vector<fs::path>& batch_dirs, const fs::path& out_dir) {
   try {
-    batch::BatchReport collected = batch::collect_report(batch_dirs);
-    collected.wall_time_s = recorded_wall_time(out_dir);
-    std::cout << "report: " << file_url(report::write_batch_report(collected, out_dir)) << "\n";
+    announce([&] {
+      batch::BatchReport collected = batch::collect_report(batch_dirs);
+      collected.wall_time_s = recorded_wall_time(out_dir);
+      return report::write_batch_report(collected, out_dir);
+    });
     return true;
   } catch (const std::exception& e) {
     std::cerr << "warning: no report.html for " << out_dir.string() << ": " << e.what() << "\n";

@@ -26,7 +26,7 @@ const fs::path& highway_run() {
     const auto r = run_cli({"run", std::string(ORCH_SOURCE_DIR) + "/scenarios/highway_cut_in.json", "--out",
                             out.string(), "-q", "--trace-background", "--traffic", "light"});
     if (r.exit_code != 0) throw std::runtime_error(r.output);
-    if (r.output.find("report: file://" + fs::absolute(out / "report.html").string()) == std::string::npos)
+    if (r.output.find("report: file://" + fs::absolute(out / "report.html").string() + " (") == std::string::npos)
       throw std::runtime_error("run did not print the report's path: " + r.output);
     return out;
   }();
