@@ -71,6 +71,7 @@ struct RunOptions {
   std::string traffic;            // --traffic LEVEL|VEH_PER_H_PER_LANE|FILE; empty: the scenario's own
   bool trace_background = false;  // --trace-background
   bool no_report = false;         // --no-report: no report.html (README "Looking at results")
+  bool video = false;             // --video: video.mp4 of the run (sumo-gui, ffmpeg)
   std::string backend;            // --backend libsumo|traci; empty: libsumo, traci with --gui/--connect
   bool gui = false;               // --gui: sumo-gui (traci backend)
   std::string connect;            // --connect HOST:PORT: a running SUMO (traci backend)
@@ -87,6 +88,10 @@ int report_command(const ReportOptions& o);
 // Writes the report of a run folder / batch folder and prints "report: file://..."; a report
 // that cannot be written is a warning on stderr, never a changed verdict. Returns false then.
 bool announce_run_report(const std::filesystem::path& run_dir);
+// video.mp4 of a run folder, "video: file://..."; a failure is a warning on stderr.
+bool announce_video(const std::filesystem::path& run_dir);
+// video.mp4 of every run of a batch folder whose verdict is failure.
+void announce_failure_videos(const std::filesystem::path& batch_dir);
 bool announce_batch_report(const std::vector<std::filesystem::path>& batch_dirs, const std::filesystem::path& out_dir);
 
 // `orchestrator baseline`: a map's background traffic in SUMO alone, no scenario; what

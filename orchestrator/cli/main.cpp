@@ -50,6 +50,7 @@ int main(int argc, char** argv) {
                 "(default: the scenario's own \"traffic\", else none)");
   r->add_flag("--trace-background", run.trace_background, "Write background.csv: background vehicles near the actors");
   r->add_flag("--no-report", run.no_report, "Do not write report.html");
+  r->add_flag("--video", run.video, "Write video.mp4: the run replayed in sumo-gui (under Xvfb without a display)");
   r->add_option("--backend", run.backend, "SUMO client library: libsumo (in-process, default) or traci")
       ->check(CLI::IsMember({"libsumo", "traci"}));
   r->add_flag("--gui", run.gui, "Watch the run in sumo-gui (traci backend)");

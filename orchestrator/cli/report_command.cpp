@@ -11,6 +11,7 @@
 #include "core/files.hpp"
 #include "report/batch_page.hpp"
 #include "report/run_report.hpp"
+#include "video/trace_video.hpp"
 
 namespace orch::cli {
 
@@ -21,11 +22,11 @@ std::string file_url(const fs::path& p) { return "file://" + fs::absolute(p).lex
 
 // "report: file://... (0.031 s)": what writing it cost, the figure docs/reports.md quotes.
 template <class Write>
-void announce(Write&& write) {
+void announce(Write&& write, const char* what = "report") {
   const auto start = std::chrono::steady_clock::now();
   const fs::path written = write();
   const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  std::cout << fmt::format("report: {} ({:.3f} s)\n", file_url(written), s);
+  std::cout << fmt::format("{}: {} ({:.3f} s)\n", what, file_url(written), s);
 }
 
 // The batch's wall time as summary.json recorded it (a report written later keeps it).
@@ -47,6 +48,22 @@ bool announce_run_report(const fs::path& run_dir) {
     std::cerr << "warning: no report.html for " << run_dir.string() << ": " << e.what() << "\n";
     return false;
   }
+}
+
+bool announce_video(const fs::path& run_dir) {
+  try {
+    announce([&] { return video::write_video(run_dir); }, "video");
+    return true;
+  } catch (const std::exception& e) {
+    std::cerr << "warning: no video.mp4 for " << run_dir.string() << ": " << e.what() << "\n";
+    return false;
+  }
+}
+
+void announce_failure_videos(const fs::path& batch_dir) {
+  const batch::BatchReport collected = batch::collect_report({batch_dir});
+  for (const auto& [id, run] : collected.done)
+    if (run.verdict == "failure") announce_video(collected.done_in.at(id) / run.run_dir);
 }
 
 bool announce_batch_report(const std::vector<fs::path>& batch_dirs, const fs::path& out_dir) {
