@@ -4,6 +4,7 @@
 
 #include <cstdlib>
 
+#include "e2e/test_batch_support.hpp"
 #include "support/cli_runner.hpp"
 
 namespace fs = std::filesystem;
@@ -58,4 +59,16 @@ TEST(VideoCli, AMissingToolIsAClearErrorBeforeTheRunStarts) {
   EXPECT_EQ(WEXITSTATUS(status), 2) << output;
   EXPECT_NE(output.find("--video needs ffmpeg, sumo-gui (Debian's sumo), Xvfb (no $DISPLAY)"), std::string::npos) << output;
   EXPECT_FALSE(fs::exists(out / "result.json")) << "nothing ran";
+}
+
+TEST(VideoCli, BatchVideoFilmsTheFailingRunsOnly) {
+  using namespace orch::test::batch;
+  TempDir in, out_root;
+  const auto logical = write_quick_batch(in, {{"ok", 0.5, 5}, {"fails", 2.0, 5}});
+  const fs::path out = out_root / "b";
+  const auto r = run_cli({"batch", logical.string(), "--out", out.string(), "--jobs", "2", "--video"});
+  ASSERT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_TRUE(fs::exists(out / "runs" / run_id_of("fails") / "video.mp4")) << r.output;
+  EXPECT_FALSE(fs::exists(out / "runs" / run_id_of("ok") / "video.mp4")) << r.output;
+  EXPECT_TRUE(fs::exists(out / "report.html"));
 }
