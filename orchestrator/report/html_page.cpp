@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include "core/xml_text.hpp"
+
 namespace orch::embedded {
 std::string_view chartjs_js();
 std::string_view report_css();
@@ -13,20 +15,6 @@ std::string_view batch_report_js();
 namespace orch::report {
 
 namespace {
-
-std::string escape_html(std::string_view s) {
-  std::string out;
-  for (const char c : s) {
-    switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      default: out += c;
-    }
-  }
-  return out;
-}
 
 // JSON inside <script>: '<' only occurs in strings, where \u003c means the same, so no
 // "</script>" or "<!--" in a scenario's text can end the element early.
@@ -51,7 +39,7 @@ std::string html_page(std::string_view title, std::string_view page_script, cons
   page.reserve(embedded::chartjs_js().size() + 200000);
   page += "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n";
   page += "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n";
-  page += fmt::format("<title>{}</title>\n<style>\n", escape_html(title));
+  page += fmt::format("<title>{}</title>\n<style>\n", xml_escape(title));
   page += embedded::report_css();
   page += "</style>\n</head>\n<body>\n<div id=\"app\"></div>\n";
   page += "<script type=\"application/json\" id=\"report-data\">";

@@ -58,15 +58,7 @@ void expect_scatter_matches(Browser& b, const fs::path& batch_dir) {
   for (const auto& [seed, n] : seen) EXPECT_EQ(n, 1) << "seed " << seed;
 }
 
-class BatchReportInBrowser : public ::testing::Test {
- protected:
-  void SetUp() override {
-    if (const auto missing = browser_missing(); !missing.empty()) FAIL() << missing;
-    browser_ = std::make_unique<Browser>(profile_ / "chromium");
-  }
-  TempDir profile_;
-  std::unique_ptr<Browser> browser_;
-};
+using BatchReportInBrowser = BrowserTest;
 
 }  // namespace
 

@@ -63,15 +63,7 @@ Box box_from_points(const std::string& points) {
   return b;
 }
 
-class RunReportInBrowser : public ::testing::Test {
- protected:
-  void SetUp() override {
-    if (const auto missing = browser_missing(); !missing.empty()) FAIL() << missing;
-    browser_ = std::make_unique<Browser>(profile_ / "chromium");
-  }
-  TempDir profile_;
-  std::unique_ptr<Browser> browser_;
-};
+using RunReportInBrowser = BrowserTest;
 
 }  // namespace
 

@@ -6,17 +6,22 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <gtest/gtest.h>
+
 #include <boost/asio/connect.hpp>
 #include <boost/asio/ip/tcp.hpp>
 #include <boost/beast/core.hpp>
 #include <boost/beast/http.hpp>
 #include <chrono>
 #include <filesystem>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 #include <string>
 #include <thread>
 #include <vector>
+
+#include "support/cli_runner.hpp"
 
 namespace orch::test {
 
@@ -156,6 +161,18 @@ class Browser {
   int port_ = 0;
   pid_t driver_ = -1;
   std::string session_;
+};
+
+// A test with a fresh browser (own profile folder); fails naming what is missing when
+// Chromium or chromedriver is not installed.
+class BrowserTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    if (const auto missing = browser_missing(); !missing.empty()) FAIL() << missing;
+    browser_ = std::make_unique<Browser>(profile_ / "chromium");
+  }
+  TempDir profile_;
+  std::unique_ptr<Browser> browser_;
 };
 
 }  // namespace orch::test
