@@ -119,3 +119,46 @@ TEST_F(BatchReportInBrowser, AMergeOfShardsGetsTheSameReport) {
   EXPECT_EQ(links.size(), 6u) << "every run has a report, the one that could not run too: " << links.dump();
   for (const auto& l : links) EXPECT_TRUE(fs::exists(merged / l.get<std::string>())) << l;
 }
+
+TEST_F(BatchReportInBrowser, WithMetricsThePointsTakeTheColourOfAChosenMetricAndItsHistogramIsDrawn) {
+  TempDir in, out_root;
+  const auto logical = write_quick_batch(in, sets());
+  const fs::path out = out_root / "b";
+  ASSERT_EQ(run_cli({"batch", logical.string(), "--out", out.string(), "--jobs", "2", "--retries", "0"}).exit_code, 2);
+  // The evaluation's per-actor summary in every run's result.json: min TTC = seed - 100.
+  const auto runs = runs_by_seed(out / "summary.json");
+  for (const auto& [seed, run] : runs) {
+    const fs::path file = out / run["run_dir"].get<std::string>() / "result.json";
+    nlohmann::json result = read_json(file);
+    result["metrics"] = {{"0", {{"min_ttc", static_cast<double>(seed - 100)}, {"max_decel", 1.5}}}};
+    std::ofstream(file) << result.dump(2);
+  }
+  const auto r = run_cli({"report", out.string()});
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+
+  Browser& b = *browser_;
+  b.open(out / "report.html");
+  EXPECT_EQ(b.console_errors(), std::vector<std::string>{});
+  EXPECT_EQ(b.eval("return [...document.querySelector('select.color-by').options].map(o => o.value);"),
+            nlohmann::json({"", "0.max_decel", "0.min_ttc"}));
+  EXPECT_EQ(b.eval("return document.querySelector('select.color-by').value;"), "0.min_ttc") << "a minimum TTC first";
+  const auto colours = b.eval(
+      "const c = Chart.getChart(document.querySelector('canvas.scatter')); const d = c.data.datasets[0];"
+      "return d.data.map((p, i) => [p.run.seed, d.pointBackgroundColor[i], d.pointBorderColor[i]]);");
+  ASSERT_EQ(colours.size(), runs.size()) << colours.dump();
+  for (const auto& c : colours) {
+    const long long seed = c[0];
+    // Red for the smallest TTC (seed 100), blue for the largest (seed 105); verdict as border.
+    if (seed == 100) {
+      EXPECT_EQ(c[1], "rgb(240,110,30)");
+    }
+    if (seed == 105) {
+      EXPECT_EQ(c[1], "rgb(40,110,220)");
+    }
+    EXPECT_EQ(c[2], kVerdictColors.at(runs.at(seed)["verdict"])) << c.dump();
+  }
+  const auto histogram = b.eval(
+      "const c = Chart.getChart(document.querySelector('canvas.histogram'));"
+      "return c.data.datasets.map(d => [d.label, d.data.reduce((a, b) => a + b, 0)]);");
+  EXPECT_EQ(histogram, nlohmann::json::parse(R"([["success", 3], ["failure", 2], ["error", 1]])"));
+}

@@ -65,7 +65,7 @@
       for (const [px, py] of pairs) {
         const datasets = metric
           ? [{ label: metric, data: mine.map(r => ({ x: valueOf(r, px), y: valueOf(r, py), run: r })),
-               pointBackgroundColor: mine.map(r => (metricOf(r, metric) === null ? '#ccc' : rampColor(metricOf(r, metric), lo, hi, !invert))),
+               pointBackgroundColor: mine.map(r => (metricOf(r, metric) === null ? '#ccc' : rampColor(metricOf(r, metric), lo, hi, invert))),
                pointBorderColor: mine.map(r => VERDICT_COLORS[r.verdict] || '#999'), pointBorderWidth: 1.5, pointRadius: 4.5 }]
           : VERDICTS.map(v => ({ label: v, backgroundColor: VERDICT_COLORS[v], borderColor: VERDICT_COLORS[v], pointRadius: 4,
                data: mine.filter(r => r.verdict === v).map(r => ({ x: valueOf(r, px), y: valueOf(r, py), run: r })) }));
