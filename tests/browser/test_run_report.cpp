@@ -90,6 +90,16 @@ TEST_F(RunReportInBrowser, LoadsWithoutConsoleErrorsAndDrawsOneTrajectoryPerActo
   EXPECT_EQ(b.eval("return document.querySelector('.verdict').textContent;"), run.result["verdict"]);
   EXPECT_NE(b.eval("return document.body.innerText;").get<std::string>().find(run.result["reason"].get<std::string>()),
             std::string::npos);
+  // The scene timeline's markers show their run-log line on hover: every transition's line.
+  const auto marks = b.eval(
+      "const c = Chart.getChart(document.getElementById('chart-timeline'));"
+      "return c.data.datasets.find(d => d.label === 'scene').data.map(p => p.text);");
+  const std::string log = slurp(highway_run() / "run.log");
+  ASSERT_EQ(marks.size(), run.result["scenes"].size()) << marks.dump();
+  for (const auto& m : marks) {
+    EXPECT_NE(log.find(m.get<std::string>() + "\n"), std::string::npos) << m;
+    EXPECT_EQ(m.get<std::string>().rfind("t=", 0), 0u) << m;
+  }
   b.resize(1400, 1900);
   b.eval("window.orchReport.setTime(20);");
   save_screenshot(b, "run_report.png");
