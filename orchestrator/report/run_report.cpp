@@ -86,10 +86,10 @@ json actors_json(const RunFiles& run, std::optional<Bounds>& bounds) {
   return actors;
 }
 
-// Background vehicles near the actors (--trace-background), thinned to at most ~25,000 rows
+// Background vehicles near the actors (--trace-background), thinned to at most ~15,000 rows
 // so a long dense run stays a file a browser opens at once.
 json background_json(const CsvTable& table) {
-  constexpr std::size_t kMaxRows = 25000;
+  constexpr std::size_t kMaxRows = 15000;
   const std::size_t time = *table.column("time");
   std::vector<double> times;
   for (std::size_t r = 0; r < table.rows(); ++r) {
