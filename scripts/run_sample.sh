@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The main job on the embedded default: installs what is missing, builds, and runs the
 # sample cut-in scenario on the shipped highway map with libsumo.
-# Results land in out/highway_cut_in/ (result.json, trace.csv, run.log).
+# Results land in out/highway_cut_in/ (result.json, trace.csv, run.log, report.html: it
+# prints the report's file:// address to open in a browser).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 "$root/scripts/setup.sh"

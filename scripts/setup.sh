@@ -14,6 +14,9 @@ packages=(
   python3 xvfb xauth
   slurm-wlm munge                       # the nightly batch's Slurm test runs a single-node cluster
   clang libclang-rt-14-dev               # libFuzzer target of the ego TraCI server (tests/fuzz)
+  libjs-chart.js                        # Chart.js, compiled into report.html (orchestrator/report)
+  chromium chromium-driver              # the reports' browser tests (tests/browser, label browser)
+  ffmpeg                                # run --video
 )
 
 missing=()

@@ -11,6 +11,7 @@
 
 #include "batch/batch_plan.hpp"
 #include "batch/batch_report.hpp"
+#include "video/trace_video.hpp"
 #include "batch/batch_runner.hpp"
 #include "batch/sampling.hpp"
 #include "cli/commands.hpp"
@@ -38,6 +39,7 @@ struct BatchCliOptions {
   std::optional<int> retries;
   std::string shard;
   std::string wrapper;
+  bool video = false;  // --video: video.mp4 of every failing run
   CommonOptions common;
 };
 
@@ -103,12 +105,18 @@ int batch_command(const BatchCliOptions& o, const CLI::App& app) {
   for (auto& d : b.map_dirs) d = fs::absolute(d).string();  // the children run elsewhere
   b.catalog = o.common.catalog.empty() ? "" : fs::absolute(o.common.catalog).string();
   b.wrapper = resolve_program(o.wrapper);
+  if (o.video) {
+    if (const auto missing = video::missing_video_tools(); !missing.empty()) throw OrchError("batch " + missing);
+  }
   b.orchestrator = fs::read_symlink("/proc/self/exe");
   b.run_flags = run_flags_of(b.orchestrator);
   b.out_stream = &std::cout;
   b.terminal = ::isatty(STDOUT_FILENO) == 1;
   try {
-    return batch::run_batch(b);
+    const int code = batch::run_batch(b);
+    if (o.video) announce_failure_videos(b.out);
+    announce_batch_report({b.out}, b.out);
+    return code;
   } catch (const ScenarioError& e) {
     std::cerr << e.diagnostics().format();
     return 2;
@@ -120,6 +128,7 @@ int merge_command(const MergeOptions& o) {
   const batch::BatchReport report = batch::collect_report(dirs);
   std::cout << batch::write_reports(report, o.out);
   std::cout << fmt::format("\nmerged {} folder(s) into {} (summary.json, junit.xml, summary.txt)\n", dirs.size(), o.out);
+  announce_batch_report(dirs, o.out);
   return batch::batch_exit_code(report.totals());
 }
 
@@ -154,6 +163,7 @@ class BatchCommandsImpl : public BatchCommands {
         ->check(CLI::Range(0, 100));
     batch_->add_option("--shard", batch_opts_.shard, "Run only shard K of N (K/N, 1-based): a deterministic 1/N of the runs");
     batch_->add_option("--wrapper", batch_opts_.wrapper, "Start each run through this program (e.g. nice)");
+    batch_->add_flag("--video", batch_opts_.video, "Write video.mp4 of every failing run (sumo-gui, ffmpeg)");
     batch_->add_option("--maps", batch_opts_.common.map_dirs, "Folder holding map folders (repeatable), passed to every run")
         ->allow_extra_args(false);
     batch_->add_option("--catalog", batch_opts_.common.catalog, "Model catalog JSON, passed to every run");

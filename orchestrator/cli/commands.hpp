@@ -1,5 +1,6 @@
 #pragma once
 // One function per subcommand; main.cpp only parses arguments. Each returns the exit code.
+#include <filesystem>
 #include <memory>
 #include <optional>
 #include <string>
@@ -70,6 +71,8 @@ struct RunOptions {
   // Background traffic and backends (docs/background-traffic.md, "Backends").
   std::string traffic;            // --traffic LEVEL|VEH_PER_H_PER_LANE|FILE; empty: the scenario's own
   bool trace_background = false;  // --trace-background
+  bool no_report = false;         // --no-report: no report.html (README "Looking at results")
+  bool video = false;             // --video: video.mp4 of the run (sumo-gui, ffmpeg)
   std::string backend;            // --backend libsumo|traci; empty: libsumo, traci with --gui/--connect
   bool gui = false;               // --gui: sumo-gui (traci backend)
   std::string connect;            // --connect HOST:PORT: a running SUMO (traci backend)
@@ -77,6 +80,20 @@ struct RunOptions {
   double sumo_timeout = 10;       // --sumo-timeout, s (traci backend; 0: wait forever)
 };
 int run_command(const RunOptions& o);
+
+// `orchestrator report DIR...`: (re)writes report.html of run folders and batch folders.
+struct ReportOptions {
+  std::vector<std::string> dirs;
+};
+int report_command(const ReportOptions& o);
+// Writes the report of a run folder / batch folder and prints "report: file://..."; a report
+// that cannot be written is a warning on stderr, never a changed verdict. Returns false then.
+bool announce_run_report(const std::filesystem::path& run_dir);
+// video.mp4 of a run folder, "video: file://..."; a failure is a warning on stderr.
+bool announce_video(const std::filesystem::path& run_dir);
+// video.mp4 of every run of a batch folder whose verdict is failure.
+void announce_failure_videos(const std::filesystem::path& batch_dir);
+bool announce_batch_report(const std::vector<std::filesystem::path>& batch_dirs, const std::filesystem::path& out_dir);
 
 // `orchestrator baseline`: a map's background traffic in SUMO alone, no scenario; what
 // the benchmark measures the orchestrator against (docs/performance.md).

@@ -51,6 +51,8 @@ int main(int argc, char** argv) {
                 "Background traffic: none, light, medium, dense, vehicles per hour and lane, or a SUMO route file "
                 "(default: the scenario's own \"traffic\", else none)");
   r->add_flag("--trace-background", run.trace_background, "Write background.csv: background vehicles near the actors");
+  r->add_flag("--no-report", run.no_report, "Do not write report.html");
+  r->add_flag("--video", run.video, "Write video.mp4: the run replayed in sumo-gui (under Xvfb without a display)");
   r->add_option("--backend", run.backend, "SUMO client library: libsumo (in-process, default) or traci")
       ->check(CLI::IsMember({"libsumo", "traci"}));
   r->add_flag("--gui", run.gui, "Watch the run in sumo-gui (traci backend)");
@@ -100,6 +102,11 @@ int main(int argc, char** argv) {
   mt->add_option("--out", traffic.out, "File for --rate");
   add_common(mt, traffic.common);
 
+  orch::cli::ReportOptions report;
+  auto* rp = app.add_subcommand("report", "Write report.html of run folders and batch folders again");
+  rp->add_option("dirs", report.dirs, "Run folders (with result.json) or batch folders (with batch.json)")
+      ->required()->check(CLI::ExistingDirectory);
+
   const auto batch_commands = orch::cli::add_batch_commands(app);
 
   try {
@@ -115,6 +122,7 @@ int main(int argc, char** argv) {
     if (*mc) return orch::cli::map_check_command(check);
     if (*mt) return orch::cli::map_traffic_command(traffic);
     if (*bl) return orch::cli::baseline_command(baseline);
+    if (*rp) return orch::cli::report_command(report);
     if (const auto code = batch_commands->run()) return *code;
   } catch (const std::exception& e) {
     std::cerr << "orchestrator: " << e.what() << "\n";

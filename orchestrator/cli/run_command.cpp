@@ -5,11 +5,13 @@
 #include <stdexcept>
 
 #include "cli/commands.hpp"
+#include "core/errors.hpp"
 #include "run/paced_simulator.hpp"
 #include "run/runner.hpp"
 #include "sumo/sumo_ego_control.hpp"
 #include "sumo/sumo_simulator.hpp"
 #include "traci_server/traci_ego_link.hpp"
+#include "video/trace_video.hpp"
 
 namespace orch::cli {
 
@@ -31,6 +33,9 @@ int run_command(const RunOptions& o) {
   // Ctrl-C / SIGTERM end the run at the next step with verdict error; results are written.
   std::signal(SIGINT, on_signal);
   std::signal(SIGTERM, on_signal);
+  if (o.video) {
+    if (const auto missing = video::missing_video_tools(); !missing.empty()) throw OrchError("run " + missing);
+  }
 
   RunRequest req;
   req.scenario_file = o.file;
@@ -69,6 +74,8 @@ int run_command(const RunOptions& o) {
   const RunResult result = run_scenario(req, sim);
   std::cout << "verdict: " << result.verdict << " (" << result.reason << ")\n"
             << "results: " << (req.out_dir / "result.json").string() << "\n";
+  if (o.video) announce_video(req.out_dir);
+  if (!o.no_report) announce_run_report(req.out_dir);
   return exit_code_for(result);
 }
 

@@ -98,6 +98,11 @@ std::string to_json(const RunResult& r) {
                        {"end", e.end},
                        {"commands", e.commands}};
   }
+  j["actors"] = nlohmann::ordered_json::array();
+  for (const auto& a : r.actors)
+    j["actors"].push_back({{"actor_id", a.id}, {"sumo_id", a.sumo_id}, {"model_id", a.model_id},
+                           {"description", a.description}, {"color", a.color}, {"length", a.length},
+                           {"width", a.width}, {"ego", a.ego}});
   j["trace_rows"] = r.trace_rows;
   j["wall_time_s"] = r.wall_time_s;
   j["timing"] = {{"start_s", r.timing.start_s},

@@ -16,6 +16,18 @@ struct InputFile {
   std::string sha256;
 };
 
+// A scenario actor as the run placed it: what a report needs to draw it (true size, colour).
+struct ActorRecord {
+  int id = 0;
+  std::string sumo_id;
+  std::string model_id;
+  std::string description;
+  std::string color;  // "rrggbb", "" = not given
+  double length = 0;  // m
+  double width = 0;   // m
+  bool ego = false;
+};
+
 struct RunResult {
   std::string verdict = "error";  // success | failure | error
   std::string reason;
@@ -44,7 +56,8 @@ struct RunResult {
   std::vector<engine::Contact> collisions;     // every contact, in the order they began
   std::vector<engine::LaneChangeConflict> lane_change_conflicts;  // background traffic in a lane change's way
   std::vector<engine::HandOverRecord> hand_overs;
-  std::optional<EgoLinkReport> ego_plugin;  // the external ego plug-in's connection (--ego-port)
+  std::optional<EgoLinkReport> ego_plugin;
+  std::vector<ActorRecord> actors;  // empty when the run ended before its actors were known  // the external ego plug-in's connection (--ego-port)
   double wall_time_s = 0;
   // Where the wall time went (docs/outputs.md): measured inside the one process, so the
   // orchestrator's own share does not depend on how fast the machine happens to be today.

@@ -234,6 +234,9 @@ RunResult run_scenario(const RunRequest& req, Simulator& sim) {
     result.collisions = engine->contacts();
     result.lane_change_conflicts = engine->lane_change_conflicts();
     result.hand_overs = engine->hand_overs();
+    for (const auto& slot : engine->actors().slots())
+      result.actors.push_back({slot.spec.id, slot.tracked.sumo_id, slot.spec.model_id, slot.spec.description,
+                               slot.spec.color, slot.model.length, slot.model.width, slot.is_ego()});
     judge_collisions(*engine, in->scenario.ego.id, result);
   }
   if (traffic_trace) traffic_trace->flush();

@@ -1,12 +1,11 @@
 #pragma once
-// trace.csv as rows of named columns, for assertions on what happened in a run.
+// trace.csv (and the run's other CSV files) as rows of named columns, for assertions on what
+// happened in a run; read by the core's reader (orchestrator/results/csv_table.hpp).
 #include <filesystem>
-#include <fstream>
-#include <map>
-#include <sstream>
-#include <stdexcept>
 #include <string>
 #include <vector>
+
+#include "results/csv_table.hpp"
 
 namespace orch::test {
 
@@ -14,21 +13,20 @@ class Trace {
  public:
   struct Row {
     const Trace* trace;
-    std::vector<std::string> cells;
-    [[nodiscard]] const std::string& str(const std::string& column) const { return cells.at(trace->index(column)); }
+    std::size_t index;
+    [[nodiscard]] const std::string& str(const std::string& column) const {
+      return trace->table_.cell(index, trace->index(column));
+    }
     [[nodiscard]] double num(const std::string& column) const { return std::stod(str(column)); }
     [[nodiscard]] int integer(const std::string& column) const { return std::stoi(str(column)); }
   };
 
-  explicit Trace(const std::filesystem::path& path) {
-    std::ifstream in(path);
-    if (!in) throw std::runtime_error("no trace at " + path.string());
-    std::getline(in, header_);
-    columns_ = split(header_);
-    for (std::size_t i = 0; i < columns_.size(); ++i) index_[columns_[i]] = i;
-    std::string line;
-    while (std::getline(in, line)) rows_.push_back(Row{this, split(line)});
+  explicit Trace(const std::filesystem::path& path) : table_(CsvTable::read(path)) {
+    for (const auto& c : table_.columns()) header_ += (header_.empty() ? "" : ",") + c;
+    for (std::size_t r = 0; r < table_.rows(); ++r) rows_.push_back(Row{this, r});
   }
+  Trace(const Trace&) = delete;  // rows point back to their trace
+  Trace& operator=(const Trace&) = delete;
 
   [[nodiscard]] const std::string& header() const { return header_; }
   [[nodiscard]] const std::vector<Row>& rows() const { return rows_; }
@@ -38,20 +36,15 @@ class Trace {
       if (r.integer("actor_id") == id) out.push_back(r);
     return out;
   }
-  [[nodiscard]] std::size_t index(const std::string& column) const { return index_.at(column); }
+  [[nodiscard]] std::size_t index(const std::string& column) const {
+    const auto c = table_.column(column);
+    if (!c) throw std::out_of_range("no column " + column + " in " + table_.name());
+    return *c;
+  }
 
  private:
-  static std::vector<std::string> split(const std::string& line) {
-    std::vector<std::string> out;
-    std::stringstream ss(line);
-    std::string cell;
-    while (std::getline(ss, cell, ',')) out.push_back(cell);
-    if (!line.empty() && line.back() == ',') out.emplace_back();
-    return out;
-  }
+  CsvTable table_;
   std::string header_;
-  std::vector<std::string> columns_;
-  std::map<std::string, std::size_t> index_;
   std::vector<Row> rows_;
 };
 
