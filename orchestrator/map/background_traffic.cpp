@@ -122,7 +122,9 @@ std::string even_fill(const std::vector<NetEdge>& edges, double per_km) {
   std::vector<Placed> placed;
   for (std::size_t k = 0; k < edges.size(); ++k) {
     const NetEdge& e = edges[k];
-    const std::string sink = sinks_from(edges, e.id).front();
+    const std::vector<std::string> sinks = sinks_from(edges, e.id);
+    if (sinks.empty()) continue;  // a closed ring: no way out for a trip
+    const std::string& sink = sinks.front();
     for (int lane = 0; lane < static_cast<int>(e.lanes.size()); ++lane) {
       const double length = e.lanes[static_cast<std::size_t>(lane)].length;
       const long n = std::lround(per_km * length / 1000.0);
@@ -184,6 +186,8 @@ std::string background_traffic_xml(const std::filesystem::path& net_file, const 
   for (std::size_t k = 0; k < edges.size(); ++k) {
     const NetEdge& e = edges[k];
     const std::vector<std::string> sinks = sinks_from(edges, e.id);
+    // From a closed ring (a loop with no road leaving it) no trip can end: no traffic there.
+    if (sinks.empty()) continue;
     for (int lane = 0; lane < static_cast<int>(e.lanes.size()); ++lane) {
       const NetLane& l = e.lanes[static_cast<std::size_t>(lane)];
       // Steady state of the rate at the lane's speed: vehicles/h over km/h = vehicles/km.

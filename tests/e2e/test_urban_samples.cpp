@@ -152,3 +152,20 @@ TEST(UrbanDenseTrafficWaits, VehiclesStandingLongerThanAMinuteAreCounted) {
   // ... but the junctions keep flowing: far fewer stand that long than are on the road.
   EXPECT_LT(counts.rows().back().integer("waiting_over_60s"), counts.rows().back().integer("background_vehicles") / 2);
 }
+
+class JunctionMapCli : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(JunctionMapCli, ATeamFixtureBecomesAMapThatPassesMapCheck) {
+  // `map build --waypoints` on each of the team's own junction fixtures, as a new user would,
+  // then `map check` on the new folder (a ring with no way out gets no background traffic).
+  TempDir maps;
+  const std::string file = source_path(std::string("tests/data/waypoints/") + GetParam() + ".waypoint.json");
+  const CliResult built = run_cli({"map", "build", "--waypoints", file, "--maps", maps.path().string()});
+  ASSERT_EQ(built.exit_code, 0) << built.output;
+  EXPECT_NE(built.output.find("built"), std::string::npos) << built.output;
+  const CliResult checked = run_cli({"map", "check", "--maps", maps.path().string()});
+  EXPECT_EQ(checked.exit_code, 0) << checked.output;
+  EXPECT_NE(checked.output.find(":J0_"), std::string::npos) << checked.output;  // junction interiors listed
+}
+
+INSTANTIATE_TEST_SUITE_P(Fixtures, JunctionMapCli, ::testing::Values("crossing", "branch_merge", "loop"));
