@@ -8,6 +8,7 @@
 
 #include "core/errors.hpp"
 #include "core/suggest.hpp"
+#include "json/json_text.hpp"
 
 namespace orch::batch {
 
@@ -67,7 +68,7 @@ void walk_strings(Json& value, const std::string& pointer, const Visit& visit) {
   }
 }
 
-std::string as_text(const json& v) { return v.is_string() ? v.get<std::string>() : v.dump(); }
+std::string as_text(const json& v) { return v.is_string() ? v.get<std::string>() : json_text(v); }
 
 }  // namespace
 

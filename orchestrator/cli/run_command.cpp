@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "cli/commands.hpp"
+#include "core/utf8.hpp"
 #include "run/paced_simulator.hpp"
 #include "run/runner.hpp"
 #include "sumo/sumo_ego_control.hpp"
@@ -67,7 +68,7 @@ int run_command(const RunOptions& o) {
     req.ego_link = ego.get();
   }
   const RunResult result = run_scenario(req, sim);
-  std::cout << "verdict: " << result.verdict << " (" << result.reason << ")\n"
+  std::cout << "verdict: " << result.verdict << " (" << valid_utf8(result.reason) << ")\n"
             << "results: " << (req.out_dir / "result.json").string() << "\n";
   return exit_code_for(result);
 }

@@ -15,6 +15,7 @@
 #include "core/suggest.hpp"
 #include "scenario/loader_internal.hpp"
 #include "scenario/validator.hpp"
+#include "core/utf8.hpp"
 
 namespace orch::cli {
 
@@ -119,7 +120,7 @@ int validate_command(const ValidateOptions& o) {
     std::cerr << e.diagnostics().format() << "validate: cannot check scenarios without the maps and the catalog\n";
     return 2;
   } catch (const OrchError& e) {
-    std::cerr << "validate: " << e.what() << "\n";
+    std::cerr << "validate: " << valid_utf8(e.what()) << "\n";
     return 2;
   }
 
@@ -132,7 +133,7 @@ int validate_command(const ValidateOptions& o) {
       if (!o.quiet || d.severity == Severity::Error) std::cout << d.format() << "\n";
     const bool bad = diags.has_errors() || (o.strict && diags.warning_count() > 0);
     failed += bad ? 1 : 0;
-    std::cout << fmt::format("{}: {}, {}, {}\n", path, bad ? "INVALID" : "valid", plural(diags.error_count(), "error"),
+    std::cout << fmt::format("{}: {}, {}, {}\n", valid_utf8(path), bad ? "INVALID" : "valid", plural(diags.error_count(), "error"),
                              plural(diags.warning_count(), "warning"));
   }
   if (o.files.size() > 1)
