@@ -7,7 +7,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
+#include <iterator>
 #include <vector>
 
 #include "core/errors.hpp"
@@ -137,10 +137,18 @@ JsonDocument JsonDocument::load(const std::string& path) {
     throw ScenarioError(SourceLocation{path, "", 0}, "is a folder, not a JSON file");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw ScenarioError(SourceLocation{path, "", 0}, fmt::format("cannot open file for reading ({})", std::strerror(errno)));
-  std::ostringstream buf;
-  buf << in.rdbuf();
+  // Read straight into the text (a stream buffer and its copy would hold the file twice).
+  const auto size = std::filesystem::file_size(path, ec);
+  std::string text;
+  if (!ec && size > 0) {
+    text.resize(static_cast<std::size_t>(std::min<std::uintmax_t>(size, kMaxJsonBytes + 1)));
+    in.read(text.data(), static_cast<std::streamsize>(text.size()));
+    text.resize(static_cast<std::size_t>(in.gcount()));
+  } else {  // no size known (a pipe, /proc): read to the end
+    text.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  }
   if (in.bad()) throw ScenarioError(SourceLocation{path, "", 0}, "cannot read the file");
-  return parse(buf.str(), path);
+  return parse(std::move(text), path);
 }
 
 JsonDocument JsonDocument::parse(std::string text, const std::string& path_for_messages) {
