@@ -8,18 +8,9 @@
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 build=${1:-$root/build-sanitize}
-generator=()
-command -v ninja >/dev/null && generator=(-G Ninja)
-launcher=()
-if command -v ccache >/dev/null; then
-  launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
-  export CCACHE_BASEDIR=${CCACHE_BASEDIR:-$(dirname "$root")}
-fi
 # -O1: sanitized code at -O2 takes much longer to compile and gains the tests little.
-cmake -S "$root" -B "$build" "${generator[@]}" "${launcher[@]}" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-  -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g" -DORCH_SANITIZE=ON -DORCH_WERROR=ON >/dev/null
-cmake --build "$build" -j "$(nproc)" --target unit_tests e2e_tests orchestrator \
-  scenario_pipeline_fuzz_random binder_fuzz_random traci_fuzz_random
+ORCH_BUILD_TARGETS="unit_tests e2e_tests orchestrator scenario_pipeline_fuzz_random binder_fuzz_random traci_fuzz_random" \
+  "$root/scripts/build.sh" "$build" -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g" -DORCH_SANITIZE=ON -DORCH_WERROR=ON
 # A report aborts the process (exit 134 in the CLI tests, never mistaken for a verdict).
 export ASAN_OPTIONS=halt_on_error=1:abort_on_error=1:detect_leaks=1
 export UBSAN_OPTIONS=halt_on_error=1:abort_on_error=1:print_stacktrace=1

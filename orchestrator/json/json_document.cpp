@@ -31,13 +31,9 @@ std::string json_pointer_child(const std::string& parent, std::size_t index) {
 
 namespace {
 
-// The cheap pass every document gets: does any object repeat a key? (Which one, and on
-// which line, the LineIndex pass finds when the answer is yes.) Keys are compared when
-// their object ends; the key lists of each depth are kept for reuse. A second pass over the
-// text, yet faster than one: the same check inside nlohmann's parse callback made the ALKS
-// waypoint file's load 50 % slower (0.145 s against 0.094 s before the first step).
-class DuplicateKeyCheck : public nlohmann::json_sax<nlohmann::json> {
- public:
+// A SAX handler that accepts every event and stops at the first error; passes override
+// what they look at.
+struct PassingSax : nlohmann::json_sax<nlohmann::json> {
   bool null() override { return true; }
   bool boolean(bool) override { return true; }
   bool number_integer(number_integer_t) override { return true; }
@@ -45,6 +41,21 @@ class DuplicateKeyCheck : public nlohmann::json_sax<nlohmann::json> {
   bool number_float(number_float_t, const string_t&) override { return true; }
   bool string(string_t&) override { return true; }
   bool binary(binary_t&) override { return true; }
+  bool start_object(std::size_t) override { return true; }
+  bool key(string_t&) override { return true; }
+  bool end_object() override { return true; }
+  bool start_array(std::size_t) override { return true; }
+  bool end_array() override { return true; }
+  bool parse_error(std::size_t, const std::string&, const nlohmann::detail::exception&) override { return false; }
+};
+
+// The cheap pass every document gets: does any object repeat a key? (Which one, and on
+// which line, the LineIndex pass finds when the answer is yes.) Keys are compared when
+// their object ends; the key lists of each depth are kept for reuse. A second pass over the
+// text, yet faster than one: the same check inside nlohmann's parse callback made the ALKS
+// waypoint file's load 50 % slower (0.145 s against 0.094 s before the first step).
+class DuplicateKeyCheck : public PassingSax {
+ public:
   bool start_object(std::size_t) override {
     if (depth_ == keys_.size()) keys_.emplace_back();
     keys_[depth_++].clear();
@@ -58,11 +69,6 @@ class DuplicateKeyCheck : public nlohmann::json_sax<nlohmann::json> {
     auto& keys = keys_[--depth_];
     std::sort(keys.begin(), keys.end());
     return std::adjacent_find(keys.begin(), keys.end()) == keys.end();  // false stops the parse
-  }
-  bool start_array(std::size_t) override { return true; }
-  bool end_array() override { return true; }
-  bool parse_error(std::size_t, const std::string&, const nlohmann::detail::exception&) override {
-    return false;
   }
 
  private:
@@ -98,19 +104,7 @@ void check_nesting_depth(const std::string& text, const std::string& path) {
 
 // Where a parse stops: the SAX parser reports every error with its byte position.
 std::size_t error_offset(const std::string& text) {
-  struct Locator : nlohmann::json_sax<nlohmann::json> {
-    bool null() override { return true; }
-    bool boolean(bool) override { return true; }
-    bool number_integer(number_integer_t) override { return true; }
-    bool number_unsigned(number_unsigned_t) override { return true; }
-    bool number_float(number_float_t, const string_t&) override { return true; }
-    bool string(string_t&) override { return true; }
-    bool binary(binary_t&) override { return true; }
-    bool start_object(std::size_t) override { return true; }
-    bool key(string_t&) override { return true; }
-    bool end_object() override { return true; }
-    bool start_array(std::size_t) override { return true; }
-    bool end_array() override { return true; }
+  struct Locator : PassingSax {
     bool parse_error(std::size_t position, const std::string&, const nlohmann::detail::exception&) override {
       offset = position > 0 ? position - 1 : 0;
       return false;
