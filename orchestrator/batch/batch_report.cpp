@@ -10,8 +10,8 @@
 #include "batch/identifiers.hpp"
 #include "core/errors.hpp"
 #include "core/files.hpp"
-#include "json/json_text.hpp"
 #include "core/utf8.hpp"
+#include "json/json_text.hpp"
 
 namespace orch::batch {
 

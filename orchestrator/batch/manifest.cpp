@@ -4,8 +4,8 @@
 
 #include "core/errors.hpp"
 #include "json/json_document.hpp"
-#include "json/object_reader.hpp"
 #include "json/json_text.hpp"
+#include "json/object_reader.hpp"
 
 namespace orch::batch {
 

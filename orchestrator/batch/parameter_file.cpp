@@ -4,8 +4,8 @@
 
 #include "batch/identifiers.hpp"
 #include "core/errors.hpp"
-#include "json/object_reader.hpp"
 #include "json/json_text.hpp"
+#include "json/object_reader.hpp"
 
 namespace orch::batch {
 

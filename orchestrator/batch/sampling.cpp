@@ -8,8 +8,8 @@
 #include "batch/sampler.hpp"
 #include "batch/template_binder.hpp"
 #include "core/errors.hpp"
-#include "scenario/loader.hpp"
 #include "json/json_text.hpp"
+#include "scenario/loader.hpp"
 
 namespace orch::batch {
 

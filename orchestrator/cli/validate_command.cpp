@@ -13,9 +13,9 @@
 #include "cli/common.hpp"
 #include "core/errors.hpp"
 #include "core/suggest.hpp"
+#include "core/utf8.hpp"
 #include "scenario/loader_internal.hpp"
 #include "scenario/validator.hpp"
-#include "core/utf8.hpp"
 
 namespace orch::cli {
 

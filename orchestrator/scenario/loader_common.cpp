@@ -7,8 +7,8 @@
 #include <utility>
 
 #include "core/suggest.hpp"
-#include "scenario/loader_internal.hpp"
 #include "json/json_text.hpp"
+#include "scenario/loader_internal.hpp"
 
 namespace orch::scenario_loading {
 
