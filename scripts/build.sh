@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Configures and builds the orchestrator and its tests (Release with debug info, Ninja).
 # Usage: scripts/build.sh [BUILD_DIR] [extra cmake -D options...]
+# ORCH_BUILD_TARGETS="a b" builds only those targets (default: all).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 build=${1:-$root/build}
@@ -14,4 +15,6 @@ if command -v ccache >/dev/null; then
   export CCACHE_BASEDIR=${CCACHE_BASEDIR:-$(dirname "$root")}
 fi
 cmake -S "$root" -B "$build" "${generator[@]}" "${launcher[@]}" -DCMAKE_BUILD_TYPE=RelWithDebInfo "$@"
-cmake --build "$build" -j "$(nproc)"
+targets=()
+for t in ${ORCH_BUILD_TARGETS:-}; do targets+=(--target "$t"); done
+cmake --build "$build" -j "$(nproc)" "${targets[@]}"

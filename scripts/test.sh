@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # Installs the dependencies, builds from scratch and runs every test: unit, integration
 # (real SUMO), end-to-end (the CLI), and -- when ../shared/data exists next to the
-# checkout -- the tests on the real user scenario files (label shared_data).
+# checkout -- the tests on the real user scenario files (label shared_data); then a second
+# build with ASan+UBSan runs the unit tests, fuzz drivers and quick CLI tests on bad input
+# (scripts/test_sanitized.sh; ORCH_SKIP_SANITIZE=1 leaves it out).
 # Usage: scripts/test.sh [ctest arguments...]
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -15,4 +17,10 @@ if [ -d "$root/../shared/data/roadeditor" ]; then
 else
   echo "test: no ../shared/data next to the checkout: shared_data tests are not built"
 fi
-ctest --output-on-failure -j "$(nproc)" --timeout 900 "$@"
+status=0
+ctest --output-on-failure -j "$(nproc)" --timeout 900 "$@" || status=$?
+if [ "${ORCH_SKIP_SANITIZE:-0}" != 1 ]; then
+  rm -rf "$root/build-test-sanitize"
+  "$root/scripts/test_sanitized.sh" "$root/build-test-sanitize" || status=$?
+fi
+exit $status

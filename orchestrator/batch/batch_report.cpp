@@ -10,6 +10,8 @@
 #include "batch/identifiers.hpp"
 #include "core/errors.hpp"
 #include "core/files.hpp"
+#include "core/utf8.hpp"
+#include "json/json_text.hpp"
 
 namespace orch::batch {
 
@@ -21,7 +23,7 @@ using nlohmann::ordered_json;
 std::string value_text(const nlohmann::json& v) {
   if (v.is_number_float()) return fmt::format("{:.4g}", v.get<double>());
   if (v.is_string()) return v.get<std::string>();
-  return v.dump();
+  return json_text(v);
 }
 
 // "ego.speed=62.5, lead.gap=40"
@@ -163,7 +165,7 @@ std::string summary_json(const BatchReport& report, const fs::path& out_dir) {
     }
     j["runs"].push_back(r);
   }
-  return j.dump(2) + "\n";
+  return json_text(j, 2) + "\n";
 }
 
 std::string junit_xml(const BatchReport& report) {
@@ -223,7 +225,8 @@ std::string junit_xml(const BatchReport& report) {
   suites.append_attribute("time") = fmt::format("{:.3f}", all_time).c_str();
   std::ostringstream out;
   doc.save(out, "  ", pugi::format_default, pugi::encoding_utf8);
-  return out.str();
+  // pugixml copies bytes through: a reason quoting bad input bytes must not make the XML invalid.
+  return valid_utf8(out.str());
 }
 
 std::string summary_table(const BatchReport& report) {

@@ -4,6 +4,7 @@
 
 #include "core/errors.hpp"
 #include "json/json_document.hpp"
+#include "json/json_text.hpp"
 #include "json/object_reader.hpp"
 
 namespace orch::batch {
@@ -92,7 +93,7 @@ std::string execution_trace_text(const PlannedRun& run, const PlannedLogical& lo
   outputs["sumo_log_file"] = out_block["run_dir"].get<std::string>() + "/sumo.log";
   outputs["child_log_file"] = out_block["run_dir"].get<std::string>() + "/child.log";
   j["outputs"] = outputs;
-  return j.dump(2) + "\n";
+  return json_text(j, 2) + "\n";
 }
 
 ExecutionSummary read_execution_summary(const std::filesystem::path& file) {

@@ -8,6 +8,7 @@
 
 #include "batch/identifiers.hpp"
 #include "core/errors.hpp"
+#include "json/json_text.hpp"
 #include "json/object_reader.hpp"
 
 namespace orch::batch {
@@ -103,7 +104,7 @@ class ParameterReader {
     }
     spec.type = type.value_or(*own);
     if (!fits(spec.type, *v))
-      r.error("value", fmt::format("\"value\" {} is not of type \"{}\"", v->dump(), type_name(spec.type)));
+      r.error("value", fmt::format("\"value\" {} is not of type \"{}\"", json_text(*v), type_name(spec.type)));
     spec.distribution = Constant{*v};
   }
 
@@ -158,7 +159,7 @@ class ParameterReader {
     for (std::size_t i = 0; i < list->size(); ++i)
       if (type_of_value((*list)[i]) && !fits(spec.type, (*list)[i]))
         diags_.error(doc_.where(json_pointer_child(r.child("choices"), i)),
-                     fmt::format("choice {} is not of type \"{}\"", (*list)[i].dump(), type_name(spec.type)));
+                     fmt::format("choice {} is not of type \"{}\"", json_text((*list)[i]), type_name(spec.type)));
     spec.distribution = std::move(choice);
   }
 

@@ -4,6 +4,7 @@
 
 #include "core/errors.hpp"
 #include "json/json_document.hpp"
+#include "json/json_text.hpp"
 #include "json/object_reader.hpp"
 
 namespace orch::batch {
@@ -27,7 +28,7 @@ std::string manifest_text(const BatchPlan& plan, const ordered_json& options) {
   for (const auto& r : plan.runs)
     j["runs"].push_back({{"id", r.id}, {"logical_uuid", r.logical_uuid}, {"parameter_uuid", r.parameter_uuid},
                          {"name", r.name}});
-  return j.dump(2) + "\n";
+  return json_text(j, 2) + "\n";
 }
 
 Manifest read_manifest(const std::filesystem::path& batch_dir) {

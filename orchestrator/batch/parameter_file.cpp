@@ -4,6 +4,7 @@
 
 #include "batch/identifiers.hpp"
 #include "core/errors.hpp"
+#include "json/json_text.hpp"
 #include "json/object_reader.hpp"
 
 namespace orch::batch {
@@ -131,7 +132,7 @@ std::string to_json_text(const ParameterFile& f) {
     set["output"] = output_block(f.logical_uuid, s.uuid);
     j["parameters"][s.uuid] = set;
   }
-  return j.dump(2) + "\n";
+  return json_text(j, 2) + "\n";
 }
 
 }  // namespace orch::batch

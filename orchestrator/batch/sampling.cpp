@@ -8,6 +8,7 @@
 #include "batch/sampler.hpp"
 #include "batch/template_binder.hpp"
 #include "core/errors.hpp"
+#include "json/json_text.hpp"
 #include "scenario/loader.hpp"
 
 namespace orch::batch {
@@ -40,7 +41,7 @@ std::string bound_scenario_text(const LogicalScenario& logical, const ParameterS
 std::string bound_scenario_text(const LogicalScenario& logical, const JsonDocument& tmpl, const ParameterSet& set) {
   const auto values = flatten_values(set.sampled_values);
   check_set_fits(logical, set, values);
-  return bind_template(tmpl, values).dump(2) + "\n";
+  return json_text(bind_template(tmpl, values), 2) + "\n";
 }
 
 SampleOutcome sample_parameter_sets(const LogicalScenario& logical, const SampleRequest& request) {
@@ -81,7 +82,7 @@ SampleOutcome sample_parameter_sets(const LogicalScenario& logical, const Sample
 
     // Bind and load now, so a template that yields an invalid scenario for some values is
     // reported at sampling time with the set's values, not at 3 a.m. in the batch.
-    const std::string text = bind_template(tmpl, flatten_values(set.sampled_values)).dump(2);
+    const std::string text = json_text(bind_template(tmpl, flatten_values(set.sampled_values)), 2);
     const std::string label = fmt::format("{} bound with seed {}", logical.template_file.string(), seed);
     const LoadedScenario loaded = load_scenario(JsonDocument::parse(text, label));
     if (!loaded.scenario) throw ScenarioError(loaded.diagnostics);

@@ -8,6 +8,7 @@
 
 #include "core/errors.hpp"
 #include "core/suggest.hpp"
+#include "json/json_text.hpp"
 
 namespace orch::batch {
 
@@ -56,18 +57,35 @@ std::string split(const std::string& s, std::vector<Piece>& pieces) {
   return {};
 }
 
+// The reference tokens from the root to the value being visited; its JSON pointer is made
+// only where a message or a placeholder needs it (not for every value).
+using PathTokens = std::vector<std::string>;
+std::string pointer_of(const PathTokens& path) {
+  std::string pointer;
+  for (const auto& token : path) pointer = json_pointer_child(pointer, token);
+  return pointer;
+}
+
 template <typename Json, typename Visit>
-void walk_strings(Json& value, const std::string& pointer, const Visit& visit) {
+void walk_strings(Json& value, PathTokens& path, const Visit& visit) {
   if (value.is_string()) {
-    visit(value, pointer);
+    visit(value, path);
   } else if (value.is_object()) {
-    for (auto it = value.begin(); it != value.end(); ++it) walk_strings(it.value(), json_pointer_child(pointer, it.key()), visit);
+    for (auto it = value.begin(); it != value.end(); ++it) {
+      path.push_back(it.key());
+      walk_strings(it.value(), path, visit);
+      path.pop_back();
+    }
   } else if (value.is_array()) {
-    for (std::size_t i = 0; i < value.size(); ++i) walk_strings(value[i], json_pointer_child(pointer, i), visit);
+    for (std::size_t i = 0; i < value.size(); ++i) {
+      path.push_back(std::to_string(i));
+      walk_strings(value[i], path, visit);
+      path.pop_back();
+    }
   }
 }
 
-std::string as_text(const json& v) { return v.is_string() ? v.get<std::string>() : v.dump(); }
+std::string as_text(const json& v) { return v.is_string() ? v.get<std::string>() : json_text(v); }
 
 }  // namespace
 
@@ -81,15 +99,16 @@ std::map<std::string, json> flatten_values(const json& grouped) {
 
 std::vector<Placeholder> find_placeholders(const JsonDocument& tmpl, Diagnostics& diags) {
   std::vector<Placeholder> found;
-  walk_strings(tmpl.root(), "", [&](const json& s, const std::string& pointer) {
+  PathTokens path;
+  walk_strings(tmpl.root(), path, [&](const json& s, const PathTokens& at) {
     std::vector<Piece> pieces;
     const std::string problem = split(s.get<std::string>(), pieces);
     if (!problem.empty()) {
-      diags.error(tmpl.where(pointer), problem);
+      diags.error(tmpl.where(pointer_of(at)), problem);
       return;
     }
     for (const auto& p : pieces)
-      if (p.placeholder) found.push_back({p.text, pointer, pieces.size() == 1});
+      if (p.placeholder) found.push_back({p.text, pointer_of(at), pieces.size() == 1});
   });
   return found;
 }
@@ -118,11 +137,12 @@ ordered_json bind_template(const JsonDocument& tmpl, const std::map<std::string,
   Diagnostics diags;
   std::vector<std::string> names;
   for (const auto& [k, v] : values) names.push_back(k);
-  walk_strings(out, "", [&](ordered_json& s, const std::string& pointer) {
+  PathTokens path;
+  walk_strings(out, path, [&](ordered_json& s, const PathTokens& at) {
     std::vector<Piece> pieces;
     const std::string problem = split(s.get<std::string>(), pieces);
     if (!problem.empty()) {
-      diags.error(tmpl.where(pointer), problem);
+      diags.error(tmpl.where(pointer_of(at)), problem);
       return;
     }
     std::string text;
@@ -133,7 +153,8 @@ ordered_json bind_template(const JsonDocument& tmpl, const std::map<std::string,
       }
       const auto it = values.find(p.text);
       if (it == values.end()) {
-        diags.error(tmpl.where(pointer), fmt::format("placeholder ${{{}}} has no value{}", p.text, did_you_mean(p.text, names)));
+        diags.error(tmpl.where(pointer_of(at)),
+                    fmt::format("placeholder ${{{}}} has no value{}", p.text, did_you_mean(p.text, names)));
         return;
       }
       if (pieces.size() == 1) {

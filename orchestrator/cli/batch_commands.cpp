@@ -18,6 +18,7 @@
 #include "core/errors.hpp"
 #include "core/files.hpp"
 #include "core/process.hpp"
+#include "json/json_text.hpp"
 
 namespace orch::cli {
 
@@ -63,7 +64,7 @@ int sample_command(const SampleOptions& o) {
                              outcome.new_set_ids.size(), outcome.file.sets.size());
     for (const auto& id : outcome.new_set_ids) {
       const batch::ParameterSet* set = outcome.file.find(id);
-      std::cout << fmt::format("  {} seed {}: {}\n", id, set->seed.value_or(0), set->sampled_values.dump());
+      std::cout << fmt::format("  {} seed {}: {}\n", id, set->seed.value_or(0), json_text(set->sampled_values));
     }
     return 0;
   } catch (const ScenarioError& e) {
@@ -136,9 +137,8 @@ class BatchCommandsImpl : public BatchCommands {
  public:
   explicit BatchCommandsImpl(CLI::App& app) {
     sample_ = app.add_subcommand("sample", "Add seeded parameter sets to a logical scenario's parameter file");
-    sample_->add_option("logical", sample_opts_.logical, "Logical scenario (logical_{uuid}.json)")
-        ->required()
-        ->check(CLI::ExistingFile);
+    // Input files are not checked here: a missing one is reported as bad input (file: error).
+    sample_->add_option("logical", sample_opts_.logical, "Logical scenario (logical_{uuid}.json)")->required();
     sample_->add_option("--count", sample_opts_.request.count, "Parameter sets to add")->required()->check(CLI::Range(1, 1000000));
     sample_->add_option("--seed", sample_opts_.request.first_seed, "Seed of the first new set; the next take seed+1, ... (skipping used ones)")
         ->capture_default_str()
@@ -151,7 +151,7 @@ class BatchCommandsImpl : public BatchCommands {
 
     batch_ = app.add_subcommand("batch", "Run every parameter set of logical scenarios, in parallel child processes");
     batch_->require_subcommand(0, 1);
-    batch_->add_option("inputs", batch_opts_.inputs, "Logical scenarios and/or parameter files")->check(CLI::ExistingFile);
+    batch_->add_option("inputs", batch_opts_.inputs, "Logical scenarios and/or parameter files");
     batch_->add_option("--out", batch_opts_.out, "Output folder of the batch")->capture_default_str();
     batch_->add_option("--resume", batch_opts_.resume, "Continue the batch in this folder: run exactly the runs not done")
         ->check(CLI::ExistingDirectory);

@@ -3,6 +3,7 @@
 #include <iostream>
 
 #include "cli/commands.hpp"
+#include "core/utf8.hpp"
 
 namespace {
 
@@ -22,7 +23,9 @@ int main(int argc, char** argv) {
 
   orch::cli::ValidateOptions validate;
   auto* v = app.add_subcommand("validate", "Check scenario files without running them");
-  v->add_option("files", validate.files, "Scenario files")->required()->check(CLI::ExistingFile);
+  // No ExistingFile checks on scenario files: a missing or unreadable file is reported like
+  // any bad input (validate: INVALID, exit 1; run: result.json with verdict error, exit 2).
+  v->add_option("files", validate.files, "Scenario files")->required();
   v->add_flag("--strict", validate.strict, "Treat warnings as errors");
   v->add_flag("-q,--quiet", validate.quiet, "Print only errors and the summary");
   v->add_option("--param", validate.parameters, "NAME=VALUE: set an OpenSCENARIO parameter (repeatable)")
@@ -31,7 +34,7 @@ int main(int argc, char** argv) {
 
   orch::cli::RunOptions run;
   auto* r = app.add_subcommand("run", "Run one scenario on SUMO");
-  r->add_option("file", run.file, "Scenario file")->required()->check(CLI::ExistingFile);
+  r->add_option("file", run.file, "Scenario file")->required();
   r->add_option("--out", run.out, "Output folder (result.json, trace.csv, run.log)")->capture_default_str();
   r->add_option("--step", run.step, "Simulation step, s")->capture_default_str()->check(CLI::Range(0.001, 1.0));
   r->add_option("--seed", run.seed, "Random seed for SUMO")->capture_default_str();
@@ -112,7 +115,8 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    // --help and --version exit 0; every usage error is an error (2), like the rest.
+    return app.exit(e) == 0 ? 0 : 2;
   }
 
   try {
@@ -125,7 +129,7 @@ int main(int argc, char** argv) {
     if (*rp) return orch::cli::report_command(report);
     if (const auto code = batch_commands->run()) return *code;
   } catch (const std::exception& e) {
-    std::cerr << "orchestrator: " << e.what() << "\n";
+    std::cerr << "orchestrator: " << orch::valid_utf8(e.what()) << "\n";
     return 2;
   }
   return 0;

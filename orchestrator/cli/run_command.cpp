@@ -6,6 +6,7 @@
 
 #include "cli/commands.hpp"
 #include "core/errors.hpp"
+#include "core/utf8.hpp"
 #include "run/paced_simulator.hpp"
 #include "run/runner.hpp"
 #include "sumo/sumo_ego_control.hpp"
@@ -72,7 +73,7 @@ int run_command(const RunOptions& o) {
     req.ego_link = ego.get();
   }
   const RunResult result = run_scenario(req, sim);
-  std::cout << "verdict: " << result.verdict << " (" << result.reason << ")\n"
+  std::cout << "verdict: " << result.verdict << " (" << valid_utf8(result.reason) << ")\n"
             << "results: " << (req.out_dir / "result.json").string() << "\n";
   if (o.video) announce_video(req.out_dir);
   if (!o.no_report) announce_run_report(req.out_dir);

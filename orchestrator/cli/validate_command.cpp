@@ -15,6 +15,7 @@
 #include "core/scenario_format.hpp"
 #include "openscenario/scenario_check.hpp"
 #include "core/suggest.hpp"
+#include "core/utf8.hpp"
 #include "scenario/loader_internal.hpp"
 #include "scenario/validator.hpp"
 
@@ -124,7 +125,7 @@ int validate_command(const ValidateOptions& o) {
     std::cerr << e.diagnostics().format() << "validate: cannot check scenarios without the maps and the catalog\n";
     return 2;
   } catch (const OrchError& e) {
-    std::cerr << "validate: " << e.what() << "\n";
+    std::cerr << "validate: " << valid_utf8(e.what()) << "\n";
     return 2;
   }
 
@@ -144,7 +145,7 @@ int validate_command(const ValidateOptions& o) {
       if (!o.quiet || d.severity == Severity::Error) std::cout << d.format() << "\n";
     const bool bad = diags.has_errors() || (o.strict && diags.warning_count() > 0);
     failed += bad ? 1 : 0;
-    std::cout << fmt::format("{}: {}, {}, {}\n", path, bad ? "INVALID" : "valid", plural(diags.error_count(), "error"),
+    std::cout << fmt::format("{}: {}, {}, {}\n", valid_utf8(path), bad ? "INVALID" : "valid", plural(diags.error_count(), "error"),
                              plural(diags.warning_count(), "warning"));
   }
   if (o.files.size() > 1)

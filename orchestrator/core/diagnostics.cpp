@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include "core/utf8.hpp"
+
 namespace orch {
 
 std::string Diagnostic::format() const {
@@ -9,7 +11,8 @@ std::string Diagnostic::format() const {
   std::string place = where.file;
   if (where.line > 0) place += fmt::format(":{}", where.line);
   const std::string pointer = where.pointer.empty() ? "/" : where.pointer;
-  return fmt::format("{}: {}: {}: {}", place, kind, pointer, message);
+  // The file name (argv) and the message may quote bytes of the input: keep the text valid.
+  return valid_utf8(fmt::format("{}: {}: {}: {}", place, kind, pointer, message));
 }
 
 void Diagnostics::error(SourceLocation where, std::string message) {

@@ -6,16 +6,23 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
-#include <unordered_map>
 
 #include "core/diagnostics.hpp"
+#include "json/line_index.hpp"
 
 namespace orch {
+
+// Limits far above any real input, so that cost stays bounded by what a file can hold:
+// nesting (scenarios nest about 8 deep; recursion in the readers must not exhaust the
+// stack) and size (the line index counts in 32 bits).
+inline constexpr std::size_t kMaxJsonDepth = 256;
+inline constexpr std::size_t kMaxJsonBytes = std::size_t{1} << 31;
 
 class JsonDocument {
  public:
   // Reads and parses `path`. Throws ScenarioError (with line) on unreadable or invalid JSON,
-  // including duplicate keys, which nlohmann would otherwise silently collapse.
+  // including duplicate keys, which nlohmann would otherwise silently collapse, nesting
+  // deeper than kMaxJsonDepth and text longer than kMaxJsonBytes.
   static JsonDocument load(const std::string& path);
   static JsonDocument parse(std::string text, const std::string& path_for_messages);
 
@@ -30,14 +37,14 @@ class JsonDocument {
   }
 
  private:
-  const std::unordered_map<std::string, int>& lines() const;
+  const LineIndex& lines() const;
 
   std::string path_;
   std::string text_;
   nlohmann::json root_;
   // Built once, on the first line_of (not thread-safe: a document is read by one thread);
   // shared by copies.
-  mutable std::shared_ptr<const std::unordered_map<std::string, int>> lines_;
+  mutable std::shared_ptr<const LineIndex> lines_;
 };
 
 // Appends one reference token to a JSON pointer, escaping '~' and '/' (RFC 6901).

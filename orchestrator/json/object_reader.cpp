@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "core/suggest.hpp"
+#include "json/json_text.hpp"
 
 namespace orch {
 
@@ -82,7 +83,7 @@ std::optional<int> ObjectReader::integer(const std::string& key, Need need) {
   if (!v) return std::nullopt;
   const double d = v->get<double>();
   if (std::floor(d) != d || std::abs(d) > 2e9) {
-    error(key, fmt::format("\"{}\" must be a whole number, found {}", key, v->dump()));
+    error(key, fmt::format("\"{}\" must be a whole number, found {}", key, json_text(*v)));
     return std::nullopt;
   }
   return static_cast<int>(d);

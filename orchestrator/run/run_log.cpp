@@ -5,6 +5,8 @@
 #include <spdlog/sinks/stdout_sinks.h>
 #include <spdlog/spdlog.h>
 
+#include "core/utf8.hpp"
+
 namespace orch {
 
 RunLog::RunLog(const std::filesystem::path& file, bool echo) {
@@ -18,9 +20,10 @@ RunLog::RunLog(const std::filesystem::path& file, bool echo) {
 
 RunLog::~RunLog() { flush(); }
 
-void RunLog::at(double sim_time, const std::string& text) { logger_->info("t={:9.3f}  {}", sim_time, text); }
+// Lines may quote input bytes (file names, parse errors): the log stays valid UTF-8.
+void RunLog::at(double sim_time, const std::string& text) { logger_->info("t={:9.3f}  {}", sim_time, valid_utf8(text)); }
 
-void RunLog::note(const std::string& text) { logger_->info("{}", text); }
+void RunLog::note(const std::string& text) { logger_->info("{}", valid_utf8(text)); }
 
 void RunLog::flush() { logger_->flush(); }
 

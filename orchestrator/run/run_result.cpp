@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/files.hpp"
+#include "json/json_text.hpp"
 
 namespace orch {
 
@@ -111,7 +112,7 @@ std::string to_json(const RunResult& r) {
                  {"plugin_s", r.timing.plugin_s},
                  {"finish_s", r.timing.finish_s}};
   j["outputs"] = {{"trace", "trace.csv"}, {"log", "run.log"}, {"sumo_log", "sumo.log"}};
-  return j.dump(2) + "\n";
+  return json_text(j, 2) + "\n";
 }
 
 void write_result(const std::filesystem::path& dir, const RunResult& r) {

@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "core/suggest.hpp"
+#include "json/json_text.hpp"
 #include "scenario/loader_internal.hpp"
 
 namespace orch::scenario_loading {
@@ -83,7 +84,7 @@ std::vector<int> read_int_list(LoadContext& ctx, const nlohmann::json& array, co
     if (!ctx.need(std::floor(d) == d && std::abs(d) <= 2e9)) {
       ctx.diags.error(ctx.doc.where(item_pointer),
                       fmt::format("each entry of {} must be a whole number (a scene_id), found {}", what,
-                                  item.is_number() ? item.dump() : json_type_name(item)));
+                                  item.is_number() ? json_text(item) : json_type_name(item)));
       continue;
     }
     out.push_back(static_cast<int>(d));

@@ -70,14 +70,17 @@ int main(int argc, char** argv) {
     } else if (a == "--seed" && i + 1 < argc) {
       seed = std::stoull(argv[++i]);
     } else {
-      for (const auto& f : std::filesystem::directory_iterator(a)) {
+      // Seed folders may hold sub-folders (scenarios/nightly) and markers (.keep): files only.
+      for (const auto& f : std::filesystem::recursive_directory_iterator(a)) {
+        if (!f.is_regular_file()) continue;
         std::ifstream in(f.path(), std::ios::binary);
         seeds.emplace_back(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
       }
     }
   }
   if (seeds.empty()) seeds.emplace_back("\0\0\0\x05\x02", 5);
-  std::cout << "traci_fuzz_random: seed " << seed << ", " << seeds.size() << " corpus file(s), " << seconds << " s\n";
+  const std::string name = std::filesystem::path(argv[0]).filename().string();
+  std::cout << name << ": seed " << seed << ", " << seeds.size() << " corpus file(s), " << seconds << " s\n";
   std::mt19937_64 rng(seed);
   const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
   long long runs = 0;
@@ -88,6 +91,6 @@ int main(int argc, char** argv) {
       LLVMFuzzerTestOneInput(reinterpret_cast<const std::uint8_t*>(input.data()), input.size());
     }
   }
-  std::cout << "traci_fuzz_random: " << runs << " inputs, no crash\n";
+  std::cout << name << ": " << runs << " inputs, no crash\n";
   return 0;
 }
