@@ -13,6 +13,7 @@
 #include "cli/common.hpp"
 #include "core/errors.hpp"
 #include "core/suggest.hpp"
+#include "evaluation/evaluation_file.hpp"
 #include "scenario/loader_internal.hpp"
 #include "scenario/validator.hpp"
 
@@ -57,7 +58,27 @@ struct Shared {
   ValidationOptions options;
 };
 
+Diagnostics validate_scenario_file(const std::string& path, Shared& shared);
+
+// An evaluation file (docs/evaluation.md): its own keys, versions and criteria, the ego model
+// it names, and the scenario it runs with everything `validate` checks of a scenario.
+Diagnostics validate_evaluation_file(const std::string& path, Shared& shared) {
+  LoadedEvaluation loaded = load_evaluation(path);
+  Diagnostics diags = loaded.diagnostics;
+  if (!loaded.file) return diags;
+  const EvaluationFile& f = *loaded.file;
+  if (!f.vehicle_model.empty() && !shared.catalog.find(f.vehicle_model))
+    diags.error(SourceLocation{path, "/VehicleModel", 0},
+                fmt::format("VehicleModel \"{}\" is not a model of the catalog", f.vehicle_model));
+  diags.append(validate_scenario_file(f.scenario_file, shared));
+  return diags;
+}
+
 Diagnostics validate_file(const std::string& path, Shared& shared) {
+  return is_evaluation_file(path) ? validate_evaluation_file(path, shared) : validate_scenario_file(path, shared);
+}
+
+Diagnostics validate_scenario_file(const std::string& path, Shared& shared) {
   Diagnostics diags;
   try {
     const JsonDocument doc = JsonDocument::load(path);

@@ -18,6 +18,10 @@ class JsonDocument {
   // including duplicate keys, which nlohmann would otherwise silently collapse.
   static JsonDocument load(const std::string& path);
   static JsonDocument parse(std::string text, const std::string& path_for_messages);
+  // A value tree read from another format (a YAML file), with the line of every pointer as
+  // that format's parser knew it: the same readers and messages serve both formats.
+  static JsonDocument from_tree(nlohmann::json root, const std::string& path,
+                                std::unordered_map<std::string, int> lines);
 
   [[nodiscard]] const nlohmann::json& root() const { return root_; }
   [[nodiscard]] const std::string& path() const { return path_; }

@@ -6,7 +6,10 @@
 #include <string>
 #include <vector>
 
+#include "core/verdict.hpp"
+#include "criteria/criterion_result.hpp"
 #include "engine/engine.hpp"
+#include "metrics/actor_metrics.hpp"
 #include "run/ego_link.hpp"
 
 namespace orch {
@@ -17,7 +20,7 @@ struct InputFile {
 };
 
 struct RunResult {
-  std::string verdict = "error";  // success | failure | error
+  Verdict verdict = Verdict::Error;
   std::string reason;
   double sim_time = 0;
   long long steps = 0;
@@ -32,6 +35,7 @@ struct RunResult {
   InputFile scenario;
   InputFile waypoints;
   InputFile net;
+  InputFile evaluation;  // the evaluation file (path empty: none)
   // Background traffic (README "Background traffic"): the --traffic value (or the
   // scenario's own), its route file (path empty: none), the SUMO command line the run used.
   std::string traffic = "none";
@@ -44,7 +48,9 @@ struct RunResult {
   std::vector<engine::Contact> collisions;     // every contact, in the order they began
   std::vector<engine::LaneChangeConflict> lane_change_conflicts;  // background traffic in a lane change's way
   std::vector<engine::HandOverRecord> hand_overs;
-  std::optional<EgoLinkReport> ego_plugin;  // the external ego plug-in's connection (--ego-port)
+  std::optional<EgoLinkReport> ego_plugin;
+  std::vector<metrics::ActorSummary> metrics;           // per measured actor (docs/evaluation.md)
+  std::vector<criteria::CriterionResult> criteria;      // every criterion of an evaluation file  // the external ego plug-in's connection (--ego-port)
   double wall_time_s = 0;
   // Where the wall time went (README "Outputs"): measured inside the one process, so the
   // orchestrator's own share does not depend on how fast the machine happens to be today.
