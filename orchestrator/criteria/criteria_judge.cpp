@@ -20,8 +20,10 @@ void CriteriaJudge::begin(const engine::Engine& engine) {
 void CriteriaJudge::step(const StepView& view) {
   FrameReport report;
   report.time = view.engine.judged().time;
+  const RunFacts facts{report.time, view.engine.scene(), view.engine.state() == engine::RunState::EndingReached,
+                       view.engine.visits(), view.engine.contacts()};
   for (auto& state : states_) {
-    const Frame f = state.step(view.engine, report.time, metrics_.current(state.actor()));
+    const Frame f = state.step(facts, metrics_.current(state.actor()));
     if (sink_) report.frames.emplace_back(&state, f);
   }
   if (sink_) sink_(report);

@@ -30,9 +30,10 @@ CriterionState::CriterionState(CriterionSpec spec, scenario::ActorId ego)
   opened_ = !spec_.from_scene;
 }
 
-bool CriterionState::in_window(const engine::Engine& engine, double time) {
-  if (spec_.from_scene && engine.scene() == *spec_.from_scene) opened_ = true;
-  if (opened_ && spec_.to_scene && engine.scene() == *spec_.to_scene) closed_ = true;
+bool CriterionState::in_window(const RunFacts& run) {
+  const double time = run.time;
+  if (spec_.from_scene && run.scene == *spec_.from_scene) opened_ = true;
+  if (opened_ && spec_.to_scene && run.scene == *spec_.to_scene) closed_ = true;
   if (!opened_ || closed_) return false;
   if (spec_.from_time && time < *spec_.from_time - 1e-9) return false;
   if (spec_.to_time && time > *spec_.to_time + 1e-9) return false;
@@ -47,11 +48,12 @@ double CriterionState::excess(double value) const {
   return e;
 }
 
-Frame CriterionState::step(const engine::Engine& engine, double time, const metrics::ActorMetrics* metrics) {
+Frame CriterionState::step(const RunFacts& run, const metrics::ActorMetrics* metrics) {
+  const double time = run.time;
   const double dt = time - last_time_.value_or(0.0);
   last_time_ = time;
-  if (!in_window(engine, time)) return {};
-  const Frame f = type_->frame(spec_, StepInput{engine, time, actor_, metrics});
+  if (!in_window(run)) return {};
+  const Frame f = type_->frame(spec_, StepInput{run, actor_, metrics});
   if (!f.measured) {
     stretch_start_.reset();  // an unmeasured step ends a stretch outside the limit
     return f;

@@ -39,10 +39,19 @@ struct CriterionSpec {
   std::optional<int> scene;              // reach_scene: this scene (none: an ending scene)
 };
 
+// What the criteria see of the run in one step: plain values (the judge takes them from the
+// engine), so that criteria are tested without one.
+struct RunFacts {
+  double time = 0;
+  int scene = 0;                 // after this step's transition
+  bool ending_reached = false;
+  const std::vector<engine::SceneVisit>& visits;
+  const std::vector<engine::Contact>& contacts;
+};
+
 // What a frame function sees of one step.
 struct StepInput {
-  const engine::Engine& engine;
-  double time = 0;
+  const RunFacts& run;
   scenario::ActorId actor = 0;                    // the criterion's actor (resolved)
   const metrics::ActorMetrics* metrics = nullptr;  // the actor's metrics this step (null: not measured)
 };
@@ -71,7 +80,7 @@ class CriterionState {
   CriterionState(CriterionSpec spec, scenario::ActorId ego);
 
   // Judges this step (if it lies in the window); returns the frame (measured false outside).
-  Frame step(const engine::Engine& engine, double time, const metrics::ActorMetrics* metrics);
+  Frame step(const RunFacts& run, const metrics::ActorMetrics* metrics);
   // The verdict so far ("Total" of result.jsonl).
   [[nodiscard]] bool holds() const;
   [[nodiscard]] CriterionResult result() const;
@@ -79,7 +88,7 @@ class CriterionState {
   [[nodiscard]] scenario::ActorId actor() const { return actor_; }
 
  private:
-  [[nodiscard]] bool in_window(const engine::Engine& engine, double time);
+  [[nodiscard]] bool in_window(const RunFacts& run);
   // How far a value lies outside the limit (<= 0 inside): orders values worst first.
   [[nodiscard]] double excess(double value) const;
 

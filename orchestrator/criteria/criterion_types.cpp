@@ -66,7 +66,7 @@ Frame no_collision_frame(const CriterionSpec& s, const StepInput& in) {
   f.measured = true;
   const std::string me = std::to_string(in.actor);
   double count = 0;
-  for (const auto& c : in.engine.contacts()) {
+  for (const auto& c : in.run.contacts) {
     if (!c.counted || (c.a != me && c.b != me)) continue;
     const std::string& other = c.a == me ? c.b : c.a;
     if (!s.with.empty() && std::find(s.with.begin(), s.with.end(), other) == s.with.end()) continue;
@@ -90,9 +90,9 @@ Frame reach_scene_frame(const CriterionSpec& s, const StepInput& in) {
   f.measured = true;
   bool reached = false;
   if (s.scene) {
-    for (const auto& v : in.engine.visits()) reached = reached || v.id == *s.scene;
+    for (const auto& v : in.run.visits) reached = reached || v.id == *s.scene;
   } else {
-    reached = in.engine.state() == engine::RunState::EndingReached;
+    reached = in.run.ending_reached;
   }
   f.value = reached ? 1.0 : 0.0;
   f.ok = reached;

@@ -39,6 +39,13 @@ std::optional<criteria::CriterionSpec> read_criterion(ObjectReader& r) {
   const auto name = r.string("Name", Need::Required);
   const auto type = r.choice("Type", names_of_types(), Need::Optional);
   if (type) c.type = *type;
+  if (r.has("Type") && !type) {
+    // Reported; what the other keys must be depends on the type, so they are not judged.
+    r.allow({"Name", "Actor", "Metric", "Min", "Max", "Mode", "PassRate", "Duration", "FromTime", "ToTime",
+             "FromScene", "ToScene", "With", "Scene"});
+    r.finish();
+    return std::nullopt;
+  }
   const criteria::CriterionType* kind = criteria::find_criterion_type(c.type);
   if (const auto actor = r.integer("Actor", Need::Optional)) c.actor = *actor;
   if (c.type == "metric") {
