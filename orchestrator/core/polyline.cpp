@@ -142,6 +142,30 @@ Polyline::Projection Polyline::project(const Vec2& p) const {
   return finish(best, p);
 }
 
+std::optional<Polyline::Projection> Polyline::project_within(const Vec2& p, double radius) const {
+  const auto cx = static_cast<long long>(std::floor(p.x() / cell_));
+  const auto cy = static_cast<long long>(std::floor(p.y() / cell_));
+  const auto rings = static_cast<long long>(std::ceil(radius / cell_));
+  Projection best;
+  best.distance = std::numeric_limits<double>::infinity();
+  for (long long ring = 0; ring <= rings; ++ring) {
+    for (long long dx = -ring; dx <= ring; ++dx)
+      for (long long dy = -ring; dy <= ring; ++dy) {
+        if (std::max(std::llabs(dx), std::llabs(dy)) != ring) continue;
+        auto it = grid_.find(cell_key(cx + dx, cy + dy));
+        if (it == grid_.end()) continue;
+        for (std::size_t seg : it->second) {
+          Projection r = project_on_segment(p, seg);
+          if (r.distance < best.distance) best = r;
+        }
+      }
+    // A hit within the searched radius cannot be beaten further out.
+    if (best.distance <= static_cast<double>(ring) * cell_) break;
+  }
+  if (best.distance > radius) return std::nullopt;
+  return finish(best, p);
+}
+
 Polyline::Projection Polyline::project_near(const Vec2& p, double s_hint, double window) const {
   const std::size_t first = segment_at(s_hint - window);
   const std::size_t last = segment_at(s_hint + window);

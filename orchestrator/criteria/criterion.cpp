@@ -64,23 +64,17 @@ Frame CriterionState::step(const RunFacts& run, const metrics::ActorMetrics* met
   switch (spec_.mode) {
     case Mode::AllOf:
     case Mode::PassRate:
-      // The first violation decides; until one, the worst value so far.
-      if (!f.ok && !violated_) {
-        violated_ = true;
-        decisive_value_ = v;
-        decisive_time_ = time;
-      } else if (!violated_ && (!decisive_value_ || excess(v) > excess(*decisive_value_))) {
+      // The worst value decides what is reported (the first of equals).
+      violated_ = violated_ || !f.ok;
+      if (!decisive_value_ || excess(v) > excess(*decisive_value_)) {
         decisive_value_ = v;
         decisive_time_ = time;
       }
       break;
     case Mode::AnyOf:
-      // The first value within decides; until one, the best value so far.
-      if (f.ok && !satisfied_) {
-        satisfied_ = true;
-        decisive_value_ = v;
-        decisive_time_ = time;
-      } else if (!satisfied_ && (!decisive_value_ || excess(v) < excess(*decisive_value_))) {
+      // The best value (the first of equals).
+      satisfied_ = satisfied_ || f.ok;
+      if (!decisive_value_ || excess(v) < excess(*decisive_value_)) {
         decisive_value_ = v;
         decisive_time_ = time;
       }

@@ -100,7 +100,7 @@ class CriterionState {
   long long measured_ = 0;
   long long ok_ = 0;
   std::optional<double> last_time_;
-  // all_of: the first violation, or the worst value; any_of: the first value within, or the best.
+  // all_of, pass_rate: the worst value and its time; any_of: the best.
   std::optional<double> decisive_value_;
   std::optional<double> decisive_time_;
   bool violated_ = false;

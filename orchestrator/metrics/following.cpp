@@ -26,8 +26,7 @@ struct OnRoute {
   double speed = 0;    // along the route, in the measured actor's direction
 };
 
-OnRoute place(const Polyline& route, const Body& b, double s_hint, int direction) {
-  const Polyline::Projection p = route.project_near(b.centre, s_hint, kFollowingRange + 50);
+OnRoute place(const Polyline::Projection& p, const Polyline& route, const Body& b, int direction) {
   const double tangent = route.heading_at(p.s);
   return {p.s * direction, p.lateral, b.speed * std::cos(b.heading - tangent) * direction};
 }
@@ -40,11 +39,16 @@ Neighbours find_neighbours(const Polyline& route, const Body& self, const std::v
   const Polyline::Projection own = route.project(self.centre);
   // Along the route as drawn, or against it (overtaking through the oncoming lane).
   const int direction = std::cos(self.heading - route.heading_at(own.s)) >= 0 ? 1 : -1;
-  const OnRoute me = place(route, self, own.s, direction);
+  const OnRoute me = place(own, route, self, direction);
   double best_ahead = kFollowingRange, best_behind = kFollowingRange;
   for (const Body& o : others) {
     if (o.id == self.id) continue;
-    const OnRoute it = place(route, o, own.s, direction);
+    // Along the road is never shorter than straight: farther bodies cannot count.
+    if ((o.centre - self.centre).squaredNorm() >= kFollowingRange * kFollowingRange) continue;
+    // On the path means within the two half-widths of the actor's own offset from the route.
+    const auto projected = route.project_within(o.centre, std::abs(own.lateral) + (self.width + o.width) / 2);
+    if (!projected) continue;
+    const OnRoute it = place(*projected, route, o, direction);
     if (std::abs(it.lateral - me.lateral) >= (self.width + o.width) / 2) continue;
     const double ds = it.s - me.s;
     const double gap = std::abs(ds) - (self.length + o.length) / 2;

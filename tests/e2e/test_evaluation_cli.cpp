@@ -3,7 +3,9 @@
 // line), ScenarioFormatError for an invalid file.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <fstream>
+#include <sstream>
 
 #include "support/cli_runner.hpp"
 
@@ -116,4 +118,39 @@ TEST(EvaluationCli, ValidateChecksEvaluationFilesAndTheirScenario) {
   EXPECT_NE(bad.output.find("eval.yaml:3: error: /ScenarioFormatVersion: format version 4.0.0 is not known"),
             std::string::npos)
       << bad.output;
+}
+
+TEST(EvaluationCli, NightlyBatchWithAnEvaluationTemplateTabulatesCriteriaAndMetrics) {
+  TempDir out;
+  const auto logical = source_path("scenarios/evaluation/nightly/logical_5d3c2a4e-6f1b-4c8e-9a7d-2b1e0f9c8d71.json");
+  const auto r = run_cli({"batch", logical, "--out", out.path().string(), "--jobs", "2"});
+  ASSERT_EQ(r.exit_code, 1) << r.output;  // some runs fail their criteria, none errs
+  const auto summary = read_json(out / "summary.json");
+  ASSERT_EQ(summary["runs"].size(), 8u);
+  int success = 0, failure = 0;
+  for (const auto& run : summary["runs"]) {
+    ASSERT_EQ(run["criteria"].size(), 4u) << run.dump();
+    ASSERT_TRUE(run["metrics"].contains("0"));
+    // The bound threshold is the one judged: min_ttc fails exactly when the required TTC
+    // exceeds the run's minimum TTC.
+    const double required = run["sampled_values"]["criteria"]["min_ttc"];
+    const double measured = run["metrics"]["0"]["min_ttc"]["value"];
+    EXPECT_EQ(run["criteria"][1]["success"].get<bool>(), measured >= required) << run.dump();
+    EXPECT_DOUBLE_EQ(run["criteria"][1]["actual"].get<double>(), measured);
+    (run["verdict"] == "success" ? success : failure)++;
+  }
+  EXPECT_GT(success, 0);
+  EXPECT_GT(failure, 0);
+  // One row per run, the parameters, each criterion's actual value and each metric summary.
+  const std::string csv = slurp(out / "metrics.csv");
+  std::istringstream lines(csv);
+  std::string header;
+  std::getline(lines, header);
+  for (const char* column : {"run_id,logical_uuid,parameter_uuid,seed,verdict", "criteria.min_ttc",
+                             "criterion.min_ttc.actual", "criterion.min_ttc.success", "metrics.0.min_ttc"})
+    EXPECT_NE(header.find(column), std::string::npos) << column;
+  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 9);
+  // JUnit: a failing run's message names its failing criteria with expected and actual values.
+  const std::string junit = slurp(out / "junit.xml");
+  EXPECT_NE(junit.find("message=\"criteria failed: min_ttc: expected ttc >= "), std::string::npos);
 }

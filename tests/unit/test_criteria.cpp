@@ -39,11 +39,11 @@ CriterionSpec ttc_min(double min, Mode mode = Mode::AllOf) {
   return s;
 }
 
-TEST(Criteria, AllOfFailsOnTheFirstViolationAndReportsIt) {
+TEST(Criteria, AllOfFailsAndReportsTheWorstValue) {
   const auto r = judge(ttc_min(2), {5.0, 3.0, 1.5, 1.0, 4.0}).result();
   EXPECT_FALSE(r.success);
-  EXPECT_DOUBLE_EQ(*r.actual, 1.5);  // the first violation decides
-  EXPECT_NEAR(*r.at_time, 0.3, 1e-9);
+  EXPECT_DOUBLE_EQ(*r.actual, 1.0);  // the minimum TTC, when it happened
+  EXPECT_NEAR(*r.at_time, 0.4, 1e-9);
   EXPECT_EQ(r.expected, "ttc >= 2 at every step");
   EXPECT_EQ(r.metric, "ttc");
   EXPECT_EQ(*r.actor, 0);
@@ -67,10 +67,10 @@ TEST(Criteria, AnyOfNeedsOneStepWithin) {
   s.min.reset();
   s.max = 2;  // "ttc <= 2 at some step"
   s.mode = Mode::AnyOf;
-  const auto hit = judge(s, {5.0, 1.9, 4.0}).result();
+  const auto hit = judge(s, {5.0, 1.9, 4.0, 1.5}).result();
   EXPECT_TRUE(hit.success);
-  EXPECT_DOUBLE_EQ(*hit.actual, 1.9);
-  EXPECT_NEAR(*hit.at_time, 0.2, 1e-9);
+  EXPECT_DOUBLE_EQ(*hit.actual, 1.5);  // the best value
+  EXPECT_NEAR(*hit.at_time, 0.4, 1e-9);
   const auto miss = judge(s, {5.0, 2.5, 4.0}).result();
   EXPECT_FALSE(miss.success);
   EXPECT_DOUBLE_EQ(*miss.actual, 2.5);  // the closest it came
