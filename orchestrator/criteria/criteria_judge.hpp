@@ -20,6 +20,7 @@ struct FrameReport {
 
 class CriteriaJudge : public RunObserver {
  public:
+  [[nodiscard]] const char* name() const override { return "criteria"; }
   using FrameSink = std::function<void(const FrameReport&)>;
   CriteriaJudge(std::vector<CriterionSpec> specs, const metrics::MetricsRecorder& metrics, FrameSink sink = {});
 

@@ -20,6 +20,7 @@ namespace orch {
 
 class ResultJsonl : public RunObserver {
  public:
+  [[nodiscard]] const char* name() const override { return "result_jsonl"; }
   ResultJsonl(const std::filesystem::path& path, const nlohmann::json& conditions, int every);
   ~ResultJsonl() override;
   ResultJsonl(const ResultJsonl&) = delete;

@@ -19,6 +19,7 @@ namespace orch::metrics {
 
 class MetricsRecorder : public RunObserver {
  public:
+  [[nodiscard]] const char* name() const override { return "metrics"; }
   static constexpr const char* kHeader =
       "time,actor_id,leader,gap,rel_speed,ttc,thw,drac,accel,jerk,lat_accel,lane_departure,min_dist,min_dist_to";
 

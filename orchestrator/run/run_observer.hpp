@@ -21,6 +21,8 @@ struct StepView {
 class RunObserver {
  public:
   virtual ~RunObserver() = default;
+  // For result.json's timing.observers_s: where the step loop's own time goes.
+  [[nodiscard]] virtual const char* name() const = 0;
   virtual void begin(const engine::Engine& /*engine*/) {}
   virtual void step(const StepView& view) = 0;
   // The run has ended: flush, and add what this observer contributes to the result (it may

@@ -156,6 +156,8 @@ std::string to_json(const RunResult& r) {
                  {"orchestrator_s", r.timing.orchestrator_s},
                  {"plugin_s", r.timing.plugin_s},
                  {"finish_s", r.timing.finish_s}};
+  j["timing"]["observers_s"] = nlohmann::ordered_json::object();
+  for (const auto& [name, s] : r.timing.observers_s) j["timing"]["observers_s"][name] = s;
   j["outputs"] = {{"trace", "trace.csv"}, {"log", "run.log"}, {"sumo_log", "sumo.log"}, {"metrics", "metrics.csv"}};
   return j.dump(2) + "\n";
 }

@@ -60,6 +60,8 @@ struct RunResult {
     double orchestrator_s = 0;  // the rest of every step: reading, the engine, commands, the trace
     double plugin_s = 0;        // waiting for the ego plug-in's step (--ego-port)
     double finish_s = 0;        // results, flushing, closing SUMO
+    // The part of orchestrator_s each observer of the step loop took (trace, metrics, ...).
+    std::vector<std::pair<std::string, double>> observers_s;
   } timing;
   long long trace_rows = 0;
 };

@@ -155,6 +155,7 @@ RunResult run_scenario(const RunRequest& req, Simulator& sim) {
   std::optional<engine::Engine> engine;
   // The step loop's observers (run_observer.hpp), in the order they see each step.
   std::vector<std::unique_ptr<RunObserver>> observers;
+  std::vector<double> observer_s;  // time in each observer's step
   bool jsonl_written = false;  // result.jsonl (evaluation runs) has its observer or its error line
   try {
     if (req.evaluation) result.evaluation = {req.evaluation->file, sha256_of_file(req.evaluation->file)};
@@ -188,6 +189,7 @@ RunResult run_scenario(const RunRequest& req, Simulator& sim) {
       jsonl_written = true;
     }
     for (const auto& o : observers) o->begin(*engine);
+    observer_s.assign(observers.size(), 0.0);
 
     auto out = engine->start();
     log_events(log, result, out.events);
@@ -204,7 +206,11 @@ RunResult run_scenario(const RunRequest& req, Simulator& sim) {
       result.sim_time = snap.time;
       log_events(log, result, out.events);
       const StepView view{*engine, snap, plugin_driven_actor(req.ego_link, tracked)};
-      for (const auto& o : observers) o->step(view);
+      for (std::size_t i = 0; i < observers.size(); ++i) {
+        const auto before_observer = Clock::now();
+        observers[i]->step(view);
+        observer_s[i] += seconds_since(before_observer);
+      }
       if (engine->state() != engine::RunState::Running) break;
       if (req.max_time && snap.time >= *req.max_time - 1e-9) {
         result.verdict = Verdict::Failure;
@@ -277,6 +283,7 @@ RunResult run_scenario(const RunRequest& req, Simulator& sim) {
     judge_collisions(*engine, in->scenario.ego.id, result);
   }
   for (const auto& o : observers) o->finish(result);
+  for (std::size_t i = 0; i < observer_s.size(); ++i) result.timing.observers_s.emplace_back(observers[i]->name(), observer_s[i]);
   // An evaluation run that ended before its observers existed still gets its result.jsonl.
   if (req.evaluation && !jsonl_written)
     write_unstarted_jsonl(req.out_dir / "result.jsonl", req.evaluation->conditions, result);

@@ -17,6 +17,7 @@ namespace orch {
 
 class TraceWriter : public RunObserver {
  public:
+  [[nodiscard]] const char* name() const override { return "trace"; }
   static constexpr const char* kHeader =
       "time,scene_id,actor_id,x,y,heading,speed,accel,edge,lane,lane_pos,lat_offset,signals,siren,driver";
 

@@ -17,6 +17,7 @@ namespace orch {
 
 class TrafficTrace : public RunObserver {
  public:
+  [[nodiscard]] const char* name() const override { return "traffic_trace"; }
   static constexpr const char* kCountsHeader = "time,background_vehicles,nearby_vehicles";
   static constexpr const char* kBackgroundHeader = "time,vehicle_id,x,y,heading,speed,length,width";
 

@@ -6,7 +6,9 @@ vehicles, 400 steps of 0.05 s, libsumo, and prints from result.json's `timing` t
 orchestrator's own time in its stepping loop (reading, engine, commands, trace, metrics,
 criteria) over the time inside SUMO's steps, measured in the same process. With --against
 OLD_BINARY (a build without metrics) the same runs interleaved with it, for the difference.
-Figures, not a test: nothing is asserted.
+result.json's timing.observers_s splits the stepping loop's time by observer (trace,
+metrics, criteria, result.jsonl), measured in the same process, so the metrics' own share
+does not depend on how busy the machine is. Figures, not a test: nothing is asserted.
 """
 import argparse
 import csv
@@ -30,7 +32,10 @@ def run(binary, target, traffic, out):
         timing = json.load(f)["timing"]
     with open(os.path.join(out, "counts.csv")) as f:
         vehicles = statistics.mean(int(r["background_vehicles"]) for r in csv.DictReader(f))
-    return timing["orchestrator_s"] / timing["sumo_step_s"], vehicles
+    shares = {"all": timing["orchestrator_s"] / timing["sumo_step_s"]}
+    for name, s in timing.get("observers_s", {}).items():
+        shares[name] = s / timing["sumo_step_s"]
+    return shares, vehicles
 
 
 def main():
@@ -47,18 +52,21 @@ def main():
         configs = [("metrics", a.binary, SCENARIO), ("metrics + criteria", a.binary, EVALUATION)]
         if a.against:
             configs.insert(0, ("without metrics", a.against, SCENARIO))
-        shares = {name: [] for name, _, _ in configs}
+        shares = {name: {} for name, _, _ in configs}
         vehicles = []
         for r in range(a.rounds):
             for name, binary, target in configs:
-                share, v = run(binary, target, traffic, os.path.join(work, "%s_%d" % (name.replace(" ", "_"), r)))
-                shares[name].append(share)
+                got, v = run(binary, target, traffic, os.path.join(work, "%s_%d" % (name.replace(" ", "_"), r)))
+                for part, share in got.items():
+                    shares[name].setdefault(part, []).append(share)
                 vehicles.append(v)
-        print("%.0f background vehicles on average, %d steps, %d rounds" % (statistics.mean(vehicles), STEPS, a.rounds))
+        print("%.0f background vehicles on average, %d steps, %d rounds; per cent of SUMO's step time, "
+              "median (range):" % (statistics.mean(vehicles), STEPS, a.rounds))
         for name, _, _ in configs:
-            s = shares[name]
-            print("%-20s orchestrator's own time / SUMO's step time: median %.2f %% (%.2f-%.2f)" %
-                  (name, 100 * statistics.median(s), 100 * min(s), 100 * max(s)))
+            parts = ", ".join("%s %.2f (%.2f-%.2f)" % ("orchestrator's own time" if part == "all" else part,
+                                                       100 * statistics.median(s), 100 * min(s), 100 * max(s))
+                              for part, s in shares[name].items())
+            print("%-20s %s" % (name, parts))
 
 
 if __name__ == "__main__":
