@@ -29,6 +29,9 @@ std::string read_result(const std::filesystem::path& file, Attempt& a) {
     const auto reason = r.string("reason", Need::Optional);
     a.sim_time = r.number("sim_time", Need::Optional);
     a.run_wall_time_s = r.number("wall_time_s", Need::Optional);
+    // The evaluation's figures travel on to summary.json and the batch's metrics.csv as they are.
+    if (doc.root().contains("metrics") && doc.root()["metrics"].is_object()) a.metrics = doc.root()["metrics"];
+    if (doc.root().contains("criteria") && doc.root()["criteria"].is_array()) a.criteria = doc.root()["criteria"];
     // The rest of result.json is the run's business; only these keys matter here.
     if (diags.has_errors() || !verdict) return "result.json unreadable: " + diags.format();
     a.verdict = *verdict;

@@ -8,6 +8,8 @@
 #include <optional>
 #include <string>
 
+#include <nlohmann/json.hpp>
+
 #include "batch/child_process.hpp"
 
 namespace orch::batch {
@@ -23,6 +25,8 @@ struct Attempt {
   double wall_time_s = 0;          // as the batch measured it: start-up to exit
   std::optional<double> sim_time;  // from result.json
   std::optional<double> run_wall_time_s;  // result.json's wall_time_s: inside the run
+  nlohmann::json metrics;   // result.json's metrics summary (null: none)
+  nlohmann::json criteria;  // result.json's criteria (null: none)
 };
 
 Attempt judge_attempt(const ChildExit& exit, const std::string& start_error, const std::filesystem::path& result_file,

@@ -7,6 +7,7 @@
 
 #include "batch/sampling.hpp"
 #include "batch/template_binder.hpp"
+#include "batch/template_file.hpp"
 #include "core/errors.hpp"
 #include "core/files.hpp"
 #include "json/object_reader.hpp"
@@ -147,7 +148,7 @@ BatchPlan plan_batch(const std::vector<std::string>& inputs, const std::optional
       throw ScenarioError(SourceLocation{parameter_file.string(), "/logical_uuid", 0},
                           fmt::format("the parameter file names logical scenario \"{}\", its logical file has \"{}\"",
                                       params.logical_uuid, pl.logical.uuid));
-    pl.template_doc = std::make_shared<const JsonDocument>(JsonDocument::load(pl.logical.template_file.string()));
+    pl.template_doc = std::make_shared<const JsonDocument>(load_template(pl.logical.template_file));
     if (Diagnostics d = check_template(pl.logical, *pl.template_doc); d.has_errors()) throw ScenarioError(d);
     hash(logical_file);
     hash(parameter_file);

@@ -7,6 +7,7 @@
 #include <set>
 #include <sstream>
 
+#include "batch/batch_metrics_csv.hpp"
 #include "batch/identifiers.hpp"
 #include "core/errors.hpp"
 #include "core/files.hpp"
@@ -160,6 +161,8 @@ std::string summary_json(const BatchReport& report, const fs::path& out_dir) {
       r["attempts"] = s.attempts;
       r["sim_time"] = s.sim_time ? ordered_json(*s.sim_time) : ordered_json(nullptr);
       r["wall_time_s"] = s.wall_time_s;
+      r["metrics"] = s.metrics;
+      r["criteria"] = s.criteria;
       r["run_dir"] = relative_to(dir / s.run_dir, out_dir);
       r["execution_file"] = relative_to(s.file, out_dir);
     }
@@ -269,6 +272,7 @@ std::string write_reports(const BatchReport& report, const fs::path& out_dir) {
   fs::create_directories(out_dir);
   write_file_atomically(out_dir / "summary.json", summary_json(report, out_dir));
   write_file_atomically(out_dir / "junit.xml", junit_xml(report));
+  write_file_atomically(out_dir / "metrics.csv", batch_metrics_csv(report));
   const std::string table = summary_table(report);
   write_file_atomically(out_dir / "summary.txt", table);
   return table;

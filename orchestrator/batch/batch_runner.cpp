@@ -17,6 +17,7 @@
 #include "batch/progress.hpp"
 #include "batch/run_queue.hpp"
 #include "batch/sampling.hpp"
+#include "batch/template_file.hpp"
 #include "core/errors.hpp"
 #include "core/files.hpp"
 
@@ -142,9 +143,10 @@ std::vector<std::string> pass_through_flags(const SumoConfig& config, const std:
   return out;
 }
 
-std::vector<std::string> run_command_line(const BatchOptions& o, const PlannedRun& run, const fs::path& run_dir) {
+std::vector<std::string> run_command_line(const BatchOptions& o, const PlannedRun& run, const fs::path& run_dir,
+                                          const std::string& bound_file) {
   const SumoConfig& cfg = run.set.sumo_config;
-  std::vector<std::string> argv{o.orchestrator.string(), "run", (run_dir / "scenario.json").string(),
+  std::vector<std::string> argv{o.orchestrator.string(), "run", (run_dir / bound_file).string(),
                                 "--out", run_dir.string(), "--seed", std::to_string(run.set.seed.value_or(42)),
                                 "--step", fmt::format("{}", cfg.step)};
   if (cfg.max_time) {
@@ -211,8 +213,9 @@ int run_batch(const BatchOptions& given) {
     const fs::path dir = out / "runs" / run.id;
     prepare_run_dir(dir, attempt);
     const PlannedLogical& pl = plan.logicals[run.logical_index];
-    write_file_atomically(dir / "scenario.json", bound_scenario_text(pl.logical, *pl.template_doc, run.set));
-    std::vector<std::string> argv = run_command_line(o, run, dir);
+    const std::string bound_file = bound_file_name(pl.logical.template_file);
+    write_file_atomically(dir / bound_file, bound_scenario_text(pl.logical, *pl.template_doc, run.set));
+    std::vector<std::string> argv = run_command_line(o, run, dir, bound_file);
     if (!o.wrapper.empty()) argv.insert(argv.begin(), o.wrapper);
     ExecutionRecord& rec = records[task];
     rec.command = argv;

@@ -51,8 +51,10 @@ int run_batch(const BatchOptions& options);
 // Throws OrchError naming the setting when `run_flags` lacks its flag.
 std::vector<std::string> pass_through_flags(const SumoConfig& config, const std::set<std::string>& run_flags);
 
-// The child's command line for one run (without a wrapper).
+// The child's command line for one run (without a wrapper); `bound_file` is the bound
+// template in the run folder (template_file.hpp).
 std::vector<std::string> run_command_line(const BatchOptions& options, const PlannedRun& run,
-                                          const std::filesystem::path& run_dir);
+                                          const std::filesystem::path& run_dir,
+                                          const std::string& bound_file = "scenario.json");
 
 }  // namespace orch::batch

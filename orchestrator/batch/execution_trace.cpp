@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include "batch/template_file.hpp"
 #include "core/errors.hpp"
 #include "json/json_document.hpp"
 #include "json/json_text.hpp"
@@ -76,11 +77,13 @@ std::string execution_trace_text(const PlannedRun& run, const PlannedLogical& lo
   trace["sampled_values"] = ordered_json(run.set.sampled_values);
   ordered_json impl;
   impl["template_file"] = std::filesystem::absolute(logical.logical.template_file).lexically_normal().string();
-  impl["scenario_file"] = out_block["run_dir"].get<std::string>() + "/scenario.json";
+  impl["scenario_file"] = out_block["run_dir"].get<std::string>() + "/" + bound_file_name(logical.logical.template_file);
   impl["command"] = shell_command(record.command);
   impl["exit_code"] = opt(last.exit_code);
   impl["final_status"] = last.verdict;
   impl["reason"] = last.reason;
+  impl["metrics"] = last.metrics;
+  impl["criteria"] = last.criteria;
   impl["attempts"] = ordered_json::array();
   for (const auto& a : record.attempts) impl["attempts"].push_back(attempt_json(a));
   trace["implementation"] = impl;
@@ -125,7 +128,9 @@ ExecutionSummary read_execution_summary(const std::filesystem::path& file) {
                                                                           : std::nullopt;
         }
       }
-      i.allow({"template_file", "scenario_file", "command", "exit_code"});
+      if (impl->contains("metrics")) s.metrics = impl->at("metrics");
+      if (impl->contains("criteria")) s.criteria = impl->at("criteria");
+      i.allow({"template_file", "scenario_file", "command", "exit_code", "metrics", "criteria"});
       i.finish();
     }
     t.finish();

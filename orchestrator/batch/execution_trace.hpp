@@ -43,6 +43,8 @@ struct ExecutionSummary {
   std::optional<double> sim_time;
   double wall_time_s = 0;  // all attempts
   std::string run_dir;     // relative to the batch folder
+  nlohmann::json metrics;   // the run's metrics summary (result.json "metrics"; null: none)
+  nlohmann::json criteria;  // the run's criteria (result.json "criteria"; null: none)
   std::filesystem::path file;
 };
 

@@ -7,6 +7,7 @@
 #include "batch/identifiers.hpp"
 #include "batch/sampler.hpp"
 #include "batch/template_binder.hpp"
+#include "batch/template_file.hpp"
 #include "core/errors.hpp"
 #include "json/json_text.hpp"
 #include "scenario/loader.hpp"
@@ -35,17 +36,19 @@ void check_set_fits(const LogicalScenario& logical, const ParameterSet& set,
 }  // namespace
 
 std::string bound_scenario_text(const LogicalScenario& logical, const ParameterSet& set) {
-  return bound_scenario_text(logical, JsonDocument::load(logical.template_file.string()), set);
+  return bound_scenario_text(logical, load_template(logical.template_file), set);
 }
 
 std::string bound_scenario_text(const LogicalScenario& logical, const JsonDocument& tmpl, const ParameterSet& set) {
   const auto values = flatten_values(set.sampled_values);
   check_set_fits(logical, set, values);
-  return json_text(bind_template(tmpl, values), 2) + "\n";
+  nlohmann::ordered_json bound = bind_template(tmpl, values);
+  anchor_scenario_path(bound, logical.template_file);
+  return json_text(bound, 2) + "\n";
 }
 
 SampleOutcome sample_parameter_sets(const LogicalScenario& logical, const SampleRequest& request) {
-  const JsonDocument tmpl = JsonDocument::load(logical.template_file.string());
+  const JsonDocument tmpl = load_template(logical.template_file);
   if (Diagnostics problems = check_template(logical, tmpl); problems.has_errors()) throw ScenarioError(problems);
 
   SampleOutcome outcome;
@@ -82,11 +85,9 @@ SampleOutcome sample_parameter_sets(const LogicalScenario& logical, const Sample
 
     // Bind and load now, so a template that yields an invalid scenario for some values is
     // reported at sampling time with the set's values, not at 3 a.m. in the batch.
-    const std::string text = json_text(bind_template(tmpl, flatten_values(set.sampled_values)), 2);
+    const std::string text = bound_scenario_text(logical, tmpl, set);
     const std::string label = fmt::format("{} bound with seed {}", logical.template_file.string(), seed);
-    const LoadedScenario loaded = load_scenario(JsonDocument::parse(text, label));
-    if (!loaded.scenario) throw ScenarioError(loaded.diagnostics);
-    set.sumo_config.map = loaded.scenario->map_id;
+    set.sumo_config.map = map_of_bound(text, label, logical.template_file);
 
     set.output = nlohmann::json(output_block(logical.uuid, set.uuid));
     outcome.new_set_ids.push_back(set.uuid);

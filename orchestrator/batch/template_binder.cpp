@@ -132,8 +132,9 @@ Diagnostics check_template(const LogicalScenario& logical, const JsonDocument& t
 }
 
 ordered_json bind_template(const JsonDocument& tmpl, const std::map<std::string, json>& values) {
-  // The tree is parsed again in document order, so the bound file reads like the template.
-  ordered_json out = ordered_json::parse(tmpl.text());
+  // The tree is parsed again in document order, so the bound file reads like the template
+  // (a tree read from YAML has no JSON text: its keys come sorted).
+  ordered_json out = tmpl.text().empty() ? ordered_json(tmpl.root()) : ordered_json::parse(tmpl.text());
   Diagnostics diags;
   std::vector<std::string> names;
   for (const auto& [k, v] : values) names.push_back(k);

@@ -78,6 +78,10 @@ struct RunOptions {
   std::string connect;            // --connect HOST:PORT: a running SUMO (traci backend)
   std::optional<double> realtime; // --realtime FACTOR
   double sumo_timeout = 10;       // --sumo-timeout, s (traci backend; 0: wait forever)
+  // Evaluation files (docs/evaluation.md): a result.jsonl frame line every N steps, and the
+  // run options given on the command line, which override the file's Conditions.
+  int jsonl_every = 1;
+  std::vector<std::string> given;  // e.g. "--step", "--seed"
 };
 int run_command(const RunOptions& o);
 

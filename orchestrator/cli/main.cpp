@@ -65,6 +65,9 @@ int main(int argc, char** argv) {
   r->add_option("--sumo-timeout", run.sumo_timeout,
                 "Seconds without an answer from SUMO before the run ends as an error (traci backend; 0: no limit)")
       ->capture_default_str()->check(CLI::NonNegativeNumber);
+  r->add_option("--jsonl-every", run.jsonl_every, "Evaluation files: a result.jsonl frame line every N steps")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
   add_common(r, run.common);
 
   orch::cli::BaselineOptions baseline;
@@ -121,7 +124,11 @@ int main(int argc, char** argv) {
 
   try {
     if (*v) return orch::cli::validate_command(validate);
-    if (*r) return orch::cli::run_command(run);
+    if (*r) {
+      for (const char* name : {"--step", "--seed", "--max-time", "--traffic", "--backend"})
+        if (r->count(name) > 0) run.given.emplace_back(name);
+      return orch::cli::run_command(run);
+    }
     if (*mb) return orch::cli::map_build_command(build);
     if (*mc) return orch::cli::map_check_command(check);
     if (*mt) return orch::cli::map_traffic_command(traffic);

@@ -4,9 +4,15 @@
 #include <optional>
 #include <stdexcept>
 
+#include <fmt/format.h>
+
+#include <algorithm>
+
 #include "cli/commands.hpp"
 #include "core/errors.hpp"
 #include "core/utf8.hpp"
+#include "evaluation/evaluation_file.hpp"
+#include "evaluation/result_jsonl.hpp"
 #include "run/paced_simulator.hpp"
 #include "run/runner.hpp"
 #include "sumo/sumo_ego_control.hpp"
@@ -21,6 +27,40 @@ std::atomic<bool> g_interrupted{false};
 extern "C" void on_signal(int) { g_interrupted.store(true); }
 
 // --gui and --connect need a SUMO process, i.e. the traci backend, which they then imply.
+bool given(const RunOptions& o, const char* name) {
+  return std::find(o.given.begin(), o.given.end(), name) != o.given.end();
+}
+
+// `run EVAL.yaml`: the scenario and its settings come from the evaluation file (options
+// given on the command line win), the criteria go into the request. An invalid file ends
+// here with verdict error, result.json and a result.jsonl whose last line says
+// ScenarioFormatError; returns that exit status.
+std::optional<int> prepare_evaluation(RunOptions& o, RunRequest& req) {
+  const LoadedEvaluation loaded = load_evaluation(o.file);
+  if (!loaded.file) {
+    std::cerr << loaded.diagnostics.format();
+    std::filesystem::create_directories(req.out_dir);
+    write_format_error_jsonl(req.out_dir / "result.jsonl", loaded.diagnostics);
+    RunResult result;
+    result.reason = fmt::format("invalid evaluation file: {} error(s); first: {}", loaded.diagnostics.error_count(),
+                                loaded.diagnostics.items().empty() ? "" : loaded.diagnostics.items().front().format());
+    result.evaluation = {o.file, ""};
+    write_result(req.out_dir, result);
+    std::cout << "verdict: error (" << result.reason << ")\n";
+    return exit_code_for(result);
+  }
+  const EvaluationFile& f = *loaded.file;
+  req.scenario_file = f.scenario_file;
+  if (f.step && !given(o, "--step")) req.step = *f.step;
+  if (f.seed && !given(o, "--seed")) req.seed = *f.seed;
+  if (f.max_time && !given(o, "--max-time")) req.max_time = *f.max_time;
+  if (f.traffic && !given(o, "--traffic")) req.traffic = *f.traffic;
+  if (f.backend && !given(o, "--backend")) o.backend = *f.backend;
+  if (!f.local_map_path.empty()) req.map_dirs.insert(req.map_dirs.begin(), f.local_map_path);
+  req.evaluation = EvaluationRequest{o.file, f.criteria, f.conditions, f.vehicle_model, o.jsonl_every};
+  return std::nullopt;
+}
+
 std::string choose_backend(const RunOptions& o) {
   const bool needs_traci = o.gui || !o.connect.empty();
   if (o.backend.empty()) return needs_traci ? "traci" : "libsumo";
@@ -52,14 +92,19 @@ int run_command(const RunOptions& o) {
   req.traffic = o.traffic;
   req.trace_background = o.trace_background;
 
-  const std::string backend = choose_backend(o);
+  RunOptions options = o;
+  if (is_evaluation_file(o.file)) {
+    const auto code = prepare_evaluation(options, req);
+    if (code) return *code;
+  }
+  const std::string backend = choose_backend(options);
   SumoBackendOptions sumo_options;
   sumo_options.gui = o.gui;
   sumo_options.connect = o.connect;
   sumo_options.reply_timeout = o.sumo_timeout;
   const auto sumo = make_sumo_simulator(backend, sumo_options);
   std::optional<PacedSimulator> paced;
-  if (o.realtime) paced.emplace(*sumo, *o.realtime);
+  if (options.realtime) paced.emplace(*sumo, *options.realtime);
   Simulator& sim = paced ? static_cast<Simulator&>(*paced) : *sumo;
   std::unique_ptr<EgoLink> ego;
   if (o.ego_port) {
@@ -73,7 +118,7 @@ int run_command(const RunOptions& o) {
     req.ego_link = ego.get();
   }
   const RunResult result = run_scenario(req, sim);
-  std::cout << "verdict: " << result.verdict << " (" << valid_utf8(result.reason) << ")\n"
+  std::cout << "verdict: " << to_string(result.verdict) << " (" << valid_utf8(result.reason) << ")\n"
             << "results: " << (req.out_dir / "result.json").string() << "\n";
   if (o.video) announce_video(req.out_dir);
   if (!o.no_report) announce_run_report(req.out_dir);

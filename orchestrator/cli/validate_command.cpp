@@ -16,6 +16,7 @@
 #include "openscenario/scenario_check.hpp"
 #include "core/suggest.hpp"
 #include "core/utf8.hpp"
+#include "evaluation/evaluation_file.hpp"
 #include "scenario/loader_internal.hpp"
 #include "scenario/validator.hpp"
 
@@ -61,7 +62,27 @@ struct Shared {
   std::map<std::string, std::string> parameter_overrides;  // --param, OpenSCENARIO files only
 };
 
+Diagnostics validate_scenario_file(const std::string& path, Shared& shared);
+
+// An evaluation file (docs/evaluation.md): its own keys, versions and criteria, the ego model
+// it names, and the scenario it runs with everything `validate` checks of a scenario.
+Diagnostics validate_evaluation_file(const std::string& path, Shared& shared) {
+  LoadedEvaluation loaded = load_evaluation(path);
+  Diagnostics diags = loaded.diagnostics;
+  if (!loaded.file) return diags;
+  const EvaluationFile& f = *loaded.file;
+  if (!f.vehicle_model.empty() && !shared.catalog.find(f.vehicle_model))
+    diags.error(SourceLocation{path, "/VehicleModel", 0},
+                fmt::format("VehicleModel \"{}\" is not a model of the catalog", f.vehicle_model));
+  diags.append(validate_scenario_file(f.scenario_file, shared));
+  return diags;
+}
+
 Diagnostics validate_file(const std::string& path, Shared& shared) {
+  return is_evaluation_file(path) ? validate_evaluation_file(path, shared) : validate_scenario_file(path, shared);
+}
+
+Diagnostics validate_scenario_file(const std::string& path, Shared& shared) {
   if (detect_scenario_format(path) == ScenarioFormat::OpenScenario)
     return openscenario::check_scenario_file(path, {shared.parameter_overrides});
   Diagnostics diags;

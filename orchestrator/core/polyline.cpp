@@ -117,12 +117,24 @@ Polyline::Projection Polyline::finish(Projection best, const Vec2& p) const {
 }
 
 Polyline::Projection Polyline::project(const Vec2& p) const {
-  const auto cx = static_cast<long long>(std::floor(p.x() / cell_));
-  const auto cy = static_cast<long long>(std::floor(p.y() / cell_));
+  // The grid's rings within 4 cells, else every segment.
+  if (auto near = project_within(p, 4 * cell_)) return *near;
   Projection best;
   best.distance = std::numeric_limits<double>::infinity();
-  // Rings of cells around p; a hit within the searched radius cannot be beaten further out.
-  for (long long ring = 0; ring <= 4; ++ring) {
+  for (std::size_t seg = 0; seg + 1 < points_.size(); ++seg) {
+    Projection r = project_on_segment(p, seg);
+    if (r.distance < best.distance) best = r;
+  }
+  return finish(best, p);
+}
+
+std::optional<Polyline::Projection> Polyline::project_within(const Vec2& p, double radius) const {
+  const auto cx = static_cast<long long>(std::floor(p.x() / cell_));
+  const auto cy = static_cast<long long>(std::floor(p.y() / cell_));
+  const auto rings = static_cast<long long>(std::ceil(radius / cell_));
+  Projection best;
+  best.distance = std::numeric_limits<double>::infinity();
+  for (long long ring = 0; ring <= rings; ++ring) {
     for (long long dx = -ring; dx <= ring; ++dx)
       for (long long dy = -ring; dy <= ring; ++dy) {
         if (std::max(std::llabs(dx), std::llabs(dy)) != ring) continue;
@@ -133,12 +145,10 @@ Polyline::Projection Polyline::project(const Vec2& p) const {
           if (r.distance < best.distance) best = r;
         }
       }
-    if (best.distance <= static_cast<double>(ring) * cell_) return finish(best, p);
+    // A hit within the searched radius cannot be beaten further out.
+    if (best.distance <= static_cast<double>(ring) * cell_) break;
   }
-  for (std::size_t seg = 0; seg + 1 < points_.size(); ++seg) {
-    Projection r = project_on_segment(p, seg);
-    if (r.distance < best.distance) best = r;
-  }
+  if (best.distance > radius) return std::nullopt;
   return finish(best, p);
 }
 

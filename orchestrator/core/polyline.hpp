@@ -4,6 +4,7 @@
 // 10,000-point route costs a handful of segment tests, not a full scan.
 #include <Eigen/Core>
 #include <cstddef>
+#include <optional>
 #include <unordered_map>
 #include <vector>
 
@@ -48,6 +49,8 @@ class Polyline {
   [[nodiscard]] Vec2 offset_point(double s, double lateral) const;
 
   [[nodiscard]] Projection project(const Vec2& p) const;
+  // The nearest point if it lies within `radius` m, else nullopt: never scans the whole line.
+  [[nodiscard]] std::optional<Projection> project_within(const Vec2& p, double radius) const;
   // Nearest point searched only within [s_hint - window, s_hint + window]; for tracking a
   // moving actor from step to step.
   [[nodiscard]] Projection project_near(const Vec2& p, double s_hint, double window) const;

@@ -3,6 +3,7 @@
 // is an oriented rectangle (centre, heading, length, width); two touch when the rectangles
 // overlap (separating-axis test). Contacts are tracked as episodes: one record when a pair
 // starts touching, so a long scrape is one collision, not one per step.
+#include <array>
 #include <set>
 #include <string>
 #include <utility>
@@ -23,6 +24,8 @@ struct Box {
 
 // True when the two rectangles share any point (touching edges count).
 bool boxes_touch(const Box& a, const Box& b);
+// The four corners, front-left, front-right, rear-right, rear-left.
+std::array<Vec2, 4> box_corners(const Box& b);
 
 // A contact between two bodies: scenario actors are named by their actor id ("3"),
 // background vehicles by their SUMO id.

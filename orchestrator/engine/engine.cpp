@@ -27,6 +27,12 @@ const WaypointRoute* Engine::route_of(ActorId id) const {
 
 bool Engine::collided(ActorId id) const { return collisions_.touching(id); }
 
+std::optional<ActorId> Engine::actor_named(const std::string& name) const {
+  for (const auto& a : actors_.slots())
+    if (std::to_string(a.spec.id) == name) return a.spec.id;
+  return std::nullopt;
+}
+
 std::string Engine::describe_body(const std::string& name) const {
   for (const auto& a : actors_.slots())
     if (std::to_string(a.spec.id) == name) return "actor " + name + (a.is_ego() ? " (ego)" : "");
@@ -45,6 +51,13 @@ void Engine::fail(const std::string& reason, double t, StepOutput& out) {
 }
 
 StepOutput Engine::step(const WorldSnapshot& snapshot) {
+  StepOutput out = step_scene_graph(snapshot);
+  for (Event& e : out.events)
+    if (!e.scene) e.scene = machine_.current();
+  return out;
+}
+
+StepOutput Engine::step_scene_graph(const WorldSnapshot& snapshot) {
   StepOutput out;
   if (state_ != RunState::Running) return out;
   if (!current_.actors.empty()) previous_ = std::move(current_);
@@ -79,6 +92,7 @@ StepOutput Engine::step(const WorldSnapshot& snapshot) {
                                       describe_body(c.a),
                                       c.position_a.x(), c.position_a.y(), describe_body(c.b), c.position_b.x(),
                                       c.position_b.y())});
+    out.events.back().actor = actor_named(c.a);
   }
 
   for (const LaneChangeConflict& c : conflicts_.step(current_)) {
@@ -87,6 +101,7 @@ StepOutput Engine::step(const WorldSnapshot& snapshot) {
                                       "the target lane (time gap {:.2f} s)",
                                       c.actor, c.target_route, c.vehicle, c.gap, c.vehicle_ahead ? "ahead of" : "behind",
                                       c.time_gap)});
+    out.events.back().actor = c.actor;
   }
 
   ConditionContext ctx{current_, previous_ ? &*previous_ : nullptr, actors_, map_.waypoints,
@@ -162,6 +177,7 @@ void Engine::move_scripted_actors(double t, StepOutput& out) {
       out.events.push_back({t + options_.step, EventKind::Warning,
                             fmt::format("actor {} runs out of road at the end of route {}: it brakes to stop there",
                                         id, motion.route().id)});
+      out.events.back().actor = id;
     }
   }
 }

@@ -44,10 +44,19 @@ struct EngineOptions {
 
 enum class EventKind { Scene, Action, Info, Warning };
 
+// One entry of the run's account. Besides its text, the structured fields say what it is
+// about, so that tools need not parse the text: the actor an action or warning concerns,
+// and the scene the scenario was in when it happened.
 struct Event {
+  Event() = default;
+  Event(double t, EventKind k, std::string words, std::optional<ActorId> about = std::nullopt)
+      : time(t), kind(k), text(std::move(words)), actor(about) {}
+
   double time = 0;
   EventKind kind = EventKind::Info;
   std::string text;
+  std::optional<ActorId> actor;  // the actor it concerns, if one
+  std::optional<int> scene;      // the scene after this step's transition (set by Engine::step)
 };
 
 enum class RunState { Running, EndingReached, StopConditionMet, Error };
@@ -89,6 +98,10 @@ class Engine {
   [[nodiscard]] const std::vector<LaneChangeConflict>& lane_change_conflicts() const { return conflicts_.all(); }
   // "actor 1", "actor 0 (ego)" or "vehicle <SUMO id>" for a contact's body name.
   [[nodiscard]] std::string describe_body(const std::string& name) const;
+  // The actor a contact's body name ("3") names; nullopt for a background vehicle.
+  [[nodiscard]] std::optional<ActorId> actor_named(const std::string& name) const;
+  // The route an actor drives now (the reference line of along-road measures), or null.
+  [[nodiscard]] const WaypointRoute* route_of(ActorId id) const;
 
  private:
   // Longitudinal behaviour of a scripted actor (the latest action on that axis wins).
@@ -114,7 +127,7 @@ class Engine {
   void update_ego(StepOutput& out);
   void check_placement(const ActorState& a, double t, StepOutput& out);
   [[nodiscard]] SetPose pose_command(const ActorSlot& slot, const ScriptedMotion& m) const;
-  [[nodiscard]] const WaypointRoute* route_of(ActorId id) const;
+  StepOutput step_scene_graph(const WorldSnapshot& snapshot);
   [[nodiscard]] bool collided(ActorId id) const;
 
   void fail(const std::string& reason, double t, StepOutput& out);

@@ -111,6 +111,7 @@ void Engine::start_action(const Action& action, double t, StepOutput& out) {
                           fmt::format("{} on actor {} ignored: the ego is driven by SUMO's driver model", what, id)});
   };
 
+  const std::size_t first_event = out.events.size();
   std::visit(
       [&](const auto& a) {
         using T = std::decay_t<decltype(a)>;
@@ -184,6 +185,14 @@ void Engine::start_action(const Action& action, double t, StepOutput& out) {
         } else {
           // EmptyAction: `{}` in the file does nothing.
         }
+      },
+      action.kind);
+  // The structured field: which actor the action's events are about.
+  std::visit(
+      [&](const auto& a) {
+        if constexpr (requires { a.actor; })
+          for (std::size_t i = first_event; i < out.events.size(); ++i)
+            if (!out.events[i].actor) out.events[i].actor = a.actor;
       },
       action.kind);
 }

@@ -173,6 +173,15 @@ JsonDocument JsonDocument::parse(std::string text, const std::string& path_for_m
   return doc;
 }
 
+JsonDocument JsonDocument::from_tree(nlohmann::json root, const std::string& path,
+                                     std::unordered_map<std::string, int> lines) {
+  JsonDocument doc;
+  doc.path_ = path;
+  doc.root_ = std::move(root);
+  doc.lines_ = std::make_shared<const LineIndex>(LineIndex::from_lines(std::move(lines)));
+  return doc;
+}
+
 // The line of every value, recorded on the first question (most documents are never
 // asked: a waypoint file of 57,000 points would spend most of its load time here).
 const LineIndex& JsonDocument::lines() const {

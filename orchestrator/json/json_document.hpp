@@ -6,6 +6,7 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <unordered_map>
 
 #include "core/diagnostics.hpp"
 #include "json/line_index.hpp"
@@ -25,6 +26,10 @@ class JsonDocument {
   // deeper than kMaxJsonDepth and text longer than kMaxJsonBytes.
   static JsonDocument load(const std::string& path);
   static JsonDocument parse(std::string text, const std::string& path_for_messages);
+  // A value tree read from another format (a YAML file), with the line of every pointer as
+  // that format's parser knew it: the same readers and messages serve both formats.
+  static JsonDocument from_tree(nlohmann::json root, const std::string& path,
+                                std::unordered_map<std::string, int> lines);
 
   [[nodiscard]] const nlohmann::json& root() const { return root_; }
   [[nodiscard]] const std::string& path() const { return path_; }

@@ -191,7 +191,23 @@ LineIndex LineIndex::build(const std::string& text, const std::string& path_for_
   return index;
 }
 
+LineIndex LineIndex::from_lines(std::unordered_map<std::string, int> lines) {
+  LineIndex index;
+  index.by_pointer_ = std::move(lines);
+  return index;
+}
+
 int LineIndex::line_of(std::string_view pointer) const {
+  if (!by_pointer_.empty()) {
+    // The pointer, else its nearest ancestor that has a line.
+    std::string p(pointer);
+    while (true) {
+      if (const auto it = by_pointer_.find(p); it != by_pointer_.end()) return it->second;
+      if (p.empty()) return 0;
+      const auto slash = p.rfind('/');
+      p.erase(slash == std::string::npos ? 0 : slash);
+    }
+  }
   if (entries_.empty()) return 0;
   std::uint32_t at = 0;
   while (!pointer.empty() && pointer.front() == '/') {

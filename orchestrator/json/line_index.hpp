@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <string>
 #include <string_view>
+#include <unordered_map>
 #include <vector>
 
 namespace orch {
@@ -15,6 +16,8 @@ class LineIndex {
   // Throws ScenarioError naming file, pointer and line when an object repeats a key.
   // Expects text that nlohmann parses (JsonDocument checks that first).
   static LineIndex build(const std::string& text, const std::string& path_for_messages);
+  // The lines another format's parser knew (a YAML file read into a JSON tree), by pointer.
+  static LineIndex from_lines(std::unordered_map<std::string, int> lines);
 
   // Line where the value at `pointer` starts (an object member's: the line of its key); for
   // a pointer that does not exist, the line of its nearest existing ancestor.
@@ -34,6 +37,7 @@ class LineIndex {
 
   std::vector<Entry> entries_;  // in document order: a value's children follow it
   std::string keys_;            // every member key, one after the other
+  std::unordered_map<std::string, int> by_pointer_;  // from_lines: pointer -> line
 };
 
 // Offsets of the first character of every line: line_starts[k] starts line k + 1.

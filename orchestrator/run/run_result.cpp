@@ -27,6 +27,41 @@ nlohmann::ordered_json body_json(const std::string& name) {
   return digits ? nlohmann::ordered_json(std::stoi(name)) : nlohmann::ordered_json(name);
 }
 
+// Metric values are rounded to 1e-6 so that the text does not depend on the last bits of a
+// floating-point sum.
+double rounded(double v) { return std::round(v * 1e6) / 1e6; }
+nlohmann::ordered_json optional_json(const std::optional<double>& v) {
+  return v ? nlohmann::ordered_json(rounded(*v)) : nlohmann::ordered_json(nullptr);
+}
+
+nlohmann::ordered_json extreme_json(const std::optional<metrics::Extreme>& e, bool with_partner) {
+  if (!e) return nullptr;
+  nlohmann::ordered_json j{{"value", rounded(e->value)}, {"time", rounded(e->time)}};
+  if (with_partner) j["partner"] = body_json(e->partner);
+  return j;
+}
+
+nlohmann::ordered_json metrics_json(const std::vector<metrics::ActorSummary>& all) {
+  nlohmann::ordered_json j = nlohmann::ordered_json::object();
+  for (const auto& s : all) {
+    j[std::to_string(s.actor)] = {{"min_ttc", extreme_json(s.min_ttc, true)},
+                                  {"min_thw", extreme_json(s.min_thw, true)},
+                                  {"min_gap", extreme_json(s.min_gap, true)},
+                                  {"max_drac", extreme_json(s.max_drac, true)},
+                                  {"min_follower_ttc", extreme_json(s.min_follower_ttc, true)},
+                                  {"min_follower_thw", extreme_json(s.min_follower_thw, true)},
+                                  {"min_dist", extreme_json(s.min_dist, true)},
+                                  {"min_pet", extreme_json(s.min_pet, true)},
+                                  {"max_decel", extreme_json(s.max_decel, false)},
+                                  {"max_abs_jerk", extreme_json(s.max_abs_jerk, false)},
+                                  {"max_lat_accel", extreme_json(s.max_lat_accel, false)},
+                                  {"max_speed", extreme_json(s.max_speed, false)},
+                                  {"standstill_time", rounded(s.standstill_time)},
+                                  {"lane_departure_time", rounded(s.lane_departure_time)}};
+  }
+  return j;
+}
+
 nlohmann::ordered_json file_json(const InputFile& f) {
   return {{"path", f.path}, {"sha256", f.sha256}};
 }
@@ -34,7 +69,7 @@ nlohmann::ordered_json file_json(const InputFile& f) {
 
 std::string to_json(const RunResult& r) {
   nlohmann::ordered_json j;
-  j["verdict"] = r.verdict;
+  j["verdict"] = to_string(r.verdict);
   j["reason"] = r.reason;
   j["sim_time"] = r.sim_time;
   j["steps"] = r.steps;
@@ -52,11 +87,17 @@ std::string to_json(const RunResult& r) {
   j["orchestrator_version"] = ORCH_VERSION;
   j["map_id"] = r.map_id;
   j["inputs"] = {{"scenario", file_json(r.scenario)}, {"waypoints", file_json(r.waypoints)}, {"net", file_json(r.net)}};
+  if (!r.evaluation.path.empty()) j["inputs"]["evaluation"] = file_json(r.evaluation);
   j["inputs"]["traffic"] = r.traffic_file.path.empty() ? nlohmann::ordered_json(nullptr) : file_json(r.traffic_file);
   j["traffic"] = r.traffic;
   j["sumo_args"] = r.sumo_args;
   j["events"] = nlohmann::ordered_json::array();
-  for (const auto& e : r.events) j["events"].push_back({{"time", e.time}, {"kind", kind_name(e.kind)}, {"text", e.text}});
+  for (const auto& e : r.events) {
+    nlohmann::ordered_json event{{"time", e.time}, {"kind", kind_name(e.kind)}, {"text", e.text}};
+    event["actor"] = e.actor ? nlohmann::ordered_json(*e.actor) : nlohmann::ordered_json(nullptr);
+    event["scene"] = e.scene ? nlohmann::ordered_json(*e.scene) : nlohmann::ordered_json(nullptr);
+    j["events"].push_back(std::move(event));
+  }
   j["warnings"] = r.warnings;
   j["collisions"] = nlohmann::ordered_json::array();
   for (const auto& c : r.collisions) {
@@ -104,6 +145,16 @@ std::string to_json(const RunResult& r) {
     j["actors"].push_back({{"actor_id", a.id}, {"sumo_id", a.sumo_id}, {"model_id", a.model_id},
                            {"description", a.description}, {"color", a.color}, {"length", a.length},
                            {"width", a.width}, {"ego", a.ego}});
+  j["metrics"] = metrics_json(r.metrics);
+  j["criteria"] = nlohmann::ordered_json::array();
+  for (const auto& c : r.criteria)
+    j["criteria"].push_back({{"name", c.name},
+                             {"actor", c.actor ? nlohmann::ordered_json(*c.actor) : nlohmann::ordered_json(nullptr)},
+                             {"metric", c.metric},
+                             {"expected", c.expected},
+                             {"actual", optional_json(c.actual)},
+                             {"at_time", optional_json(c.at_time)},
+                             {"success", c.success}});
   j["trace_rows"] = r.trace_rows;
   j["wall_time_s"] = r.wall_time_s;
   j["timing"] = {{"start_s", r.timing.start_s},
@@ -111,7 +162,9 @@ std::string to_json(const RunResult& r) {
                  {"orchestrator_s", r.timing.orchestrator_s},
                  {"plugin_s", r.timing.plugin_s},
                  {"finish_s", r.timing.finish_s}};
-  j["outputs"] = {{"trace", "trace.csv"}, {"log", "run.log"}, {"sumo_log", "sumo.log"}};
+  j["timing"]["observers_s"] = nlohmann::ordered_json::object();
+  for (const auto& [name, s] : r.timing.observers_s) j["timing"]["observers_s"][name] = s;
+  j["outputs"] = {{"trace", "trace.csv"}, {"log", "run.log"}, {"sumo_log", "sumo.log"}, {"metrics", "metrics.csv"}};
   return json_text(j, 2) + "\n";
 }
 
@@ -120,8 +173,11 @@ void write_result(const std::filesystem::path& dir, const RunResult& r) {
 }
 
 int exit_code_for(const RunResult& r) {
-  if (r.verdict == "success") return 0;
-  if (r.verdict == "failure") return 1;
+  switch (r.verdict) {
+    case Verdict::Success: return 0;
+    case Verdict::Failure: return 1;
+    case Verdict::Error: return 2;
+  }
   return 2;
 }
 

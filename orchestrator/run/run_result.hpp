@@ -6,7 +6,10 @@
 #include <string>
 #include <vector>
 
+#include "core/verdict.hpp"
+#include "criteria/criterion_result.hpp"
 #include "engine/engine.hpp"
+#include "metrics/actor_metrics.hpp"
 #include "run/ego_link.hpp"
 
 namespace orch {
@@ -29,7 +32,7 @@ struct ActorRecord {
 };
 
 struct RunResult {
-  std::string verdict = "error";  // success | failure | error
+  Verdict verdict = Verdict::Error;
   std::string reason;
   double sim_time = 0;
   long long steps = 0;
@@ -44,6 +47,7 @@ struct RunResult {
   InputFile scenario;
   InputFile waypoints;
   InputFile net;
+  InputFile evaluation;  // the evaluation file (path empty: none)
   // Background traffic (docs/background-traffic.md): the --traffic value (or the
   // scenario's own), its route file (path empty: none), the SUMO command line the run used.
   std::string traffic = "none";
@@ -56,8 +60,10 @@ struct RunResult {
   std::vector<engine::Contact> collisions;     // every contact, in the order they began
   std::vector<engine::LaneChangeConflict> lane_change_conflicts;  // background traffic in a lane change's way
   std::vector<engine::HandOverRecord> hand_overs;
-  std::optional<EgoLinkReport> ego_plugin;
-  std::vector<ActorRecord> actors;  // empty when the run ended before its actors were known  // the external ego plug-in's connection (--ego-port)
+  std::optional<EgoLinkReport> ego_plugin;  // the external ego plug-in's connection (--ego-port)
+  std::vector<ActorRecord> actors;  // empty when the run ended before its actors were known
+  std::vector<metrics::ActorSummary> metrics;           // per measured actor (docs/evaluation.md)
+  std::vector<criteria::CriterionResult> criteria;      // every criterion of an evaluation file
   double wall_time_s = 0;
   // Where the wall time went (docs/outputs.md): measured inside the one process, so the
   // orchestrator's own share does not depend on how fast the machine happens to be today.
@@ -67,6 +73,8 @@ struct RunResult {
     double orchestrator_s = 0;  // the rest of every step: reading, the engine, commands, the trace
     double plugin_s = 0;        // waiting for the ego plug-in's step (--ego-port)
     double finish_s = 0;        // results, flushing, closing SUMO
+    // The part of orchestrator_s each observer of the step loop took (trace, metrics, ...).
+    std::vector<std::pair<std::string, double>> observers_s;
   } timing;
   long long trace_rows = 0;
 };

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <memory>
 
 #include "core/errors.hpp"
 #include "core/files.hpp"
@@ -12,8 +13,12 @@
 #include "map/lane_map.hpp"
 #include "map/map_registry.hpp"
 #include "map/waypoint_file.hpp"
+#include "criteria/criteria_judge.hpp"
+#include "evaluation/result_jsonl.hpp"
+#include "metrics/metrics_recorder.hpp"
 #include "run/ego_link.hpp"
 #include "run/run_log.hpp"
+#include "run/run_observer.hpp"
 #include "run/trace_writer.hpp"
 #include "run/traffic_trace.hpp"
 #include "scenario/catalog.hpp"
@@ -41,6 +46,7 @@ Inputs load_inputs(const RunRequest& req, RunResult& result, RunLog& log) {
   result.scenario = {req.scenario_file, sha256_of_file(req.scenario_file)};
   if (!loaded.scenario) throw ScenarioError(loaded.diagnostics);
   scenario::Scenario s = std::move(*loaded.scenario);
+  if (req.evaluation && !req.evaluation->vehicle_model.empty()) s.ego.model_id = req.evaluation->vehicle_model;
   result.title = s.title;
   result.description = s.description;
   result.map_id = s.map_id;
@@ -97,15 +103,34 @@ std::filesystem::path resolve_traffic(const RunRequest& req, const Inputs& in, R
 // A collision involving the ego fails the test even when an ending scene was reached
 // afterwards (the run itself went on as scripted). Errors stay errors.
 void judge_collisions(const engine::Engine& engine, scenario::ActorId ego, RunResult& result) {
-  if (result.verdict == "error") return;
+  if (result.verdict == Verdict::Error) return;
   for (const auto& c : engine.contacts()) {
     if (!c.counted || (c.a != std::to_string(ego) && c.b != std::to_string(ego))) continue;
     const std::string other = c.a == std::to_string(ego) ? c.b : c.a;
     const std::string what = fmt::format("the ego collided with {} at t={:.2f} s", engine.describe_body(other), c.time);
-    result.reason = result.verdict == "success" ? what + " (" + result.reason + " afterwards)" : what + "; " + result.reason;
-    result.verdict = "failure";
+    result.reason = result.verdict == Verdict::Success ? what + " (" + result.reason + " afterwards)" : what + "; " + result.reason;
+    result.verdict = Verdict::Failure;
     return;
   }
+}
+
+// Criteria name actors of the scenario: checked before SUMO starts.
+void check_criteria_actors(const EvaluationRequest& ev, const engine::Engine& engine) {
+  for (const auto& c : ev.criteria)
+    if (c.actor && !engine.actors().find(*c.actor))
+      throw ScenarioError(SourceLocation{ev.file, "", 0},
+                          fmt::format("criterion \"{}\" names actor {}, which the scenario does not have", c.name, *c.actor));
+}
+
+// The criteria judge and result.jsonl, after the metrics they read.
+void add_evaluation_observers(const RunRequest& req, const metrics::MetricsRecorder& measured,
+                              std::vector<std::unique_ptr<RunObserver>>& observers) {
+  const EvaluationRequest& ev = *req.evaluation;
+  auto jsonl = std::make_unique<ResultJsonl>(req.out_dir / "result.jsonl", ev.conditions, ev.jsonl_every);
+  ResultJsonl* sink = jsonl.get();
+  observers.push_back(std::make_unique<criteria::CriteriaJudge>(
+      ev.criteria, measured, [sink](const criteria::FrameReport& r) { sink->frame(r); }));
+  observers.push_back(std::move(jsonl));
 }
 
 }  // namespace
@@ -128,13 +153,17 @@ RunResult run_scenario(const RunRequest& req, Simulator& sim) {
   std::optional<Inputs> in;
   std::optional<LaneMap> lanes;
   std::optional<engine::Engine> engine;
-  std::optional<TraceWriter> trace;
-  std::optional<TrafficTrace> traffic_trace;
+  // The step loop's observers (run_observer.hpp), in the order they see each step.
+  std::vector<std::unique_ptr<RunObserver>> observers;
+  std::vector<double> observer_s;  // time in each observer's step
+  bool jsonl_written = false;  // result.jsonl (evaluation runs) has its observer or its error line
   try {
+    if (req.evaluation) result.evaluation = {req.evaluation->file, sha256_of_file(req.evaluation->file)};
     in.emplace(load_inputs(req, result, log));
     lanes.emplace(LaneMap::build(in->map.net_path().string(), in->waypoints));
     engine.emplace(in->scenario, engine::MapContext{in->waypoints, *lanes, in->map.lane_extension}, in->catalog,
                    engine::EngineOptions{req.step, req.ego_link != nullptr});
+    if (req.evaluation) check_criteria_actors(*req.evaluation, *engine);
     log.note(fmt::format("map {} ({}) | {} actors", in->map.id, in->map.net_path().string(),
                          engine->actors().slots().size()));
 
@@ -150,8 +179,17 @@ RunResult run_scenario(const RunRequest& req, Simulator& sim) {
     if (req.ego_link) log.note(req.ego_link->listen());
     sim.start(config);
     result.sumo_version = sim.version();
-    trace.emplace(req.out_dir / "trace.csv", *lanes);
-    traffic_trace.emplace(req.out_dir, req.trace_background);
+    observers.push_back(std::make_unique<TraceWriter>(req.out_dir / "trace.csv", *lanes));
+    observers.push_back(std::make_unique<TrafficTrace>(req.out_dir, req.trace_background));
+    auto metrics = std::make_unique<metrics::MetricsRecorder>(req.out_dir / "metrics.csv", *lanes);
+    const metrics::MetricsRecorder& measured = *metrics;
+    observers.push_back(std::move(metrics));
+    if (req.evaluation) {
+      add_evaluation_observers(req, measured, observers);
+      jsonl_written = true;
+    }
+    for (const auto& o : observers) o->begin(*engine);
+    observer_s.assign(observers.size(), 0.0);
 
     auto out = engine->start();
     log_events(log, result, out.events);
@@ -167,17 +205,21 @@ RunResult run_scenario(const RunRequest& req, Simulator& sim) {
       out = engine->step(snap);
       result.sim_time = snap.time;
       log_events(log, result, out.events);
-      trace->record(*engine, plugin_driven_actor(req.ego_link, tracked));
-      traffic_trace->record(snap);
+      const StepView view{*engine, snap, plugin_driven_actor(req.ego_link, tracked)};
+      for (std::size_t i = 0; i < observers.size(); ++i) {
+        const auto before_observer = Clock::now();
+        observers[i]->step(view);
+        observer_s[i] += seconds_since(before_observer);
+      }
       if (engine->state() != engine::RunState::Running) break;
       if (req.max_time && snap.time >= *req.max_time - 1e-9) {
-        result.verdict = "failure";
+        result.verdict = Verdict::Failure;
         result.reason = fmt::format("--max-time {} s reached in scene {}", *req.max_time, engine->scene());
         log.at(snap.time, result.reason);
         break;
       }
       if (req.interrupted && req.interrupted->load()) {
-        result.verdict = "error";
+        result.verdict = Verdict::Error;
         result.reason = fmt::format("interrupted at t={:.3f} s", snap.time);
         log.at(snap.time, result.reason);
         break;
@@ -193,39 +235,43 @@ RunResult run_scenario(const RunRequest& req, Simulator& sim) {
     loop_end = Clock::now();
     switch (engine->state()) {
       case engine::RunState::EndingReached:
-        result.verdict = "success";
+        result.verdict = Verdict::Success;
         result.reason = engine->end_reason();
         result.ending_scene = engine->scene();
         break;
       case engine::RunState::StopConditionMet:
-        result.verdict = "failure";
+        result.verdict = Verdict::Failure;
         result.reason = engine->end_reason();
         break;
       case engine::RunState::Error:
-        result.verdict = "error";
+        result.verdict = Verdict::Error;
         result.reason = engine->end_reason();
         break;
       case engine::RunState::Running:
         break;  // max time or interrupted: already set
     }
   } catch (const ScenarioError& e) {
-    result.verdict = "error";
+    result.verdict = Verdict::Error;
+    if (req.evaluation && !jsonl_written) {
+      write_format_error_jsonl(req.out_dir / "result.jsonl", e.diagnostics());
+      jsonl_written = true;
+    }
     result.reason = fmt::format("invalid scenario: {} error(s); first: {}", e.diagnostics().error_count(),
                                 first_line(e.what()));
     for (const auto& d : e.diagnostics().items())
       if (d.severity == Severity::Error) log.note(d.format());
   } catch (const MapError& e) {
-    result.verdict = "error";
+    result.verdict = Verdict::Error;
     result.reason = std::string("map: ") + e.what();
   } catch (const SimulationError& e) {
-    result.verdict = "error";
+    result.verdict = Verdict::Error;
     result.reason = e.what();
   } catch (const OrchError& e) {
-    result.verdict = "error";
+    result.verdict = Verdict::Error;
     result.reason = e.what();
   } catch (const std::exception& e) {
     // A bug of ours must still leave a result behind, clearly marked as such.
-    result.verdict = "error";
+    result.verdict = Verdict::Error;
     result.reason = std::string("internal error: ") + e.what();
   }
   if (loop_start && !loop_end) loop_end = Clock::now();  // the loop ended by an exception
@@ -239,13 +285,13 @@ RunResult run_scenario(const RunRequest& req, Simulator& sim) {
                                slot.spec.color, slot.model.length, slot.model.width, slot.is_ego()});
     judge_collisions(*engine, in->scenario.ego.id, result);
   }
-  if (traffic_trace) traffic_trace->flush();
-  if (trace) {
-    trace->flush();
-    result.trace_rows = trace->rows();
-  }
+  for (const auto& o : observers) o->finish(result);
+  for (std::size_t i = 0; i < observer_s.size(); ++i) result.timing.observers_s.emplace_back(observers[i]->name(), observer_s[i]);
+  // An evaluation run that ended before its observers existed still gets its result.jsonl.
+  if (req.evaluation && !jsonl_written)
+    write_unstarted_jsonl(req.out_dir / "result.jsonl", req.evaluation->conditions, result);
   if (req.ego_link) {
-    req.ego_link->finish(result.verdict, result.reason);
+    req.ego_link->finish(to_string(result.verdict), result.reason);
     result.ego_plugin = req.ego_link->report();
     log.note(describe(*result.ego_plugin));
   }
@@ -257,7 +303,7 @@ RunResult run_scenario(const RunRequest& req, Simulator& sim) {
   result.timing.orchestrator_s =
       std::max(0.0, seconds(*loop_start, *loop_end) - result.timing.sumo_step_s - result.timing.plugin_s);
   result.timing.finish_s = std::max(0.0, result.wall_time_s - seconds(wall_start, *loop_end));
-  log.note(fmt::format("verdict {}: {} (simulated {:.2f} s in {} steps, {:.2f} s wall)", result.verdict,
+  log.note(fmt::format("verdict {}: {} (simulated {:.2f} s in {} steps, {:.2f} s wall)", to_string(result.verdict),
                        result.reason, result.sim_time, result.steps, result.wall_time_s));
   write_result(req.out_dir, result);
   return result;

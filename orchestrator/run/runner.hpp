@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "evaluation/evaluation_request.hpp"
 #include "run/ego_link.hpp"
 #include "run/run_result.hpp"
 #include "run/simulator.hpp"
@@ -30,6 +31,9 @@ struct RunRequest {
   // per hour and lane, or a SUMO route file; empty: the scenario's own "traffic", else none.
   std::string traffic;
   bool trace_background = false;  // background.csv: the background vehicles near the actors
+  // An evaluation file's criteria (docs/evaluation.md): judged every step, folded into the
+  // verdict, written to result.json's "criteria" and to result.jsonl.
+  std::optional<EvaluationRequest> evaluation;
 };
 
 RunResult run_scenario(const RunRequest& request, Simulator& simulator);

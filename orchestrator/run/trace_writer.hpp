@@ -10,16 +10,19 @@
 
 #include "engine/engine.hpp"
 #include "map/lane_map.hpp"
+#include "run/run_observer.hpp"
+#include "run/run_result.hpp"
 
 namespace orch {
 
-class TraceWriter {
+class TraceWriter : public RunObserver {
  public:
+  [[nodiscard]] const char* name() const override { return "trace"; }
   static constexpr const char* kHeader =
       "time,scene_id,actor_id,x,y,heading,speed,accel,edge,lane,lane_pos,lat_offset,signals,siren,driver";
 
   TraceWriter(const std::filesystem::path& path, const LaneMap& lanes);
-  ~TraceWriter();
+  ~TraceWriter() override;
   TraceWriter(const TraceWriter&) = delete;
   TraceWriter& operator=(const TraceWriter&) = delete;
 
@@ -27,6 +30,12 @@ class TraceWriter {
   void record(const engine::Engine& engine, std::optional<scenario::ActorId> plugin_driven = std::nullopt);
   void flush();
   [[nodiscard]] long long rows() const { return rows_; }
+
+  void step(const StepView& view) override { record(view.engine, view.plugin_driven); }
+  void finish(RunResult& result) noexcept override {
+    flush();
+    result.trace_rows = rows_;
+  }
 
  private:
   [[nodiscard]] double lateral_offset(const engine::ActorState& a) const;

@@ -11,22 +11,27 @@
 #include <filesystem>
 
 #include "engine/world.hpp"
+#include "run/run_observer.hpp"
 
 namespace orch {
 
-class TrafficTrace {
+class TrafficTrace : public RunObserver {
  public:
+  [[nodiscard]] const char* name() const override { return "traffic_trace"; }
   static constexpr const char* kCountsHeader = "time,background_vehicles,nearby_vehicles,waiting_over_60s";
   static constexpr const char* kBackgroundHeader = "time,vehicle_id,x,y,heading,speed,length,width";
 
   TrafficTrace(const std::filesystem::path& dir, bool background_rows);
-  ~TrafficTrace();
+  ~TrafficTrace() override;
   TrafficTrace(const TrafficTrace&) = delete;
   TrafficTrace& operator=(const TrafficTrace&) = delete;
 
   void record(const engine::WorldSnapshot& snapshot);
   void flush();
   [[nodiscard]] long long background_rows() const { return background_rows_; }
+
+  void step(const StepView& view) override { record(view.snapshot); }
+  void finish(RunResult& /*result*/) noexcept override { flush(); }
 
  private:
   std::FILE* counts_ = nullptr;

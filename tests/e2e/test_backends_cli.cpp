@@ -46,7 +46,8 @@ TEST(BackendsCli, LibsumoAndTraciGiveByteIdenticalOutputsWithTraffic) {
   ASSERT_EQ(run_scenario(cut_in(), b, with("traci")).exit_code, 1);
   EXPECT_EQ(read_json(a / "result.json")["backend"], "libsumo");
   EXPECT_EQ(read_json(b / "result.json")["backend"], "traci");
-  for (const char* file : {"trace.csv", "counts.csv", "background.csv"}) {
+  EXPECT_EQ(read_json(a / "result.json")["metrics"], read_json(b / "result.json")["metrics"]);
+  for (const char* file : {"trace.csv", "counts.csv", "background.csv", "metrics.csv"}) {
     SCOPED_TRACE(file);
     const std::string bytes = slurp(a / file);
     EXPECT_GT(bytes.size(), 1000u);

@@ -61,7 +61,17 @@ TEST(RunCli, SampleCutInSucceedsWithTheDocumentedOutputs) {
   EXPECT_EQ(timing["plugin_s"].get<double>(), 0.0);  // no plug-in
   EXPECT_GT(timing["start_s"].get<double>(), 0.0);
   EXPECT_GT(timing["orchestrator_s"].get<double>(), 0.0);
-  EXPECT_GT(timing["sumo_step_s"].get<double>(), timing["orchestrator_s"].get<double>());
+  EXPECT_GT(timing["sumo_step_s"].get<double>(), 0.0);
+  // The observers' shares (trace, metrics, ...) are parts of the orchestrator's own time.
+  // (With two cars on the road SUMO's step is as short as the orchestrator's: no ordering
+  // between them is asserted; scripts/bench/ measures the shares in dense traffic.)
+  double observers = 0;
+  for (const char* name : {"trace", "traffic_trace", "metrics"}) {
+    ASSERT_TRUE(timing["observers_s"][name].is_number()) << name;
+    EXPECT_GT(timing["observers_s"][name].get<double>(), 0.0) << name;
+    observers += timing["observers_s"][name].get<double>();
+  }
+  EXPECT_LE(observers, timing["orchestrator_s"].get<double>());
 }
 
 TEST(RunCli, SameInputsAndSeedGiveAByteIdenticalTrace) {

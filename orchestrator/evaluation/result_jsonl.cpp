@@ -1,0 +1,100 @@
+#include "evaluation/result_jsonl.hpp"
+
+#include <fmt/format.h>
+
+#include <chrono>
+
+#include "core/errors.hpp"
+#include "core/files.hpp"
+#include "run/run_result.hpp"
+
+namespace orch {
+
+namespace {
+
+double system_stamp() {
+  return std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
+}
+
+nlohmann::ordered_json stamp(double simulation) {
+  return {{"System", system_stamp()}, {"Simulation", simulation}};
+}
+
+const char* success_fail(bool ok) { return ok ? "Success" : "Fail"; }
+
+void write_line(std::FILE* f, const nlohmann::ordered_json& j) { fmt::print(f, "{}\n", j.dump()); }
+
+}  // namespace
+
+ResultJsonl::ResultJsonl(const std::filesystem::path& path, const nlohmann::json& conditions, int every)
+    : every_(std::max(1, every)) {
+  file_ = std::fopen(path.c_str(), "w");
+  if (!file_) throw OrchError("cannot write " + path.string());
+  write_line(file_, {{"Condition", conditions}});
+}
+
+ResultJsonl::~ResultJsonl() {
+  if (file_) std::fclose(file_);
+}
+
+void ResultJsonl::frame(const criteria::FrameReport& report) {
+  last_time_ = report.time;
+  if (steps_++ % every_ != 0) return;
+  nlohmann::ordered_json frames = nlohmann::ordered_json::object();
+  std::string failing;
+  for (const auto& [state, f] : report.frames) {
+    const bool total = state->holds();
+    if (!total) failing += (failing.empty() ? "" : ", ") + state->spec().name;
+    nlohmann::ordered_json info{{"Measured", f.measured}};
+    if (f.value) info["Value"] = *f.value;
+    if (!f.partner.empty()) info["Partner"] = f.partner;
+    frames[state->spec().name] = {{"Result", {{"Total", success_fail(total)}, {"Frame", success_fail(f.ok)}}},
+                                  {"Info", info}};
+  }
+  const std::string summary = failing.empty() ? fmt::format("Passed: {} criteria hold", report.frames.size())
+                                              : "Failed: " + failing;
+  write_line(file_, {{"Result", {{"Success", failing.empty()}, {"Summary", summary}}},
+                     {"Stamp", stamp(report.time)},
+                     {"Frame", frames}});
+}
+
+namespace {
+nlohmann::ordered_json final_line(const RunResult& result) {
+  const bool ok = result.verdict == Verdict::Success;
+  const std::string summary = std::string(ok ? "Passed: " : "Failed: ") +
+                              (result.verdict == Verdict::Error ? "error: " : "") + result.reason;
+  return {{"Result", {{"Success", ok}, {"Summary", summary}}},
+          {"Stamp", stamp(result.sim_time)},
+          {"Frame", nlohmann::ordered_json::object()}};
+}
+}  // namespace
+
+void ResultJsonl::finish(RunResult& result) noexcept {
+  try {
+    write_line(file_, final_line(result));
+  } catch (const std::exception&) {
+    // fmt failing to write: the file stays as it is, result.json still says everything.
+  }
+  std::fflush(file_);
+}
+
+void write_unstarted_jsonl(const std::filesystem::path& path, const nlohmann::json& conditions, const RunResult& result) {
+  const nlohmann::ordered_json condition{{"Condition", conditions}};
+  write_file_atomically(path, condition.dump() + "\n" + final_line(result).dump() + "\n");
+}
+
+void write_format_error_jsonl(const std::filesystem::path& path, const Diagnostics& diagnostics) {
+  std::string first;
+  for (const auto& d : diagnostics.items())
+    if (d.severity == Severity::Error) {
+      first = d.format();
+      break;
+    }
+  nlohmann::ordered_json condition{{"Condition", nlohmann::ordered_json::object()}};
+  nlohmann::ordered_json last{{"Result", {{"Success", false}, {"Summary", "ScenarioFormatError: " + first}}},
+                              {"Stamp", {{"System", system_stamp()}, {"Simulation", 0.0}}},
+                              {"Frame", nlohmann::ordered_json::object()}};
+  write_file_atomically(path, condition.dump() + "\n" + last.dump() + "\n");
+}
+
+}  // namespace orch

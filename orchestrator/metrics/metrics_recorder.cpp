@@ -1,0 +1,156 @@
+#include "metrics/metrics_recorder.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <limits>
+
+#include "core/errors.hpp"
+#include "metrics/box_distance.hpp"
+#include "metrics/lane_keeping.hpp"
+#include "run/run_result.hpp"
+
+namespace orch::metrics {
+
+namespace {
+
+std::string cell(const std::optional<double>& v) { return v ? fmt::format("{:.3f}", *v) : std::string{}; }
+
+struct Measured {
+  Body body;
+  engine::Box box;
+  bool actor = false;
+};
+
+}  // namespace
+
+MetricsRecorder::MetricsRecorder(const std::filesystem::path& csv, const LaneMap& lanes) : lanes_(lanes) {
+  for (int i = 0; i < static_cast<int>(lanes.lanes().size()); ++i) lane_index_[lanes.lane(i).id] = i;
+  file_ = std::fopen(csv.c_str(), "w");
+  if (!file_) throw OrchError("cannot write " + csv.string());
+  fmt::print(file_, "{}\n", kHeader);
+}
+
+MetricsRecorder::~MetricsRecorder() {
+  if (file_) std::fclose(file_);
+}
+
+const ActorMetrics* MetricsRecorder::current(scenario::ActorId id) const {
+  for (const auto& m : current_)
+    if (m.actor == id) return &m;
+  return nullptr;
+}
+
+std::optional<double> MetricsRecorder::departure(const engine::ActorState& a, double length, double width) const {
+  const auto it = lane_index_.find(a.edge + "_" + std::to_string(a.lane));
+  if (it == lane_index_.end()) return std::nullopt;
+  const LaneInfo& lane = lanes_.lane(it->second);
+  const LanePlace place = lanes_.place_on_lane(it->second, a.position);
+  const double lane_heading = lane.shape.heading_at(place.lane_pos * lane.geometry_factor());
+  return lane_departure(place.lateral, a.heading - lane_heading, length, width, lane.width);
+}
+
+void MetricsRecorder::step(const StepView& view) {
+  const engine::WorldSnapshot& snap = view.engine.judged();
+  const double dt = last_time_ ? snap.time - *last_time_ : 0.0;
+  last_time_ = snap.time;
+  std::vector<Measured> bodies;
+  for (const auto& a : snap.actors) {
+    if (!a.present) continue;
+    const engine::ActorSlot* slot = view.engine.actors().find(a.id);
+    if (!slot) continue;
+    Body b{std::to_string(a.id), a.position, a.heading, a.speed, slot->model.length, slot->model.width};
+    const engine::Box box{a.position, a.heading, b.length, b.width};
+    append_sample(trajectories_[a.id], {snap.time, box});
+    bodies.push_back({std::move(b), box, true});
+  }
+  for (const auto& v : snap.nearby)
+    bodies.push_back({Body{v.sumo_id, v.position, v.heading, v.speed, v.length, v.width},
+                      engine::Box{v.position, v.heading, v.length, v.width}, false});
+  std::vector<Body> others;
+  others.reserve(bodies.size());
+  for (const auto& b : bodies) others.push_back(b.body);
+
+  current_.clear();
+  for (const auto& a : snap.actors) {
+    if (!a.present) continue;
+    const engine::ActorSlot* slot = view.engine.actors().find(a.id);
+    if (!slot || slot->tracked.kind != ActorKind::Vehicle) continue;
+    ActorMetrics m;
+    m.time = snap.time;
+    m.actor = a.id;
+    m.speed = a.speed;
+    const Body self{std::to_string(a.id), a.position, a.heading, a.speed, slot->model.length, slot->model.width};
+    if (const WaypointRoute* route = view.engine.route_of(a.id)) {
+      const Neighbours n = find_neighbours(route->line, self, others);
+      m.leader = n.leader;
+      m.follower = n.follower;
+    }
+    const KinematicSample sample{snap.time, a.speed, a.heading};
+    const auto before = last_sample_.find(a.id);
+    const auto previous = last_kinematics_.find(a.id);
+    m.kinematics = kinematics_step(before == last_sample_.end() ? nullptr : &before->second,
+                                   previous == last_kinematics_.end() ? nullptr : &previous->second, sample);
+    last_sample_[a.id] = sample;
+    last_kinematics_[a.id] = m.kinematics;
+    m.lane_departure = departure(a, self.length, self.width);
+
+    const engine::Box own{a.position, a.heading, self.length, self.width};
+    const double own_reach = std::hypot(self.length, self.width) / 2;
+    double best = std::numeric_limits<double>::infinity();
+    for (const auto& b : bodies) {
+      if (b.body.id == self.id) continue;
+      // Centres farther apart than the best distance plus both half-diagonals cannot beat it.
+      const double reach = own_reach + std::hypot(b.body.length, b.body.width) / 2;
+      if ((b.body.centre - a.position).norm() - reach > best) continue;
+      const double d = box_distance(own, b.box);
+      if (d < best) {
+        best = d;
+        m.min_dist_to = b.body.id;
+      }
+    }
+    if (std::isfinite(best)) m.min_dist = best;
+
+    fmt::print(file_, "{:.3f},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", snap.time, a.id,
+               m.leader ? m.leader->other : "", cell(metric_value(m, "gap")), cell(metric_value(m, "rel_speed")),
+               cell(metric_value(m, "ttc")), cell(metric_value(m, "thw")), cell(metric_value(m, "drac")),
+               cell(m.kinematics.accel), cell(m.kinematics.jerk), cell(m.kinematics.lat_accel), cell(m.lane_departure),
+               cell(m.min_dist), m.min_dist_to);
+    auto& summary = summaries_[a.id];
+    summary.actor = a.id;
+    summary.add(m, dt);
+    current_.push_back(std::move(m));
+  }
+  // Every 200 steps the rows reach the disk even if the process dies.
+  if (++steps_since_flush_ >= 200) {
+    std::fflush(file_);
+    steps_since_flush_ = 0;
+  }
+}
+
+std::vector<ActorSummary> MetricsRecorder::summaries() const {
+  std::vector<ActorSummary> out;
+  for (const auto& [id, s] : summaries_) {
+    ActorSummary with_pet = s;
+    // PET against every other actor whose path crossed this one's.
+    for (const auto& [other, trajectory] : trajectories_) {
+      if (other == id || !trajectories_.count(id)) continue;
+      const auto pet = post_encroachment_time(trajectories_.at(id), trajectory);
+      if (pet && (!with_pet.min_pet || pet->pet < with_pet.min_pet->value))
+        with_pet.min_pet = Extreme{pet->pet, pet->time, std::to_string(other)};
+    }
+    out.push_back(std::move(with_pet));
+  }
+  return out;
+}
+
+void MetricsRecorder::finish(RunResult& result) noexcept {
+  std::fflush(file_);
+  try {
+    result.metrics = summaries();
+  } catch (const std::exception&) {
+    // Out of memory at worst: the run's verdict and files stand without the summary.
+  }
+}
+
+}  // namespace orch::metrics

@@ -1,0 +1,54 @@
+#pragma once
+// The metrics of a run (docs/evaluation.md): a RunObserver that measures every present
+// vehicle actor (the ego and the scripted vehicles) each step against every other body the
+// snapshot holds (actors and the nearby background vehicles), writes metrics.csv and, at the
+// end, the per-actor summary into result.json. Criteria read this step's values through
+// current().
+#include <cstdio>
+#include <filesystem>
+#include <map>
+#include <unordered_map>
+#include <vector>
+
+#include "map/lane_map.hpp"
+#include "metrics/actor_metrics.hpp"
+#include "metrics/pet.hpp"
+#include "run/run_observer.hpp"
+
+namespace orch::metrics {
+
+class MetricsRecorder : public RunObserver {
+ public:
+  [[nodiscard]] const char* name() const override { return "metrics"; }
+  static constexpr const char* kHeader =
+      "time,actor_id,leader,gap,rel_speed,ttc,thw,drac,accel,jerk,lat_accel,lane_departure,min_dist,min_dist_to";
+
+  MetricsRecorder(const std::filesystem::path& csv, const LaneMap& lanes);
+  ~MetricsRecorder() override;
+  MetricsRecorder(const MetricsRecorder&) = delete;
+  MetricsRecorder& operator=(const MetricsRecorder&) = delete;
+
+  void step(const StepView& view) override;
+  void finish(RunResult& result) noexcept override;
+
+  // This step's metrics, one per measured actor present.
+  [[nodiscard]] const std::vector<ActorMetrics>& current() const { return current_; }
+  [[nodiscard]] const ActorMetrics* current(scenario::ActorId id) const;
+  [[nodiscard]] std::vector<ActorSummary> summaries() const;
+
+ private:
+  [[nodiscard]] std::optional<double> departure(const engine::ActorState& a, double length, double width) const;
+
+  std::FILE* file_ = nullptr;
+  const LaneMap& lanes_;
+  std::unordered_map<std::string, int> lane_index_;  // SUMO lane id -> LaneMap index
+  std::vector<ActorMetrics> current_;
+  std::map<scenario::ActorId, KinematicSample> last_sample_;
+  std::map<scenario::ActorId, Kinematics> last_kinematics_;
+  std::map<scenario::ActorId, ActorSummary> summaries_;
+  std::map<scenario::ActorId, std::vector<TrajectorySample>> trajectories_;
+  std::optional<double> last_time_;
+  int steps_since_flush_ = 0;
+};
+
+}  // namespace orch::metrics
