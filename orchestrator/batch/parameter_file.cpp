@@ -108,6 +108,9 @@ ordered_json output_block(const std::string& logical_uuid, const std::string& pa
           {"result_file", "runs/" + id + "/result.json"},
           {"trace_file", "runs/" + id + "/trace.csv"},
           {"log_file", "runs/" + id + "/run.log"},
+          // Written by `batch --video` for the runs it films (the failing ones), as the ATLAS
+          // model's parameter sets name their video.
+          {"mp4_file", "runs/" + id + "/video.mp4"},
           {"execution_file", "executions/execution_" + id + ".json"}};
 }
 
