@@ -188,6 +188,14 @@ void Engine::move_scripted_actors(double t, StepOutput& out) {
 void Engine::check_placement(const ActorState& a, double t, StepOutput& out) {
   const auto it = placed_on_.find(a.id);
   if (it == placed_on_.end() || (a.edge == it->second.first && a.lane == it->second.second)) return;
+  // Where one internal lane of the route ends and the next begins, SUMO may keep the front
+  // on the one before for a step: still the route's own lane, not a crossing one.
+  if (const auto m = motions_.find(a.id); m != motions_.end())
+    if (const RouteLanes* rl = map_.lanes.route(m->second.route().id)) {
+      const std::string sumo_lane = fmt::format("{}_{}", a.edge, a.lane);
+      for (const int l : rl->lanes)
+        if (map_.lanes.lane(l).id == sumo_lane) return;
+    }
   const std::string key = fmt::format("{}:{}_{}", a.id, it->second.first, it->second.second);
   if (!misplaced_.insert(key).second) return;
   out.events.push_back({t, EventKind::Warning,
