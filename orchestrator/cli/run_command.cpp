@@ -45,6 +45,7 @@ int run_command(const RunOptions& o) {
   req.interrupted = &g_interrupted;
   req.traffic = o.traffic;
   req.trace_background = o.trace_background;
+  req.ego_entity = o.ego_entity;
 
   const std::string backend = choose_backend(o);
   SumoBackendOptions sumo_options;

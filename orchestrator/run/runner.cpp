@@ -7,12 +7,14 @@
 
 #include "core/errors.hpp"
 #include "core/files.hpp"
+#include "core/scenario_format.hpp"
 #include "engine/engine.hpp"
 #include "map/background_traffic.hpp"
 #include "map/lane_map.hpp"
 #include "map/map_registry.hpp"
 #include "map/waypoint_file.hpp"
 #include "run/ego_link.hpp"
+#include "run/openscenario_runner.hpp"
 #include "run/run_log.hpp"
 #include "run/trace_writer.hpp"
 #include "run/traffic_trace.hpp"
@@ -111,6 +113,8 @@ void judge_collisions(const engine::Engine& engine, scenario::ActorId ego, RunRe
 }  // namespace
 
 RunResult run_scenario(const RunRequest& req, Simulator& sim) {
+  // The one place where the language picks the runtime (the content decides, not the name).
+  if (detect_scenario_format(req.scenario_file) == ScenarioFormat::OpenScenario) return run_openscenario(req, sim);
   const auto wall_start = Clock::now();
   std::optional<Clock::time_point> loop_start, loop_end;
   std::filesystem::create_directories(req.out_dir);

@@ -30,6 +30,8 @@ struct RunRequest {
   // per hour and lane, or a SUMO route file; empty: the scenario's own "traffic", else none.
   std::string traffic;
   bool trace_background = false;  // background.csv: the background vehicles near the actors
+  // OpenSCENARIO runs: the ego entity (--ego NAME); empty: the one with the ALKSController.
+  std::string ego_entity;
 };
 
 RunResult run_scenario(const RunRequest& request, Simulator& simulator);
