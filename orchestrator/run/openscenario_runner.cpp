@@ -115,6 +115,7 @@ RunResult run_openscenario(const RunRequest& req, Simulator& sim) {
   std::optional<EntityTrace> trace;
   std::optional<std::string> collision;
   std::string ego;
+  int background = 0;  // SUMO vehicles that are not entities, at the last step
   try {
     if (req.ego_link)
       throw OrchError("--ego-port: an external ego is not supported for OpenSCENARIO runs yet (docs/openscenario.md)");
@@ -159,6 +160,7 @@ RunResult run_openscenario(const RunRequest& req, Simulator& sim) {
       const double t = runtime->time();
       const engine::WorldSnapshot snap = sim.read(actors->tracked());
       result.sim_time = t;
+      background = snap.other_vehicles;
       trace->record(t, snap, *actors, ego);
       // The ego as SUMO drove it is what the storyboard's conditions see from now on.
       if (const engine::ActorState* e = ego.empty() ? nullptr : find_actor(snap, *actors, ego); e && e->present) {
@@ -190,6 +192,8 @@ RunResult run_openscenario(const RunRequest& req, Simulator& sim) {
       sim.apply(actors->place(runtime->entities()));
     }
     log.at(result.sim_time, result.reason);
+    if (!result.traffic.empty() && result.traffic != "none")
+      log.note(fmt::format("{} background vehicles in SUMO at the end", background));
   } catch (const ScenarioError& e) {
     result.verdict = "error";
     result.reason = fmt::format("invalid scenario: {} error(s); first: {}", e.diagnostics().error_count(),
