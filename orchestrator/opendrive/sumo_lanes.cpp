@@ -42,23 +42,19 @@ SumoLaneIndex::SumoLaneIndex(const RoadNetwork& roads, const std::string& net_fi
 
 std::optional<SumoLane> SumoLaneIndex::find(const std::string& road_id, int lane_id, double s) const {
   const Road* road = roads_.find(road_id);
-  if (!road || lane_id == 0) return std::nullopt;
+  if (!road || lane_id == 0 || road->sections.empty()) return std::nullopt;
   const LaneSection& section = road->section_at(s);
   const std::string base = (lane_id < 0 ? "-" : "") + road_id;
-  // The road's single edge, else the edge of the lane section holding s.
+  // The road's single edge, else the piece "<edge>#<k>" of the lane section holding s:
+  // netconvert splits the road's edges at its lane sections and numbers the pieces along s
+  // on both sides (checked against netconvert 1.15 in test_opendrive_sumo_lanes.cpp).
   std::string edge;
-  double section_start = 0.0;
+  std::size_t section_index = 0;
+  while (section_index + 1 < road->sections.size() && road->sections[section_index + 1].s <= s + 1e-9) ++section_index;
   if (lane_counts_.count(base)) {
     edge = base;
   } else {
-    for (auto it = lane_counts_.lower_bound(base + "."); it != lane_counts_.end(); ++it) {
-      if (it->first.compare(0, base.size() + 1, base + ".") != 0) break;
-      char* end = nullptr;
-      const double start = std::strtod(it->first.c_str() + base.size() + 1, &end);
-      if (*end != '\0' || start > s + 1e-6 || (!edge.empty() && start < section_start)) continue;
-      edge = it->first;
-      section_start = start;
-    }
+    if (const std::string piece = base + "#" + std::to_string(section_index); lane_counts_.count(piece)) edge = piece;
   }
   if (edge.empty()) return std::nullopt;
   // Rank of the lane among the kept lanes of its side, counted outward from the centre.

@@ -1,8 +1,8 @@
 #pragma once
 // Which SUMO lane netconvert made of an OpenDRIVE lane: the hint SUMO needs to put a scripted
 // entity on the right lane. netconvert names an edge after its road: "-<road>" for the right
-// lanes (driving along s), "<road>" for the left ones, with ".<section start>" appended
-// when the road has several lane sections; the lanes whose type the lane type map discards
+// lanes (driving along s), "<road>" for the left ones, split into "<edge>#0", "#1", ... along
+// s when the road has several lane sections; the lanes whose type the lane type map discards
 // (lane_type_map_xml) are dropped and SUMO lane 0 is the outermost of those kept.
 #include <map>
 #include <optional>

@@ -77,11 +77,15 @@ TEST(OpenDriveSumoLanes, EveryKeptLaneMapsToTheSumoLaneThroughItsCentre) {
   const SumoLaneIndex index(roads, net.net_file.string());
   pugi::xml_document doc;
   ASSERT_TRUE(doc.load_file(net.net_file.c_str()));
+  std::string edges;  // for failure messages
+  for (const pugi::xml_node e : doc.child("net").children("edge"))
+    edges += std::string(" ") + e.attribute("id").value() + "(" +
+             std::to_string(std::distance(e.children("lane").begin(), e.children("lane").end())) + ")";
   struct Case { int lane; double s; };
   for (const Case c : {Case{-2, 20}, Case{-3, 60}, Case{-4, 100}, Case{1, 30}, Case{1, 200}, Case{-2, 180},
                        Case{-3, 280}}) {
     const auto found = index.find("7", c.lane, c.s);
-    ASSERT_TRUE(found.has_value()) << "lane " << c.lane << " s " << c.s;
+    ASSERT_TRUE(found.has_value()) << "lane " << c.lane << " s " << c.s << "; edges:" << edges;
     const Pose2 centre = roads.lane_pose("7", c.lane, c.s, 0.0);
     const std::string sumo_lane = found->edge + "_" + std::to_string(found->index);
     EXPECT_LT(distance_to_lane(doc, sumo_lane, centre.x, centre.y), 0.05)
