@@ -14,6 +14,7 @@
 #include "openscenario/storyboard_runtime.hpp"
 #include "openscenario/xosc_reader.hpp"
 #include "run/openscenario_world.hpp"
+#include "run/run_outcome.hpp"
 #include "run/run_log.hpp"
 #include "run/trace_writer.hpp"
 
@@ -82,8 +83,6 @@ const engine::ActorState* find_actor(const engine::WorldSnapshot& snap, const Op
   return nullptr;
 }
 
-std::string first_line(const std::string& text) { return text.substr(0, text.find('\n')); }
-
 // The ego's first collision SUMO reported, if any.
 std::optional<std::string> ego_collision(const engine::WorldSnapshot& snap, const std::string& ego, double time) {
   if (ego.empty()) return std::nullopt;
@@ -99,11 +98,7 @@ std::optional<std::string> ego_collision(const engine::WorldSnapshot& snap, cons
 RunResult run_openscenario(const RunRequest& req, Simulator& sim) {
   std::filesystem::create_directories(req.out_dir);
   RunLog log(req.out_dir / "run.log", req.echo);
-  RunResult result;
-  result.step = req.step;
-  result.seed = req.seed;
-  result.max_time = req.max_time;
-  result.backend = sim.backend();
+  RunResult result = new_run_result(req, sim);
   log.note(fmt::format("orchestrator {} | OpenSCENARIO {} | step {} s | seed {} | backend {}", ORCH_VERSION,
                        req.scenario_file, req.step, req.seed, sim.backend()));
   // Declared in this order: the runtime and the actors refer to the roads and lanes.
@@ -194,21 +189,8 @@ RunResult run_openscenario(const RunRequest& req, Simulator& sim) {
     log.at(result.sim_time, result.reason);
     if (!result.traffic.empty() && result.traffic != "none")
       log.note(fmt::format("{} background vehicles in SUMO at the end", background));
-  } catch (const ScenarioError& e) {
-    result.verdict = "error";
-    result.reason = fmt::format("invalid scenario: {} error(s); first: {}", e.diagnostics().error_count(),
-                                first_line(e.what()));
-    for (const auto& d : e.diagnostics().items())
-      if (d.severity == Severity::Error) log.note(d.format());
-  } catch (const MapError& e) {
-    result.verdict = "error";
-    result.reason = std::string("map: ") + e.what();
-  } catch (const OrchError& e) {  // SimulationError included
-    result.verdict = "error";
-    result.reason = e.what();
-  } catch (const std::exception& e) {
-    result.verdict = "error";
-    result.reason = std::string("internal error: ") + e.what();
+  } catch (...) {
+    record_run_error(result, log);
   }
   if (collision && result.verdict != "error") {
     result.reason = result.verdict == "success" ? *collision + " (" + result.reason + " afterwards)"
