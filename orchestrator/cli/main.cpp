@@ -45,6 +45,7 @@ int main(int argc, char** argv) {
   r->add_option("--ego-port", run.ego_port,
                 "An external plug-in drives the ego over TraCI: listen on this port (0: any free port)")
       ->check(CLI::Range(0, 65535));
+  r->add_option("--ego", run.ego_entity, "OpenSCENARIO runs: the entity that is the ego (default: the ALKSController's)");
   r->add_option("--ego-address", run.ego_address, "Address the ego TraCI server listens on")->capture_default_str();
   r->add_option("--ego-wait", run.ego_wait, "Seconds to wait for the ego plug-in to connect")
       ->capture_default_str()->check(CLI::PositiveNumber);

@@ -91,6 +91,7 @@ int run_command(const RunOptions& o) {
   req.interrupted = &g_interrupted;
   req.traffic = o.traffic;
   req.trace_background = o.trace_background;
+  req.ego_entity = o.ego_entity;
 
   RunOptions options = o;
   if (is_evaluation_file(o.file)) {

@@ -7,6 +7,8 @@
 #include <map>
 #include <pugixml.hpp>
 #include <set>
+#include <sstream>
+#include <string_view>
 
 #include "core/xml_text.hpp"
 #include "core/errors.hpp"
@@ -23,6 +25,9 @@ constexpr double kEnd = 86400.0;     // s: entries run for a day of simulated ti
 struct NetLane {
   double length = 0;  // m
   double speed = 0;   // m/s
+  // Open to the background cars (passenger class): false for lanes an `allow` list closes to
+  // them, e.g. the hard shoulders of converted OpenDRIVE roads (allow="authority").
+  bool for_cars = true;
 };
 
 struct NetEdge {
@@ -31,6 +36,15 @@ struct NetEdge {
   std::vector<std::string> next;  // normal edges reached through connections
   bool has_previous = false;
 };
+
+bool lane_open_to_cars(std::string_view allow) {
+  if (allow.empty() || allow == "all") return true;
+  std::istringstream classes{std::string(allow)};
+  std::string c;
+  while (classes >> c)
+    if (c == "passenger") return true;
+  return false;
+}
 
 std::vector<NetEdge> read_net_edges(const std::filesystem::path& net_file) {
   pugi::xml_document doc;
@@ -43,7 +57,8 @@ std::vector<NetEdge> read_net_edges(const std::filesystem::path& net_file) {
     NetEdge edge;
     edge.id = e.attribute("id").as_string();
     for (const pugi::xml_node l : e.children("lane"))
-      edge.lanes.push_back({l.attribute("length").as_double(), l.attribute("speed").as_double()});
+      edge.lanes.push_back({l.attribute("length").as_double(), l.attribute("speed").as_double(),
+                            lane_open_to_cars(l.attribute("allow").as_string())});
     index[edge.id] = edges.size();
     edges.push_back(std::move(edge));
   }
@@ -126,6 +141,7 @@ std::string even_fill(const std::vector<NetEdge>& edges, double per_km) {
     if (sinks.empty()) continue;  // a closed ring: no way out for a trip
     const std::string& sink = sinks.front();
     for (int lane = 0; lane < static_cast<int>(e.lanes.size()); ++lane) {
+      if (!e.lanes[static_cast<std::size_t>(lane)].for_cars) continue;
       const double length = e.lanes[static_cast<std::size_t>(lane)].length;
       const long n = std::lround(per_km * length / 1000.0);
       for (long i = 0; i < n; ++i) {
@@ -190,6 +206,7 @@ std::string background_traffic_xml(const std::filesystem::path& net_file, const 
     if (sinks.empty()) continue;
     for (int lane = 0; lane < static_cast<int>(e.lanes.size()); ++lane) {
       const NetLane& l = e.lanes[static_cast<std::size_t>(lane)];
+      if (!l.for_cars) continue;
       // Steady state of the rate at the lane's speed: vehicles/h over km/h = vehicles/km.
       const double per_km = s.fill_per_km >= 0 ? s.fill_per_km
                                                : s.vehicles_per_hour_per_lane / (std::max(l.speed, 1.0) * 3.6);

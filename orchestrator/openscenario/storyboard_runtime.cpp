@@ -392,6 +392,25 @@ StoryboardRuntime::StoryboardRuntime(const Scenario& scenario, const opendrive::
 StoryboardRuntime::~StoryboardRuntime() = default;
 
 void StoryboardRuntime::step(double dt) { impl_->step(dt); }
+void StoryboardRuntime::observe(const std::string& name, const opendrive::Pose2& pose, double speed,
+                                double acceleration) {
+  EntityState& e = impl_->entities.at(name);
+  if (!e.placed) return;
+  e.pose = pose;
+  e.speed = speed;
+  e.acceleration = acceleration;
+  const auto on_road = impl_->roads.to_road(pose.x, pose.y);
+  if (!on_road) return;
+  const opendrive::Road& road = impl_->roads.road(on_road->road_id);
+  const auto lane = road.lane_at(on_road->s, on_road->t);
+  if (!lane || *lane == 0) return;  // off the lanes: keeps its last lane
+  e.road_id = on_road->road_id;
+  e.s = on_road->s;
+  e.lane = *lane;
+  e.t = on_road->t;
+  e.offset = on_road->t - road.lane_center_t(*lane, on_road->s);
+}
+
 double StoryboardRuntime::time() const { return impl_->t; }
 bool StoryboardRuntime::finished() const { return impl_->finished; }
 const std::map<std::string, EntityState>& StoryboardRuntime::entities() const { return impl_->entities; }

@@ -41,6 +41,10 @@ class StoryboardRuntime {
 
   // One step of `dt` seconds (see above). Does nothing once finished().
   void step(double dt);
+  // An entity a simulator drives (the ego on SUMO), as the simulator has it now: replaces
+  // the state the storyboard's own motion computed (road, lane and offset found from the
+  // pose). Its speed profile, if any, keeps running: it is what the entity is asked to do.
+  void observe(const std::string& name, const opendrive::Pose2& pose, double speed, double acceleration);
   [[nodiscard]] double time() const;
   [[nodiscard]] bool finished() const;  // the Storyboard's StopTrigger fired
   [[nodiscard]] const std::map<std::string, EntityState>& entities() const;

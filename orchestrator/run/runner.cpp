@@ -8,6 +8,7 @@
 
 #include "core/errors.hpp"
 #include "core/files.hpp"
+#include "core/scenario_format.hpp"
 #include "engine/engine.hpp"
 #include "map/background_traffic.hpp"
 #include "map/lane_map.hpp"
@@ -17,6 +18,8 @@
 #include "evaluation/result_jsonl.hpp"
 #include "metrics/metrics_recorder.hpp"
 #include "run/ego_link.hpp"
+#include "run/openscenario_runner.hpp"
+#include "run/run_outcome.hpp"
 #include "run/run_log.hpp"
 #include "run/run_observer.hpp"
 #include "run/trace_writer.hpp"
@@ -80,8 +83,6 @@ void log_events(RunLog& log, RunResult& result, const std::vector<engine::Event>
   }
 }
 
-std::string first_line(const std::string& text) { return text.substr(0, text.find('\n')); }
-
 // The run's background traffic: --traffic, else the scenario's own "traffic" (a route file
 // beside the scenario file, or a level), else none. Returns its route file (empty: none).
 std::filesystem::path resolve_traffic(const RunRequest& req, const Inputs& in, RunResult& result, RunLog& log) {
@@ -136,15 +137,13 @@ void add_evaluation_observers(const RunRequest& req, const metrics::MetricsRecor
 }  // namespace
 
 RunResult run_scenario(const RunRequest& req, Simulator& sim) {
+  // The one place where the language picks the runtime (the content decides, not the name).
+  if (detect_scenario_format(req.scenario_file) == ScenarioFormat::OpenScenario) return run_openscenario(req, sim);
   const auto wall_start = Clock::now();
   std::optional<Clock::time_point> loop_start, loop_end;
   std::filesystem::create_directories(req.out_dir);
   RunLog log(req.out_dir / "run.log", req.echo);
-  RunResult result;
-  result.step = req.step;
-  result.seed = req.seed;
-  result.max_time = req.max_time;
-  result.backend = sim.backend();
+  RunResult result = new_run_result(req, sim);
   log.note(fmt::format("orchestrator {} | scenario {} | step {} s | seed {} | backend {}", ORCH_VERSION,
                        req.scenario_file, req.step, req.seed, sim.backend()));
 
@@ -251,28 +250,13 @@ RunResult run_scenario(const RunRequest& req, Simulator& sim) {
         break;  // max time or interrupted: already set
     }
   } catch (const ScenarioError& e) {
-    result.verdict = Verdict::Error;
     if (req.evaluation && !jsonl_written) {
       write_format_error_jsonl(req.out_dir / "result.jsonl", e.diagnostics());
       jsonl_written = true;
     }
-    result.reason = fmt::format("invalid scenario: {} error(s); first: {}", e.diagnostics().error_count(),
-                                first_line(e.what()));
-    for (const auto& d : e.diagnostics().items())
-      if (d.severity == Severity::Error) log.note(d.format());
-  } catch (const MapError& e) {
-    result.verdict = Verdict::Error;
-    result.reason = std::string("map: ") + e.what();
-  } catch (const SimulationError& e) {
-    result.verdict = Verdict::Error;
-    result.reason = e.what();
-  } catch (const OrchError& e) {
-    result.verdict = Verdict::Error;
-    result.reason = e.what();
-  } catch (const std::exception& e) {
-    // A bug of ours must still leave a result behind, clearly marked as such.
-    result.verdict = Verdict::Error;
-    result.reason = std::string("internal error: ") + e.what();
+    record_run_error(result, log);
+  } catch (...) {
+    record_run_error(result, log);
   }
   if (loop_start && !loop_end) loop_end = Clock::now();  // the loop ended by an exception
   if (engine) {

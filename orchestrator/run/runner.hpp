@@ -34,6 +34,8 @@ struct RunRequest {
   // An evaluation file's criteria (docs/evaluation.md): judged every step, folded into the
   // verdict, written to result.json's "criteria" and to result.jsonl.
   std::optional<EvaluationRequest> evaluation;
+  // OpenSCENARIO runs: the ego entity (--ego NAME); empty: the one with the ALKSController.
+  std::string ego_entity;
 };
 
 RunResult run_scenario(const RunRequest& request, Simulator& simulator);

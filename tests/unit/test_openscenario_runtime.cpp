@@ -103,6 +103,25 @@ TEST_F(Runtime, InitPlacesEntitiesOnTheirLanes) {
   EXPECT_NEAR(a().pose.x, 15.0, 1e-9);  // 10 m/s for 0.5 s
 }
 
+// A simulator-driven entity (the ego on SUMO): its observed pose sets road, lane, offset
+// and speed, and the storyboard's motion goes on from there.
+TEST_F(Runtime, ObservedStateReplacesTheStoryboardsOwn) {
+  load(event("E", "overwrite", speed_action("Go", 20, "step", "time", 0), time_condition("T", 100)));
+  runtime_->step(0.05);
+  runtime_->observe("B", {100.0, -5.0, 0.0}, 5.0, -1.0);  // lane -2 (centre -5.25), 0.25 m left
+  const EntityState& b = runtime_->entities().at("B");
+  EXPECT_EQ(b.lane, -2);
+  EXPECT_NEAR(b.s, 100.0, 1e-6);
+  EXPECT_NEAR(b.offset, 0.25, 1e-6);
+  EXPECT_DOUBLE_EQ(b.speed, 5.0);
+  runtime_->observe("B", {120.0, -1.75, 0.0}, 5.0, 0.0);  // moved into lane -1
+  EXPECT_EQ(b.lane, -1);
+  EXPECT_NEAR(b.offset, 0.0, 1e-6);
+  runtime_->step(0.05);  // from the observed place, not from where the storyboard had it
+  EXPECT_GT(b.s, 120.0);
+  EXPECT_LT(b.s, 120.0 + 10.0 * 0.05 + 1e-6);
+}
+
 TEST_F(Runtime, RisingEdgeAndDelay) {
   load(event("E", "overwrite", speed_action("Go", 20, "step", "time", 0), time_condition("T", 1.0, "rising", 0.5)));
   run_until(3);

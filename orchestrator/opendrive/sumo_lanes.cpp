@@ -1,0 +1,87 @@
+#include "opendrive/sumo_lanes.hpp"
+
+#include <fmt/format.h>
+#include <pugixml.hpp>
+
+#include <set>
+
+#include "core/errors.hpp"
+#include "opendrive/sumo_net.hpp"
+
+namespace orch::opendrive {
+
+namespace {
+
+// The lane types the conversion drops, read from the same type map netconvert gets.
+const std::set<std::string>& discarded_lane_types() {
+  static const std::set<std::string> types = [] {
+    std::set<std::string> out;
+    pugi::xml_document doc;
+    const std::string xml = lane_type_map_xml();
+    doc.load_buffer(xml.data(), xml.size());
+    for (const pugi::xml_node type : doc.child("types").children("type"))
+      if (type.attribute("discard").as_bool(false)) out.insert(type.attribute("id").value());
+    return out;
+  }();
+  return types;
+}
+
+}  // namespace
+
+SumoLaneIndex::SumoLaneIndex(const RoadNetwork& roads, const std::string& net_file) : roads_(roads) {
+  pugi::xml_document doc;
+  if (const auto ok = doc.load_file(net_file.c_str()); !ok)
+    throw MapError(fmt::format("cannot read the SUMO net {}: {}", net_file, ok.description()));
+  for (const pugi::xml_node edge : doc.child("net").children("edge")) {
+    if (std::string(edge.attribute("function").value()) == "internal") continue;
+    int lanes = 0;
+    for ([[maybe_unused]] const pugi::xml_node lane : edge.children("lane")) ++lanes;
+    lane_counts_[edge.attribute("id").value()] = lanes;
+  }
+}
+
+std::optional<SumoLane> SumoLaneIndex::find(const std::string& road_id, int lane_id, double s) const {
+  const Road* road = roads_.find(road_id);
+  if (!road || lane_id == 0 || road->sections.empty()) return std::nullopt;
+  const LaneSection& section = road->section_at(s);
+  const std::string base = (lane_id < 0 ? "-" : "") + road_id;
+  // The road's single edge, else the piece "<edge>#<k>" of the lane section holding s:
+  // netconvert splits the road's edges at its lane sections and numbers the pieces along s
+  // on both sides (checked against netconvert 1.15 in test_opendrive_sumo_lanes.cpp).
+  std::string edge;
+  std::size_t section_index = 0;
+  while (section_index + 1 < road->sections.size() && road->sections[section_index + 1].s <= s + 1e-9) ++section_index;
+  if (lane_counts_.count(base)) {
+    edge = base;
+  } else {
+    if (const std::string piece = base + "#" + std::to_string(section_index); lane_counts_.count(piece)) edge = piece;
+  }
+  if (edge.empty()) return std::nullopt;
+  // Rank of the lane among the kept lanes of its side, counted outward from the centre.
+  const auto& side = lane_id < 0 ? section.right : section.left;
+  int rank = 0;
+  bool kept = false;
+  for (const Lane& lane : side) {
+    if (discarded_lane_types().count(lane.type)) {
+      if (lane.id == lane_id) return std::nullopt;
+      continue;
+    }
+    if (lane.id == lane_id) {
+      kept = true;
+      break;
+    }
+    ++rank;
+  }
+  const int count = lane_counts_.at(edge);
+  if (!kept || rank >= count) return std::nullopt;
+  // Edge length is not needed exactly: the position only seeds SUMO's insertion.
+  const double section_end = [&] {
+    for (const LaneSection& next : road->sections)
+      if (next.s > section.s + 1e-9) return next.s;
+    return road->length;
+  }();
+  const double along = lane_id < 0 ? s - section.s : section_end - s;
+  return SumoLane{edge, count - 1 - rank, std::max(0.0, along)};
+}
+
+}  // namespace orch::opendrive

@@ -1,0 +1,57 @@
+#pragma once
+// The OpenSCENARIO storyboard's entities as SUMO actors: which entity is the ego, the
+// commands that put every placed entity where the storyboard has it (spawned on the SUMO
+// lane netconvert made of its OpenDRIVE lane, then posed every step), and the way back
+// from SUMO's vehicle centre to the entity's reference point for the trace. Pure.
+#include <map>
+#include <string>
+#include <vector>
+
+#include "engine/world.hpp"
+#include "opendrive/sumo_lanes.hpp"
+#include "openscenario/entity_motion.hpp"
+#include "openscenario/model.hpp"
+
+namespace orch {
+
+// The ego: `requested` (--ego NAME) when given (an unknown name is a ScenarioError with
+// "did you mean"), else the entity whose controller is named like the system under test
+// (ALKSController in the OSC-ALKS files), else "" (no ego).
+std::string choose_ego_entity(const openscenario::Scenario& scenario, const std::string& requested);
+
+class OpenScenarioActors {
+ public:
+  // `ego` ("" for none) is driven by SUMO's car-following model: spawned and placed once where
+  // the storyboard puts it, then only its desired speed follows the storyboard's speed target.
+  OpenScenarioActors(const openscenario::Scenario& scenario, const opendrive::SumoLaneIndex& lanes,
+                     std::string ego);
+
+  // Commands for the entities' states now: a spawn for each newly placed entity, then a pose
+  // for every placed scripted one (the ego: its desired speed when it changed). Throws MapError when an entity first appears where SUMO has no lane.
+  std::vector<engine::Command> place(const std::map<std::string, openscenario::EntityState>& entities);
+
+  // The actors SUMO knows (spawned so far), for Simulator::read.
+  [[nodiscard]] const std::vector<engine::TrackedActor>& tracked() const { return tracked_; }
+  [[nodiscard]] const std::string& name_of(engine::ActorId id) const { return names_.at(static_cast<size_t>(id)); }
+  // The entity's reference point (rear axle centre for vehicles) from SUMO's reported centre.
+  [[nodiscard]] Vec2 reference_point(const engine::ActorState& state) const;
+  [[nodiscard]] const std::string& ego() const { return ego_; }
+
+ private:
+  struct Body {
+    engine::ActorId id = 0;
+    ModelInfo model;
+    double centre_x = 0, centre_y = 0;  // bounding box centre relative to the reference point
+    bool spawned = false;
+  };
+  [[nodiscard]] Vec2 centre_of(const Body& body, const opendrive::Pose2& pose) const;
+
+  const opendrive::SumoLaneIndex& lanes_;
+  std::string ego_;
+  double ego_desired_speed_ = -1;  // last sent
+  std::map<std::string, Body> bodies_;
+  std::vector<std::string> names_;  // by actor id
+  std::vector<engine::TrackedActor> tracked_;
+};
+
+}  // namespace orch

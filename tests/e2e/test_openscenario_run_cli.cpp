@@ -1,0 +1,66 @@
+// `orchestrator run FILE.xosc` with the real CLI on the repository's own sample (no
+// ../shared needed): to the StopTrigger on SUMO, and clear errors for a bad --ego or file.
+#include <gtest/gtest.h>
+
+#include <cctype>
+#include <fstream>
+#include <unistd.h>
+
+#include "support/cli_runner.hpp"
+#include "support/trace_csv.hpp"
+
+using namespace orch::test;
+
+namespace {
+
+const std::string kOvertaking = std::string(ORCH_SOURCE_DIR) + "/scenarios/openscenario/overtaking.xosc";
+
+TEST(OpenScenarioRunCli, OvertakingRunsToItsStopTriggerWithEveryEntityTraced) {
+  TempDir out;
+  const auto r = run_cli({"run", kOvertaking, "--out", out.path().string(), "-q"});
+  const auto result = read_json(out / "result.json");
+  ASSERT_EQ(result["verdict"], "success") << result["reason"] << "\n" << r.output;
+  EXPECT_EQ(r.exit_code, 0);
+  EXPECT_NE(result["reason"].get<std::string>().find("StopTrigger"), std::string::npos);
+  EXPECT_EQ(result["map_id"], "motorway_3_lanes");
+  const Trace trace(out / "trace.csv");
+  bool ego = false, overtaker = false;
+  for (const auto& row : trace.rows()) {
+    ego |= row.str("actor_id") == "Ego";
+    overtaker |= row.str("actor_id") == "Overtaker";
+    EXPECT_FALSE(row.str("edge").empty()) << row.str("actor_id") << " @" << row.str("time");
+  }
+  EXPECT_TRUE(ego && overtaker);
+}
+
+TEST(OpenScenarioRunCli, UnknownEgoIsAnErrorWithASuggestion) {
+  TempDir out;
+  const auto r = run_cli({"run", kOvertaking, "--ego", "Egoo", "--out", out.path().string(), "-q"});
+  const auto result = read_json(out / "result.json");
+  EXPECT_EQ(result["verdict"], "error");
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(result["reason"].get<std::string>().find("did you mean \"Ego\""), std::string::npos) << result["reason"];
+}
+
+TEST(OpenScenarioRunCli, AMisspeltAttributeIsAnErrorNamingTheFileAndLine) {
+  TempDir out;
+  std::string text = slurp(kOvertaking);
+  const auto at = text.find("conditionEdge");
+  ASSERT_NE(at, std::string::npos);
+  text.replace(at, 13, "conditionEgde");
+  // Beside the original so that its relative road and catalog paths still resolve.
+  const auto bad = std::filesystem::path(kOvertaking).parent_path() / ("bad_" + std::to_string(::getpid()) + ".xosc");
+  { std::ofstream(bad) << text; }
+  const auto r = run_cli({"run", bad.string(), "--out", out.path().string(), "-q"});
+  std::filesystem::remove(bad);
+  const auto result = read_json(out / "result.json");
+  EXPECT_EQ(result["verdict"], "error");
+  const std::string reason = result["reason"];
+  const auto name_at = reason.find(bad.filename().string() + ":");
+  ASSERT_NE(name_at, std::string::npos) << reason;
+  EXPECT_TRUE(std::isdigit(static_cast<unsigned char>(reason[name_at + bad.filename().string().size() + 1])))
+      << "no line number: " << reason;
+  EXPECT_NE(reason.find("did you mean \"conditionEdge\""), std::string::npos) << reason;
+}
+
+}  // namespace

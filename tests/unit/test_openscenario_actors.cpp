@@ -1,0 +1,134 @@
+// OpenSCENARIO entities as SUMO actors (no simulator): the ego choice, spawns on the SUMO
+// lane of the entity's OpenDRIVE lane, poses at the bounding box centre and the way back
+// to the reference point.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "core/errors.hpp"
+#include "opendrive/xodr_reader.hpp"
+#include "run/openscenario_world.hpp"
+#include "support/cli_runner.hpp"
+
+namespace orch {
+namespace {
+
+const char* kRoad = R"(<OpenDRIVE><header revMajor="1" revMinor="6"/>
+<road id="3" length="500" junction="-1"><planView><geometry s="0" x="100" y="50" hdg="0.5" length="500"><line/></geometry></planView>
+<lanes><laneSection s="0"><center><lane id="0" type="none"/></center><right>
+ <lane id="-1" type="border"><width sOffset="0" a="0.5" b="0" c="0" d="0"/></lane>
+ <lane id="-2" type="driving"><width sOffset="0" a="3.5" b="0" c="0" d="0"/></lane>
+ <lane id="-3" type="driving"><width sOffset="0" a="3.5" b="0" c="0" d="0"/></lane>
+</right></laneSection></lanes></road></OpenDRIVE>)";
+
+// The edge netconvert makes of road 3's right side (two kept lanes; shapes do not matter here).
+const char* kNet = R"(<net><edge id="-3" from="a" to="b"><lane id="-3_0" index="0" length="500" shape="0,0 1,1"/>
+<lane id="-3_1" index="1" length="500" shape="0,0 1,1"/></edge></net>)";
+
+openscenario::Entity car(const std::string& name, const std::string& controller) {
+  openscenario::Entity e;
+  e.name = name;
+  e.category = "car";
+  e.box.center_x = 1.4;
+  e.box.length = 5;
+  e.box.width = 2;
+  if (!controller.empty()) e.controller = openscenario::Controller{controller, {}};
+  return e;
+}
+
+TEST(OpenScenarioActors, TheEgoIsTheSystemUnderTestsEntityUnlessNamed) {
+  openscenario::Scenario s;
+  s.file = "s.xosc";
+  s.entities = {car("Lead", ""), car("Subject", "ALKSController")};
+  EXPECT_EQ(choose_ego_entity(s, ""), "Subject");
+  EXPECT_EQ(choose_ego_entity(s, "Lead"), "Lead");
+  try {
+    (void)choose_ego_entity(s, "Laed");
+    FAIL() << "an unknown --ego is an error";
+  } catch (const ScenarioError& e) {
+    EXPECT_NE(std::string(e.what()).find("did you mean \"Lead\""), std::string::npos) << e.what();
+  }
+  s.entities = {car("Lead", "")};
+  EXPECT_EQ(choose_ego_entity(s, ""), "");
+}
+
+TEST(OpenScenarioActors, SpawnsOnceOnTheSumoLaneAndPosesTheBoxCentre) {
+  test::TempDir dir;
+  const auto roads = opendrive::read_xodr_file(dir.write("r.xodr", kRoad).string());
+  const opendrive::SumoLaneIndex lanes(roads, dir.write("n.net.xml", kNet).string());
+  openscenario::Scenario s;
+  s.entities = {car("Lead", "")};
+  OpenScenarioActors actors(s, lanes, "");
+  openscenario::EntityState state;
+  state.placed = true;
+  state.road_id = "3";
+  state.lane = -2;  // the inner kept lane: SUMO's leftmost of two
+  state.s = 40;
+  state.speed = 20;
+  state.pose = roads.lane_pose("3", -2, 40, 0);
+  std::map<std::string, openscenario::EntityState> entities{{"Lead", state}};
+
+  const auto first = actors.place(entities);
+  ASSERT_EQ(first.size(), 2u);
+  const auto& spawn = std::get<engine::SpawnVehicle>(first[0]);
+  EXPECT_EQ(spawn.edge, "-3");
+  EXPECT_EQ(spawn.lane, 1);
+  EXPECT_NEAR(spawn.lane_pos, 40 + 1.4, 1e-9);  // the centre
+  EXPECT_TRUE(spawn.scripted);
+  EXPECT_EQ(spawn.model.vclass, "authority");  // hard shoulders admit scripted entities
+  const auto& pose = std::get<engine::SetPose>(first[1]);
+  EXPECT_NEAR(pose.position.x(), state.pose.x + 1.4 * std::cos(0.5), 1e-9);
+  EXPECT_NEAR(pose.position.y(), state.pose.y + 1.4 * std::sin(0.5), 1e-9);
+  ASSERT_EQ(actors.tracked().size(), 1u);
+  EXPECT_EQ(actors.tracked()[0].sumo_id, "Lead");
+
+  // Later steps only pose; SUMO's centre maps back to the reference point.
+  const auto second = actors.place(entities);
+  ASSERT_EQ(second.size(), 1u);
+  engine::ActorState seen;
+  seen.id = actors.tracked()[0].id;
+  seen.position = pose.position;
+  seen.heading = pose.heading;
+  const Vec2 ref = actors.reference_point(seen);
+  EXPECT_NEAR(ref.x(), state.pose.x, 1e-9);
+  EXPECT_NEAR(ref.y(), state.pose.y, 1e-9);
+
+  // An entity that first appears where SUMO has no lane is an error naming it.
+  state.lane = -1;
+  OpenScenarioActors other(s, lanes, "");
+  entities["Lead"] = state;
+  EXPECT_THROW((void)other.place(entities), MapError);
+}
+
+TEST(OpenScenarioActors, TheEgoIsPlacedOnceThenOnlyItsDesiredSpeedFollowsTheStoryboard) {
+  test::TempDir dir;
+  const auto roads = opendrive::read_xodr_file(dir.write("r.xodr", kRoad).string());
+  const opendrive::SumoLaneIndex lanes(roads, dir.write("n.net.xml", kNet).string());
+  openscenario::Scenario s;
+  s.entities = {car("Ego", "ALKSController")};
+  OpenScenarioActors actors(s, lanes, "Ego");
+  openscenario::EntityState state;
+  state.placed = true;
+  state.road_id = "3";
+  state.lane = -3;
+  state.s = 10;
+  state.speed = 15;
+  state.pose = roads.lane_pose("3", -3, 10, 0);
+  std::map<std::string, openscenario::EntityState> entities{{"Ego", state}};
+  const auto first = actors.place(entities);
+  ASSERT_EQ(first.size(), 2u);
+  const auto& spawn = std::get<engine::SpawnVehicle>(first[0]);
+  EXPECT_FALSE(spawn.scripted);
+  EXPECT_EQ(spawn.lane, 0);
+  EXPECT_DOUBLE_EQ(spawn.max_speed, 15);
+  EXPECT_FALSE(std::get<engine::SetPose>(first[1]).scripted);  // one placement, speed left to SUMO
+  EXPECT_TRUE(actors.place(entities).empty());  // SUMO drives it
+  entities["Ego"].speed_profile = openscenario::SpeedProfile{1, 2, 15, 25, openscenario::DynamicsShape::Linear};
+  const auto changed = actors.place(entities);
+  ASSERT_EQ(changed.size(), 1u);
+  EXPECT_DOUBLE_EQ(std::get<engine::SetMaxSpeed>(changed[0]).speed, 25);
+  EXPECT_TRUE(actors.place(entities).empty());  // sent once
+}
+
+}  // namespace
+}  // namespace orch
