@@ -3,8 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
-#include <numeric>
 #include <unordered_map>
+
+#include "core/components.hpp"
 
 namespace orch {
 
@@ -124,25 +125,6 @@ Relation relate(const WaypointRoute& r, double s, const WaypointRoute& q, double
   return distance < kConflictReach ? Relation::Conflict : Relation::Apart;
 }
 
-class Components {
- public:
-  std::size_t add() {
-    parent_.push_back(parent_.size());
-    return parent_.size() - 1;
-  }
-  std::size_t root(std::size_t i) {
-    while (parent_[i] != i) i = parent_[i] = parent_[parent_[i]];
-    return i;
-  }
-  void join(std::size_t a, std::size_t b) {
-    a = root(a);
-    b = root(b);
-    parent_[std::max(a, b)] = std::min(a, b);
-  }
-
- private:
-  std::vector<std::size_t> parent_;
-};
 
 struct Interval {
   double s0;
@@ -294,9 +276,8 @@ class ZoneFinder {
           }
         }
       }
-      normalise(r);
+      normalise(r);  // the other routes were normalised where require() changed them
     }
-    for (std::size_t r = 0; r < routes_.size(); ++r) normalise(r);
     return changed;
   }
 

@@ -4,8 +4,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numeric>
 #include <unordered_map>
+
+#include "core/components.hpp"
 
 namespace orch {
 
@@ -105,22 +106,6 @@ struct PairRelation {
   RouteRelation rel;
 };
 
-class Components {
- public:
-  explicit Components(std::size_t n) : parent_(n) { std::iota(parent_.begin(), parent_.end(), 0); }
-  std::size_t root(std::size_t i) {
-    while (parent_[i] != i) i = parent_[i] = parent_[parent_[i]];
-    return i;
-  }
-  void join(std::size_t a, std::size_t b) {
-    const std::size_t ra = root(a);
-    const std::size_t rb = root(b);
-    parent_[std::max(ra, rb)] = std::min(ra, rb);
-  }
-
- private:
-  std::vector<std::size_t> parent_;
-};
 
 }  // namespace
 
