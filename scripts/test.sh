@@ -1,11 +1,10 @@
 #!/usr/bin/env bash
 # Installs the dependencies, builds from scratch and runs every test: unit, integration
 # (real SUMO), end-to-end (the CLI), and -- when ../shared/data exists next to the
-# checkout -- the tests on the real user scenario files (label shared_data). With
-# ORCH_SANITIZE_STAGE=1 a second build with ASan+UBSan then runs the unit tests, fuzz drivers
-# and quick CLI tests on bad input (scripts/test_sanitized.sh); it is not on by default yet:
-# its time on CI's 2 cores has not been measured (docs/hardening.md). The libFuzzer targets
-# (clang, ASan+UBSan) run in every test command.
+# checkout -- the tests on the real user scenario files (label shared_data). Then a second
+# build with ASan+UBSan runs the unit tests, fuzz drivers and the quick end-to-end tests
+# (scripts/test_sanitized.sh; ORCH_SANITIZE_STAGE=0 skips it for a quicker local round).
+# The libFuzzer targets (clang, ASan+UBSan) run in the first stage.
 # Usage: scripts/test.sh [ctest arguments...]
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -21,7 +20,7 @@ else
 fi
 status=0
 ctest --output-on-failure -j "$(nproc)" --timeout 900 "$@" || status=$?
-if [ "${ORCH_SANITIZE_STAGE:-0}" = 1 ]; then
+if [ "${ORCH_SANITIZE_STAGE:-1}" = 1 ]; then
   rm -rf "$root/build-test-sanitize"
   "$root/scripts/test_sanitized.sh" "$root/build-test-sanitize" || status=$?
 fi

@@ -32,6 +32,8 @@ const Trace::Row* at_time(const std::vector<Trace::Row>& rows, double t) {
     if (std::abs(r.num("time") - t) < 1e-6) return &r;
   return nullptr;
 }
+// A pointer into a temporary vector would dangle (AddressSanitizer found one): refuse it.
+const Trace::Row* at_time(std::vector<Trace::Row>&& rows, double t) = delete;
 
 }  // namespace
 
@@ -79,13 +81,15 @@ TEST(Samples, PedestrianCrossingMakesTheEgoBrakeAndGoOn) {
   Trace trace(run.out / "trace.csv");
   const double start = run.entered(1);  // time headway <= 5 s
   // The ego's time headway to x = 400 at the start of the crossing: (400 - front) / speed.
-  const auto* ego_then = at_time(trace.actor(0), start);
+  const auto ego = trace.actor(0);
+  const auto pedestrian = trace.actor(1);
+  const auto* ego_then = at_time(ego, start);
   ASSERT_NE(ego_then, nullptr);
   const double headway = (400 - (ego_then->num("x") + 4.51 / 2)) / ego_then->num("speed");
   EXPECT_LE(headway, 5.0);
   EXPECT_GT(headway, 5.0 - 0.1);  // fired on the first step below 5 s
   // 12 m in 8 s: 1.5 m/s, straight across.
-  const auto* mid = at_time(trace.actor(1), start + 4.0);
+  const auto* mid = at_time(pedestrian, start + 4.0);
   ASSERT_NE(mid, nullptr);
   EXPECT_NEAR(mid->num("speed"), 1.5, 1e-3);
   EXPECT_NEAR(mid->num("x"), 400, 0.01);
