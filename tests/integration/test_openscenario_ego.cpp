@@ -59,8 +59,8 @@ TEST(OpenScenarioEgo, SumoDrivesTheEgoAndTheStoryboardChangesItsLane) {
 TEST(OpenScenarioEgo, ActivateControllerActionHandsTheEgoToAnExternalEgo) {
   TempDir out;
   const auto r = run_with_plugin(kScenario, out,
-                                 python_client("osc_ego.py", {"--port", "{port}", "--speed", "12", "--summary",
-                                                              (out / "summary.json").string()}));
+                                 python_client("drive.py", {"--port", "{port}", "--mode", "handover", "--speed", "12",
+                                                            "--summary", (out / "summary.json").string()}));
   ASSERT_EQ(r.orchestrator_exit, 0) << r.orchestrator_output << r.plugin_output;
   EXPECT_EQ(r.plugin_exit, 0) << r.plugin_output;
   EXPECT_EQ(r.result["verdict"], "success");
@@ -83,7 +83,7 @@ TEST(OpenScenarioEgo, ActivateControllerActionHandsTheEgoToAnExternalEgo) {
   EXPECT_EQ(at(rows, 6.0).lane, at(rows, 1.0).lane + 1);  // the storyboard's lane change before
   // Every step the external ego asked for is one the world took.
   EXPECT_EQ(r.result["ego_plugin"]["steps_driven"].get<long long>(), summary["steps"].get<long long>());
-  EXPECT_EQ(r.result["ego_plugin"]["client"], "OpenSCENARIO ego test client (Python traci)");
+  EXPECT_EQ(r.result["ego_plugin"]["client"], "integration test client (Python traci)");
 }
 
 TEST(OpenScenarioEgo, ExternalEgoNeedsAnEgo) {
