@@ -64,7 +64,7 @@ TEST(BatchVariationCli, ValidateChecksTheShippedVariationsAndNamesErrors) {
 
   TempDir dir;
   const auto bad = dir.write("bad_variation.xosc", variation(R"(
-      <DeterministicSingleParameterDistribution parameterName="Decel">
+      <DeterministicSingleParameterDistribution parameterName="Decel_mps">
         <DistributionSet><Element value="3"/></DistributionSet>
       </DeterministicSingleParameterDistribution>)"));
   const auto r = run_cli({"validate", bad.string()});
@@ -154,6 +154,7 @@ TEST(BatchVariationCli, SampleDrawsASubsetThatBatchRunsShardByShard) {
   const auto again = run_cli({"sample", file.string(), "--count", "2", "--seed", "4"});
   ASSERT_EQ(again.exit_code, 0) << again.output;
   std::set<long long> seeds;
-  for (const auto& set : read_json(params)["parameters"]) seeds.insert(set["seed"].get<long long>());
+  const auto resampled = read_json(params);
+  for (const auto& set : resampled["parameters"]) seeds.insert(set["seed"].get<long long>());
   EXPECT_EQ(seeds.size(), 4u);
 }
