@@ -137,11 +137,26 @@ BatchPlan plan_batch(const std::vector<std::string>& inputs, const std::optional
   for (const auto& input : inputs) {
     const fs::path abs = fs::absolute(input).lexically_normal();
     plan.inputs.push_back(abs.string());
+    if (auto variation = resolve_variation_input(abs)) {
+      if (!seen_files.insert(fs::weakly_canonical(variation->sets_file).string()).second) continue;
+      PlannedLogical pl{variation->variation->logical, variation->sets_file, {}, nullptr, variation->variation};
+      hash(pl.logical.file);
+      hash(variation->sets_file);
+      hash(pl.logical.template_file);
+      for (const auto& set : variation->sets) {
+        check_variation_set(*pl.variation, set);  // every set loads, or the batch does not start
+        PlannedRun run{run_id(pl.logical.uuid, set.uuid), pl.logical.uuid, set.uuid, pl.logical.name,
+                       plan.logicals.size(), set};
+        if (ids.insert(run.id).second) all.push_back(std::move(run));
+      }
+      plan.logicals.push_back(std::move(pl));
+      continue;
+    }
     const auto [logical_file, parameter_file] = resolve_input(abs);
     const std::string key = fs::weakly_canonical(parameter_file).string();
     if (!seen_files.insert(key).second) continue;  // the same sets named twice run once
 
-    PlannedLogical pl{load_logical_scenario(logical_file), parameter_file, {}, nullptr};
+    PlannedLogical pl{load_logical_scenario(logical_file), parameter_file, {}, nullptr, nullptr};
     pl.lineage = find_lineage(pl.logical);
     const ParameterFile params = load_parameter_file(parameter_file);
     if (params.logical_uuid != pl.logical.uuid)

@@ -12,6 +12,7 @@
 
 #include "batch/logical_scenario.hpp"
 #include "batch/parameter_file.hpp"
+#include "batch/variation_batch.hpp"
 #include "json/json_document.hpp"
 
 namespace orch::batch {
@@ -50,6 +51,9 @@ struct PlannedLogical {
   Lineage lineage;
   // The template, loaded and checked once when planning; every set is bound into it.
   std::shared_ptr<const JsonDocument> template_doc;
+  // An OpenSCENARIO parameter variation (variation_batch.hpp) in place of a template: its
+  // runs are the referenced scenario with --param values. Null for JSON logical scenarios.
+  std::shared_ptr<const VariationLogical> variation;
 };
 
 struct BatchPlan {

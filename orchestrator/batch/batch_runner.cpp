@@ -144,9 +144,9 @@ std::vector<std::string> pass_through_flags(const SumoConfig& config, const std:
 }
 
 std::vector<std::string> run_command_line(const BatchOptions& o, const PlannedRun& run, const fs::path& run_dir,
-                                          const std::string& bound_file) {
+                                          const fs::path& scenario_file) {
   const SumoConfig& cfg = run.set.sumo_config;
-  std::vector<std::string> argv{o.orchestrator.string(), "run", (run_dir / bound_file).string(),
+  std::vector<std::string> argv{o.orchestrator.string(), "run", scenario_file.string(),
                                 "--out", run_dir.string(), "--seed", std::to_string(run.set.seed.value_or(42)),
                                 "--step", fmt::format("{}", cfg.step)};
   if (cfg.max_time) {
@@ -213,9 +213,17 @@ int run_batch(const BatchOptions& given) {
     const fs::path dir = out / "runs" / run.id;
     prepare_run_dir(dir, attempt);
     const PlannedLogical& pl = plan.logicals[run.logical_index];
-    const std::string bound_file = bound_file_name(pl.logical.template_file);
-    write_file_atomically(dir / bound_file, bound_scenario_text(pl.logical, *pl.template_doc, run.set));
-    std::vector<std::string> argv = run_command_line(o, run, dir, bound_file);
+    std::vector<std::string> argv;
+    if (pl.variation) {
+      // The referenced scenario as it is (its catalogs and road are relative to it), with
+      // the set's values as --param.
+      argv = run_command_line(o, run, dir, pl.logical.template_file);
+      for (auto& a : variation_run_arguments(*pl.variation, run.set)) argv.push_back(std::move(a));
+    } else {
+      const std::string bound_file = bound_file_name(pl.logical.template_file);
+      write_file_atomically(dir / bound_file, bound_scenario_text(pl.logical, *pl.template_doc, run.set));
+      argv = run_command_line(o, run, dir, dir / bound_file);
+    }
     if (!o.wrapper.empty()) argv.insert(argv.begin(), o.wrapper);
     ExecutionRecord& rec = records[task];
     rec.command = argv;

@@ -51,10 +51,11 @@ int run_batch(const BatchOptions& options);
 // Throws OrchError naming the setting when `run_flags` lacks its flag.
 std::vector<std::string> pass_through_flags(const SumoConfig& config, const std::set<std::string>& run_flags);
 
-// The child's command line for one run (without a wrapper); `bound_file` is the bound
-// template in the run folder (template_file.hpp).
+// The child's command line for one run (without a wrapper): `orchestrator run
+// scenario_file` (the bound template in the run folder, template_file.hpp, or the scenario
+// of an OpenSCENARIO variation) into `run_dir`.
 std::vector<std::string> run_command_line(const BatchOptions& options, const PlannedRun& run,
                                           const std::filesystem::path& run_dir,
-                                          const std::string& bound_file = "scenario.json");
+                                          const std::filesystem::path& scenario_file);
 
 }  // namespace orch::batch

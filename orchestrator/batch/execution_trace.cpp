@@ -77,7 +77,9 @@ std::string execution_trace_text(const PlannedRun& run, const PlannedLogical& lo
   trace["sampled_values"] = ordered_json(run.set.sampled_values);
   ordered_json impl;
   impl["template_file"] = std::filesystem::absolute(logical.logical.template_file).lexically_normal().string();
-  impl["scenario_file"] = out_block["run_dir"].get<std::string>() + "/" + bound_file_name(logical.logical.template_file);
+  impl["scenario_file"] = logical.variation ? impl["template_file"].get<std::string>()  // run as it is, with --param
+                                            : out_block["run_dir"].get<std::string>() + "/" +
+                                                  bound_file_name(logical.logical.template_file);
   impl["command"] = shell_command(record.command);
   impl["exit_code"] = opt(last.exit_code);
   impl["final_status"] = last.verdict;

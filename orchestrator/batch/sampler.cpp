@@ -18,14 +18,6 @@ std::uint64_t fnv1a(const std::string& text) {
   return h;
 }
 
-double standard_normal(std::mt19937_64& engine) {
-  // Box-Muller, cosine branch only: one normal per two uniforms keeps each draw
-  // independent of what was drawn before it. 1 - u lies in (0, 1], so log never sees 0.
-  const double u1 = 1.0 - unit_interval(engine);
-  const double u2 = unit_interval(engine);
-  return std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * std::numbers::pi * u2);
-}
-
 nlohmann::json as_type(ValueType type, double x) {
   if (type == ValueType::Int) return static_cast<long long>(std::llround(x));
   return x;
@@ -70,6 +62,14 @@ struct Drawer {
 };
 
 }  // namespace
+
+double standard_normal(std::mt19937_64& engine) {
+  // Box-Muller, cosine branch only: one normal per two uniforms keeps each draw
+  // independent of what was drawn before it. 1 - u lies in (0, 1], so log never sees 0.
+  const double u1 = 1.0 - unit_interval(engine);
+  const double u2 = unit_interval(engine);
+  return std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * std::numbers::pi * u2);
+}
 
 double unit_interval(std::mt19937_64& engine) {
   return static_cast<double>(engine() >> 11) * 0x1.0p-53;

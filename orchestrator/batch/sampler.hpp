@@ -19,6 +19,8 @@ namespace orch::batch {
 
 // u in [0, 1) from the top 53 bits of one draw.
 double unit_interval(std::mt19937_64& engine);
+// A standard normal value from two draws (Box-Muller, cosine branch).
+double standard_normal(std::mt19937_64& engine);
 // The engine for one parameter of one parameter set.
 std::mt19937_64 parameter_stream(std::uint64_t set_seed, const std::string& key);
 

@@ -14,6 +14,7 @@
 #include "video/trace_video.hpp"
 #include "batch/batch_runner.hpp"
 #include "batch/sampling.hpp"
+#include "batch/variation_batch.hpp"
 #include "cli/commands.hpp"
 #include "core/errors.hpp"
 #include "core/files.hpp"
@@ -57,8 +58,11 @@ int report_input_error(const ScenarioError& e) {
 
 int sample_command(const SampleOptions& o) {
   try {
-    const batch::LogicalScenario logical = batch::load_logical_scenario(o.logical);
-    const batch::SampleOutcome outcome = batch::sample_parameter_sets(logical, o.request);
+    // An OpenSCENARIO parameter variation is a logical scenario too (batch/variation_batch.hpp).
+    const batch::SampleOutcome outcome =
+        batch::is_variation_input(o.logical)
+            ? batch::sample_variation_sets(*batch::load_variation_logical(o.logical), o.request)
+            : batch::sample_parameter_sets(batch::load_logical_scenario(o.logical), o.request);
     write_file_atomically(outcome.file.file, batch::to_json_text(outcome.file));
     std::cout << fmt::format("{}: {} new parameter set(s), {} in all\n", outcome.file.file.string(),
                              outcome.new_set_ids.size(), outcome.file.sets.size());

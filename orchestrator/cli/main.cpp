@@ -46,6 +46,8 @@ int main(int argc, char** argv) {
                 "An external plug-in drives the ego over TraCI: listen on this port (0: any free port)")
       ->check(CLI::Range(0, 65535));
   r->add_option("--ego", run.ego_entity, "OpenSCENARIO runs: the entity that is the ego (default: the ALKSController's)");
+  r->add_option("--param", run.parameters, "NAME=VALUE: set an OpenSCENARIO parameter (repeatable)")
+      ->allow_extra_args(false);
   r->add_option("--ego-address", run.ego_address, "Address the ego TraCI server listens on")->capture_default_str();
   r->add_option("--ego-wait", run.ego_wait, "Seconds to wait for the ego plug-in to connect")
       ->capture_default_str()->check(CLI::PositiveNumber);
@@ -73,7 +75,7 @@ int main(int argc, char** argv) {
 
   orch::cli::BaselineOptions baseline;
   auto* bl = app.add_subcommand("baseline", "Run a map's background traffic in SUMO alone, without a scenario");
-  bl->add_option("map", baseline.map, "Map id or folder")->required();
+  bl->add_option("map", baseline.map, "Map id or folder, or a SUMO net file (NAME.net.xml)")->required();
   bl->add_option("--traffic", baseline.traffic, "Background traffic, as for run")->capture_default_str();
   bl->add_option("--steps", baseline.steps, "Simulation steps")->capture_default_str()->check(CLI::PositiveNumber);
   bl->add_option("--step", baseline.step, "Simulation step, s")->capture_default_str()->check(CLI::Range(0.001, 1.0));

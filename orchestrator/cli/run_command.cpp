@@ -10,9 +10,11 @@
 
 #include "cli/commands.hpp"
 #include "core/errors.hpp"
+#include "core/scenario_format.hpp"
 #include "core/utf8.hpp"
 #include "evaluation/evaluation_file.hpp"
 #include "evaluation/result_jsonl.hpp"
+#include "openscenario/xosc_reader.hpp"
 #include "run/paced_simulator.hpp"
 #include "run/runner.hpp"
 #include "sumo/sumo_ego_control.hpp"
@@ -92,6 +94,9 @@ int run_command(const RunOptions& o) {
   req.traffic = o.traffic;
   req.trace_background = o.trace_background;
   req.ego_entity = o.ego_entity;
+  req.parameter_overrides = openscenario::parse_parameter_overrides(o.parameters);
+  if (!o.parameters.empty() && detect_scenario_format(o.file) != ScenarioFormat::OpenScenario)
+    throw OrchError("--param sets OpenSCENARIO parameters: " + o.file + " is not an OpenSCENARIO file");
 
   RunOptions options = o;
   if (is_evaluation_file(o.file)) {

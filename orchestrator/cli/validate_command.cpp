@@ -12,6 +12,7 @@
 
 #include "cli/common.hpp"
 #include "core/errors.hpp"
+#include "batch/variation_batch.hpp"
 #include "core/scenario_format.hpp"
 #include "openscenario/scenario_check.hpp"
 #include "core/suggest.hpp"
@@ -83,6 +84,7 @@ Diagnostics validate_file(const std::string& path, Shared& shared) {
 }
 
 Diagnostics validate_scenario_file(const std::string& path, Shared& shared) {
+  if (batch::is_variation_input(path)) return batch::check_variation_file(path);  // *_variation.xosc
   if (detect_scenario_format(path) == ScenarioFormat::OpenScenario)
     return openscenario::check_scenario_file(path, {shared.parameter_overrides});
   Diagnostics diags;

@@ -131,7 +131,7 @@ Scenario load_scenario(const std::string& path, const LoadOptions& options) {
   read_header(root, scenario);
   if (root.optional_child("ParameterValueDistribution"))
     root.fail("this is a parameter variation file (ParameterValueDistribution), not a scenario; "
-              "variation files are not run yet");
+              "check it with `orchestrator validate`, run it with `orchestrator batch` or `sample`");
   if (root.optional_child("Catalog")) root.fail("this is a catalog file, not a scenario");
   scenario.parameters = read_parameters(root, options, context.global);
   const std::string dir = fs::path(path).parent_path().string();

@@ -13,6 +13,7 @@
 #include "opendrive/xodr_reader.hpp"
 #include "openscenario/storyboard_runtime.hpp"
 #include "openscenario/xosc_reader.hpp"
+#include "run/ego_link.hpp"
 #include "run/openscenario_world.hpp"
 #include "run/run_outcome.hpp"
 #include "run/run_log.hpp"
@@ -35,14 +36,16 @@ class EntityTrace {
   EntityTrace(const EntityTrace&) = delete;
   EntityTrace& operator=(const EntityTrace&) = delete;
 
-  void record(double time, const engine::WorldSnapshot& snap, const OpenScenarioActors& actors, const std::string& ego) {
+  // `ego_driver`: the ego's `driver` column (sumo, script or plugin; openscenario_ego.hpp).
+  void record(double time, const engine::WorldSnapshot& snap, const OpenScenarioActors& actors, const std::string& ego,
+              const char* ego_driver) {
     for (const auto& a : snap.actors) {
       if (!a.present) continue;
       const Vec2 ref = actors.reference_point(a);
       const std::string& name = actors.name_of(a.id);
       fmt::print(file_, "{:.3f},,{},{:.3f},{:.3f},{:.4f},{:.3f},{:.3f},{},{},{:.3f},{:.3f},{},0,{}\n", time, name,
                  ref.x(), ref.y(), a.heading, a.speed, a.accel, a.edge, a.lane, a.lane_pos, a.lat_offset.value_or(0.0),
-                 a.signals, name == ego ? "sumo" : "script");
+                 a.signals, name == ego ? ego_driver : "script");
       ++rows_;
     }
     if (++steps_ % 200 == 0) std::fflush(file_);
@@ -83,14 +86,28 @@ const engine::ActorState* find_actor(const engine::WorldSnapshot& snap, const Op
   return nullptr;
 }
 
-// The ego's first collision SUMO reported, if any.
-std::optional<std::string> ego_collision(const engine::WorldSnapshot& snap, const std::string& ego, double time) {
+// The ego's first collision SUMO reported, if any (`sumo_id`: the ego's SUMO vehicle).
+std::optional<std::string> ego_collision(const engine::WorldSnapshot& snap, const std::string& ego,
+                                         const std::string& sumo_id, double time) {
   if (ego.empty()) return std::nullopt;
   for (const auto& c : snap.collisions)
-    if (c.collider == ego || c.victim == ego)
-      return fmt::format("the ego {} collided with {} at t={:.2f} s", ego, c.collider == ego ? c.victim : c.collider,
-                         time);
+    if (c.collider == sumo_id || c.victim == sumo_id)
+      return fmt::format("the ego {} collided with {} at t={:.2f} s", ego,
+                         c.collider == sumo_id ? c.victim : c.collider, time);
   return std::nullopt;
+}
+
+// An external ego needs an ego, and the SUMO id "ego" free for it.
+void check_external_ego(const openscenario::Scenario& scenario, const std::string& ego, bool external) {
+  if (!external) return;
+  if (ego.empty())
+    throw ScenarioError(SourceLocation{scenario.file, "/OpenSCENARIO/Entities", 0},
+                        "--ego-port: the scenario has no ego (no entity with the ALKSController controller): "
+                        "name it with --ego NAME");
+  if (ego != kEgoSumoId && scenario.entity(kEgoSumoId))
+    throw ScenarioError(SourceLocation{scenario.file, "/OpenSCENARIO/Entities", 0},
+                        fmt::format("--ego-port: the external ego drives the SUMO vehicle \"{}\", but another entity "
+                                    "has that name", kEgoSumoId));
 }
 
 }  // namespace
@@ -101,6 +118,7 @@ RunResult run_openscenario(const RunRequest& req, Simulator& sim) {
   RunResult result = new_run_result(req, sim);
   log.note(fmt::format("orchestrator {} | OpenSCENARIO {} | step {} s | seed {} | backend {}", ORCH_VERSION,
                        req.scenario_file, req.step, req.seed, sim.backend()));
+  for (const auto& [name, value] : req.parameter_overrides) log.note(fmt::format("--param {}={}", name, value));
   // Declared in this order: the runtime and the actors refer to the roads and lanes.
   std::optional<openscenario::Scenario> scenario;
   std::optional<opendrive::RoadNetwork> roads;
@@ -112,10 +130,8 @@ RunResult run_openscenario(const RunRequest& req, Simulator& sim) {
   std::string ego;
   int background = 0;  // SUMO vehicles that are not entities, at the last step
   try {
-    if (req.ego_link)
-      throw OrchError("--ego-port: an external ego is not supported for OpenSCENARIO runs yet (docs/openscenario.md)");
     result.scenario = {req.scenario_file, sha256_of_file(req.scenario_file)};
-    scenario.emplace(openscenario::load_scenario(req.scenario_file));
+    scenario.emplace(openscenario::load_scenario(req.scenario_file, {req.parameter_overrides}));
     result.title = std::filesystem::path(req.scenario_file).stem().string();
     result.description = scenario->description;
     if (scenario->road_file.empty())
@@ -129,10 +145,13 @@ RunResult run_openscenario(const RunRequest& req, Simulator& sim) {
                          net.from_cache ? "cached" : "converted now"));
     lanes.emplace(*roads, net.net_file.string());
     ego = choose_ego_entity(*scenario, req.ego_entity);
+    check_external_ego(*scenario, ego, req.ego_link != nullptr);
     log.note(ego.empty() ? std::string("no ego (no entity with the ALKSController controller, no --ego)")
-                         : fmt::format("ego {} (driven by SUMO's car-following model)", ego));
+             : req.ego_link ? fmt::format("ego {} (SUMO vehicle \"ego\"; driven by SUMO's car-following model until "
+                                          "an ActivateControllerAction hands it to the external ego)", ego)
+                            : fmt::format("ego {} (driven by SUMO's car-following model)", ego));
     runtime.emplace(*scenario, *roads);
-    actors.emplace(*scenario, *lanes, ego);
+    actors.emplace(*scenario, *lanes, ego, req.ego_link != nullptr);
 
     SimulatorConfig config;
     config.net_file = std::filesystem::absolute(net.net_file).string();
@@ -142,6 +161,7 @@ RunResult run_openscenario(const RunRequest& req, Simulator& sim) {
     if (const auto traffic = traffic_route_file(req, net.net_file, result, log); !traffic.empty())
       config.route_files.push_back(traffic);
     result.sumo_args = sumo_arguments(config);
+    if (req.ego_link) log.note(req.ego_link->listen());
     sim.start(config);
     result.sumo_version = sim.version();
     trace.emplace(req.out_dir / "trace.csv");
@@ -156,16 +176,20 @@ RunResult run_openscenario(const RunRequest& req, Simulator& sim) {
       const engine::WorldSnapshot snap = sim.read(actors->tracked());
       result.sim_time = t;
       background = snap.other_vehicles;
-      trace->record(t, snap, *actors, ego);
-      // The ego as SUMO drove it is what the storyboard's conditions see from now on.
-      if (const engine::ActorState* e = ego.empty() ? nullptr : find_actor(snap, *actors, ego); e && e->present) {
+      const auto ego_driver = ego.empty() ? OpenScenarioEgo::Driver::Sumo
+                                          : actors->ego_drive().driver(runtime->entities().at(ego));
+      trace->record(t, snap, *actors, ego, OpenScenarioEgo::label(ego_driver));
+      // The ego as SUMO (or the external ego) drove it is what the storyboard's conditions
+      // see from now on; while the storyboard moves it laterally, its own state stands.
+      if (const engine::ActorState* e = ego.empty() ? nullptr : find_actor(snap, *actors, ego);
+          e && e->present && ego_driver != OpenScenarioEgo::Driver::Storyboard) {
         const Vec2 ref = actors->reference_point(*e);
         runtime->observe(ego, {ref.x(), ref.y(), e->heading}, e->speed, e->accel);
       }
       for (const auto& l = runtime->log(); logged < l.size(); ++logged)
         log.at(l[logged].time, fmt::format("{} {} {}", l[logged].type, l[logged].name, l[logged].transition));
       if (!collision) {
-        collision = ego_collision(snap, ego, t);
+        collision = ego_collision(snap, ego, actors->ego_drive().sumo_id(), t);
         if (collision) log.at(t, *collision);
       }
       if (runtime->finished()) {
@@ -185,6 +209,8 @@ RunResult run_openscenario(const RunRequest& req, Simulator& sim) {
       }
       runtime->step(req.step);
       sim.apply(actors->place(runtime->entities()));
+      // The external ego sees this step (a hand-over included) and acts before the world advances.
+      if (req.ego_link) req.ego_link->exchange(snap.time);
     }
     log.at(result.sim_time, result.reason);
     if (!result.traffic.empty() && result.traffic != "none")
@@ -200,6 +226,11 @@ RunResult run_openscenario(const RunRequest& req, Simulator& sim) {
   if (trace) {
     trace->flush();
     result.trace_rows = trace->rows();
+  }
+  if (req.ego_link) {
+    req.ego_link->finish(to_string(result.verdict), result.reason);
+    result.ego_plugin = req.ego_link->report();
+    log.note(describe(*result.ego_plugin));
   }
   sim.close();
   log.note(fmt::format("verdict {}: {} (simulated {:.2f} s in {} steps)", to_string(result.verdict), result.reason,

@@ -58,8 +58,8 @@ std::string choose_ego_entity(const openscenario::Scenario& scenario, const std:
 }
 
 OpenScenarioActors::OpenScenarioActors(const openscenario::Scenario& scenario, const opendrive::SumoLaneIndex& lanes,
-                                       std::string ego)
-    : lanes_(lanes), ego_(std::move(ego)) {
+                                       std::string ego, bool external_ego)
+    : lanes_(lanes), ego_(std::move(ego)), ego_drive_(ego_, external_ego) {
   for (const auto& e : scenario.entities) {
     Body body;
     body.id = static_cast<engine::ActorId>(names_.size());
@@ -89,20 +89,28 @@ std::vector<engine::Command> OpenScenarioActors::place(const std::map<std::strin
     if (!state.placed) continue;
     Body& body = bodies_.at(name);
     const bool is_ego = name == ego_;
-    if (is_ego && body.spawned) {
-      // The storyboard's speed target (the last SpeedAction's), else the speed it had.
-      const double desired = state.speed_profile ? state.speed_profile->to : ego_desired_speed_;
-      if (desired != ego_desired_speed_) out.push_back(engine::SetMaxSpeed{name, desired});
-      ego_desired_speed_ = desired;
-      continue;
-    }
     const auto hint = lanes_.find(state.road_id, state.lane, state.s);
     const Vec2 centre = centre_of(body, state.pose);
+    const std::string sumo_id = is_ego ? ego_drive_.sumo_id() : name;
+    engine::SetPose pose;
+    pose.sumo_id = sumo_id;
+    pose.kind = body.model.kind;
+    pose.length = body.model.length;
+    pose.position = centre;
+    pose.heading = state.pose.heading;
+    pose.speed = state.speed;
+    pose.edge = hint ? hint->edge : "";
+    pose.lane = hint ? hint->index : 0;
+    pose.centred = std::abs(state.offset) < 0.5;
+    if (is_ego && body.spawned) {
+      for (auto& c : ego_drive_.commands(state, pose)) out.push_back(std::move(c));
+      continue;
+    }
     if (!body.spawned) {
       if (!hint)
         throw MapError(fmt::format("entity {} starts on road {} lane {} at s={:.2f}, of which the SUMO net has no lane",
                                    name, state.road_id, state.lane, state.s));
-      engine::TrackedActor actor{body.id, name, body.model.kind, body.model.length, body.model.width};
+      engine::TrackedActor actor{body.id, sumo_id, body.model.kind, body.model.length, body.model.width};
       engine::SpawnVehicle spawn;
       spawn.actor = actor;
       spawn.model = body.model;
@@ -113,23 +121,12 @@ std::vector<engine::Command> OpenScenarioActors::place(const std::map<std::strin
       spawn.speed = state.speed;
       if (is_ego) {
         spawn.scripted = false;
-        ego_desired_speed_ = state.speed_profile ? state.speed_profile->to : state.speed;
-        spawn.max_speed = ego_desired_speed_;
+        spawn.max_speed = ego_drive_.spawn_speed(state);
       }
       out.push_back(std::move(spawn));
       tracked_.push_back(actor);
       body.spawned = true;
     }
-    engine::SetPose pose;
-    pose.sumo_id = name;
-    pose.kind = body.model.kind;
-    pose.length = body.model.length;
-    pose.position = centre;
-    pose.heading = state.pose.heading;
-    pose.speed = state.speed;
-    pose.edge = hint ? hint->edge : "";
-    pose.lane = hint ? hint->index : 0;
-    pose.centred = std::abs(state.offset) < 0.5;
     pose.scripted = !is_ego;  // the ego: one placement, then SUMO drives
     out.push_back(std::move(pose));
   }

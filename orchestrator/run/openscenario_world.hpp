@@ -11,6 +11,7 @@
 #include "opendrive/sumo_lanes.hpp"
 #include "openscenario/entity_motion.hpp"
 #include "openscenario/model.hpp"
+#include "run/openscenario_ego.hpp"
 
 namespace orch {
 
@@ -23,8 +24,10 @@ class OpenScenarioActors {
  public:
   // `ego` ("" for none) is driven by SUMO's car-following model: spawned and placed once where
   // the storyboard puts it, then only its desired speed follows the storyboard's speed target.
+  // `external_ego`: an external ego (--ego-port) takes the ego over once its controller is
+  // activated (openscenario_ego.hpp).
   OpenScenarioActors(const openscenario::Scenario& scenario, const opendrive::SumoLaneIndex& lanes,
-                     std::string ego);
+                     std::string ego, bool external_ego = false);
 
   // Commands for the entities' states now: a spawn for each newly placed entity, then a pose
   // for every placed scripted one (the ego: its desired speed when it changed). Throws MapError when an entity first appears where SUMO has no lane.
@@ -36,6 +39,7 @@ class OpenScenarioActors {
   // The entity's reference point (rear axle centre for vehicles) from SUMO's reported centre.
   [[nodiscard]] Vec2 reference_point(const engine::ActorState& state) const;
   [[nodiscard]] const std::string& ego() const { return ego_; }
+  [[nodiscard]] const OpenScenarioEgo& ego_drive() const { return ego_drive_; }
 
  private:
   struct Body {
@@ -48,7 +52,7 @@ class OpenScenarioActors {
 
   const opendrive::SumoLaneIndex& lanes_;
   std::string ego_;
-  double ego_desired_speed_ = -1;  // last sent
+  OpenScenarioEgo ego_drive_;
   std::map<std::string, Body> bodies_;
   std::vector<std::string> names_;  // by actor id
   std::vector<engine::TrackedActor> tracked_;

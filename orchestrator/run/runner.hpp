@@ -4,6 +4,7 @@
 // are caught once, in run_scenario, and never reported as a test failure.
 #include <atomic>
 #include <filesystem>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -36,6 +37,8 @@ struct RunRequest {
   std::optional<EvaluationRequest> evaluation;
   // OpenSCENARIO runs: the ego entity (--ego NAME); empty: the one with the ALKSController.
   std::string ego_entity;
+  // OpenSCENARIO runs: --param NAME=VALUE overrides of declared parameters.
+  std::map<std::string, std::string> parameter_overrides;
 };
 
 RunResult run_scenario(const RunRequest& request, Simulator& simulator);

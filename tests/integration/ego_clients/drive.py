@@ -14,6 +14,9 @@ Modes:
   census     setSpeed(--speed) every step; a context subscription of --range around the
              ego, checked every 10th step against every vehicle's position (getIDList).
   disconnect / hang / close   step --after times, then vanish / stop answering / close.
+  handover   waits for the ego's `orch.hand_over` to turn "1" (an OpenSCENARIO
+             ActivateControllerAction), only watching until then; then SUMO's speed checks off
+             and setSpeed(--speed) every step.
 """
 import argparse
 import json
@@ -53,7 +56,7 @@ def ahead_in_lane(ego, around):
 
 def main():
     a = parse()
-    summary = {"mode": a.mode, "steps": 0, "hand_over": [], "perceived": None, "min_gap": None}
+    summary = {"mode": a.mode, "steps": 0, "hand_over": [], "perceived": None, "min_gap": None, "vehicles": None}
     version = traci.init(a.port, numRetries=60)
     summary["version"] = list(version)
     traci.setOrder(1)
@@ -80,6 +83,12 @@ def main():
             if ego.get(tc.VAR_PARAMETER, "") != hand_over:
                 hand_over = ego.get(tc.VAR_PARAMETER, "")
                 summary["hand_over"].append([now, hand_over])
+                if a.mode == "handover" and hand_over == "1":
+                    traci.vehicle.setSpeedMode("ego", 0)  # the commanded speed is exact
+            if summary["vehicles"] is None:
+                summary["vehicles"] = sorted(traci.vehicle.getIDList())
+            if a.mode == "handover" and hand_over != "1":
+                continue  # the orchestrator drives the ego until the hand-over
             if a.mode in ("disconnect", "hang", "close") and summary["steps"] >= a.after:
                 summary["last_time"] = now
                 write(a.summary, summary)
