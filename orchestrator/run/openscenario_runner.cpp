@@ -35,14 +35,14 @@ class EntityTrace {
   EntityTrace(const EntityTrace&) = delete;
   EntityTrace& operator=(const EntityTrace&) = delete;
 
-  void record(double time, const engine::WorldSnapshot& snap, const OpenScenarioActors& actors, const std::string& ego) {
+  void record(double time, const engine::WorldSnapshot& snap, const OpenScenarioActors& actors) {
     for (const auto& a : snap.actors) {
       if (!a.present) continue;
       const Vec2 ref = actors.reference_point(a);
       const std::string& name = actors.name_of(a.id);
       fmt::print(file_, "{:.3f},,{},{:.3f},{:.3f},{:.4f},{:.3f},{:.3f},{},{},{:.3f},{:.3f},{},0,{}\n", time, name,
                  ref.x(), ref.y(), a.heading, a.speed, a.accel, a.edge, a.lane, a.lane_pos, a.lat_offset.value_or(0.0),
-                 a.signals, name == ego ? "sumo" : "script");
+                 a.signals, actors.is_sumo_driven(name) ? "sumo" : "script");
       ++rows_;
     }
     if (++steps_ % 200 == 0) std::fflush(file_);
@@ -156,12 +156,14 @@ RunResult run_openscenario(const RunRequest& req, Simulator& sim) {
       const engine::WorldSnapshot snap = sim.read(actors->tracked());
       result.sim_time = t;
       background = snap.other_vehicles;
-      trace->record(t, snap, *actors, ego);
-      // The ego as SUMO drove it is what the storyboard's conditions see from now on.
-      if (const engine::ActorState* e = ego.empty() ? nullptr : find_actor(snap, *actors, ego); e && e->present) {
-        const Vec2 ref = actors->reference_point(*e);
-        runtime->observe(ego, {ref.x(), ref.y(), e->heading}, e->speed, e->accel);
-      }
+      trace->record(t, snap, *actors);
+      // Entities SUMO drove (the ego, activated controllers) are what the storyboard's
+      // conditions see of them from now on.
+      for (const std::string& driven : actors->sumo_driven())
+        if (const engine::ActorState* e = find_actor(snap, *actors, driven); e && e->present) {
+          const Vec2 ref = actors->reference_point(*e);
+          runtime->observe(driven, {ref.x(), ref.y(), e->heading}, e->speed, e->accel);
+        }
       for (const auto& l = runtime->log(); logged < l.size(); ++logged)
         log.at(l[logged].time, fmt::format("{} {} {}", l[logged].type, l[logged].name, l[logged].transition));
       if (!collision) {
