@@ -83,7 +83,8 @@ TEST(OpenScenarioSamplesCli, CutInWithBackgroundTrafficHandsTheCarToSumo) {
   ASSERT_GT(hand_over, cut_in);
   const auto background = log.find("background vehicles in SUMO at the end");
   ASSERT_NE(background, std::string::npos);
-  EXPECT_GT(std::stoi(log.substr(log.rfind(' ', log.rfind(' ', background) - 1) + 1)), 0) << log;
+  const auto line = log.rfind('\n', background);  // "N background vehicles in SUMO at the end"
+  EXPECT_GT(std::stoi(log.substr(line == std::string::npos ? 0 : line + 1)), 0) << log;
 
   const Trace trace(out / "trace.csv");
   std::string first_cut_in_lane, last_cut_in_lane, ego_lane;
