@@ -2,6 +2,9 @@
 // OpenSCENARIO / OpenDRIVE text shared by the storyboard runtime tests: a straight two-lane
 // road and the entities placed on it. Header only ("unit/openscenario_snippets.hpp").
 #include <string>
+#include <vector>
+
+#include "openscenario/storyboard_runtime.hpp"
 
 namespace orch::test {
 
@@ -29,6 +32,20 @@ inline std::string place(const std::string& name, double s, int lane, double spe
          std::to_string(lane) + R"(" s=")" + std::to_string(s) + R"(" offset="0"/></Position></TeleportAction></PrivateAction>
   <PrivateAction><LongitudinalAction><SpeedAction><SpeedActionDynamics dynamicsShape="step" dynamicsDimension="time" value="0"/>
   <SpeedActionTarget><AbsoluteTargetSpeed value=")" + std::to_string(speed) + R"("/></SpeedActionTarget></SpeedAction></LongitudinalAction></PrivateAction></Private>)";
+}
+
+// Steps of 0.05 s until `t` or the storyboard's end.
+inline void run_until(openscenario::StoryboardRuntime& runtime, double t) {
+  while (runtime.time() < t - 1e-9 && !runtime.finished()) runtime.step(0.05);
+}
+
+// When `name` made `transition` (startTransition, endTransition, ...), in order.
+inline std::vector<double> transition_times(const openscenario::StoryboardRuntime& runtime, const std::string& name,
+                                            const std::string& transition) {
+  std::vector<double> out;
+  for (const openscenario::TransitionLog& l : runtime.log())
+    if (l.name == name && l.transition == transition) out.push_back(l.time);
+  return out;
 }
 
 }  // namespace orch::test

@@ -48,6 +48,14 @@ openscenario::EntityState placed_on(const opendrive::RoadNetwork& roads, int lan
   return state;
 }
 
+// Road 3 and the SUMO lanes of its right side, in a temporary folder.
+class OpenScenarioActorsOnRoad3 : public ::testing::Test {
+ protected:
+  test::TempDir dir;
+  const opendrive::RoadNetwork roads = opendrive::read_xodr_file(dir.write("r.xodr", kRoad).string());
+  const opendrive::SumoLaneIndex lanes{roads, dir.write("n.net.xml", kNet).string()};
+};
+
 TEST(OpenScenarioActors, TheEgoIsTheSystemUnderTestsEntityUnlessNamed) {
   openscenario::Scenario s;
   s.file = "s.xosc";
@@ -64,10 +72,7 @@ TEST(OpenScenarioActors, TheEgoIsTheSystemUnderTestsEntityUnlessNamed) {
   EXPECT_EQ(choose_ego_entity(s, ""), "");
 }
 
-TEST(OpenScenarioActors, SpawnsOnceOnTheSumoLaneAndPosesTheBoxCentre) {
-  test::TempDir dir;
-  const auto roads = opendrive::read_xodr_file(dir.write("r.xodr", kRoad).string());
-  const opendrive::SumoLaneIndex lanes(roads, dir.write("n.net.xml", kNet).string());
+TEST_F(OpenScenarioActorsOnRoad3, SpawnsOnceOnTheSumoLaneAndPosesTheBoxCentre) {
   openscenario::Scenario s;
   s.entities = {car("Lead", "")};
   OpenScenarioActors actors(s, lanes, "");
@@ -106,10 +111,7 @@ TEST(OpenScenarioActors, SpawnsOnceOnTheSumoLaneAndPosesTheBoxCentre) {
   EXPECT_THROW((void)other.place(entities), MapError);
 }
 
-TEST(OpenScenarioActors, TheEgoIsPlacedOnceThenOnlyItsDesiredSpeedFollowsTheStoryboard) {
-  test::TempDir dir;
-  const auto roads = opendrive::read_xodr_file(dir.write("r.xodr", kRoad).string());
-  const opendrive::SumoLaneIndex lanes(roads, dir.write("n.net.xml", kNet).string());
+TEST_F(OpenScenarioActorsOnRoad3, TheEgoIsPlacedOnceThenOnlyItsDesiredSpeedFollowsTheStoryboard) {
   openscenario::Scenario s;
   s.entities = {car("Ego", "ALKSController")};
   OpenScenarioActors actors(s, lanes, "Ego");
@@ -132,10 +134,7 @@ TEST(OpenScenarioActors, TheEgoIsPlacedOnceThenOnlyItsDesiredSpeedFollowsTheStor
 
 // DeleteEntityAction / VisibilityAction(traffic=false) take the entity out of SUMO; it comes
 // back under a new SUMO id. An activated controller of a non-ego entity hands it to SUMO.
-TEST(OpenScenarioActors, DeletedOrInvisibleEntitiesLeaveSumoActivatedControllersHandOver) {
-  test::TempDir dir;
-  const auto roads = opendrive::read_xodr_file(dir.write("r.xodr", kRoad).string());
-  const opendrive::SumoLaneIndex lanes(roads, dir.write("n.net.xml", kNet).string());
+TEST_F(OpenScenarioActorsOnRoad3, DeletedOrInvisibleEntitiesLeaveSumoActivatedControllersHandOver) {
   openscenario::Scenario s;
   s.entities = {car("Lead", "")};
   OpenScenarioActors actors(s, lanes, "");

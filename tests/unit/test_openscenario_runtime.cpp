@@ -59,14 +59,9 @@ class Runtime : public ::testing::Test {
     roads_ = opendrive::read_xodr_file((dir_ / "road.xodr").string());
     runtime_ = std::make_unique<StoryboardRuntime>(scenario_, roads_);
   }
-  void run_until(double t) {
-    while (runtime_->time() < t - 1e-9 && !runtime_->finished()) runtime_->step(0.05);
-  }
+  void run_until(double t) { test::run_until(*runtime_, t); }
   [[nodiscard]] std::vector<double> times(const std::string& name, const std::string& transition) const {
-    std::vector<double> out;
-    for (const TransitionLog& l : runtime_->log())
-      if (l.name == name && l.transition == transition) out.push_back(l.time);
-    return out;
+    return test::transition_times(*runtime_, name, transition);
   }
   const EntityState& a() const { return runtime_->entities().at("A"); }
 

@@ -79,14 +79,9 @@ class StoryboardActions : public ::testing::Test {
     }
     return "";
   }
-  void run_until(double t) {
-    while (runtime_->time() < t - 1e-9 && !runtime_->finished()) runtime_->step(0.05);
-  }
+  void run_until(double t) { test::run_until(*runtime_, t); }
   [[nodiscard]] std::vector<double> times(const std::string& name, const std::string& transition) const {
-    std::vector<double> out;
-    for (const TransitionLog& l : runtime_->log())
-      if (l.name == name && l.transition == transition) out.push_back(l.time);
-    return out;
+    return test::transition_times(*runtime_, name, transition);
   }
   [[nodiscard]] double first(const std::string& name, const std::string& transition = "startTransition") const {
     const auto t = times(name, transition);
