@@ -186,7 +186,7 @@ double parameter_number(const Parameter& p) {
 std::vector<std::string> start_action(const PrivateAction& action, const std::string& entity,
                                       const std::string& action_name, ActionContext& ctx,
                                       std::vector<RunningAction>& running) {
-  static EntityState no_entity;  // global actions have no actor
+  EntityState no_entity;  // global actions have no actor
   EntityState& state = entity.empty() ? no_entity : state_of(ctx, entity);
   std::vector<std::string> replaced;
   const auto take_over = [&](MotionDomain domain, bool takes_time, bool continuous) {
