@@ -36,6 +36,21 @@ class SharedContexts {
   void subscribe(const std::string& centre, bool centre_person, int domain, double range,
                  const std::vector<int>& vars);
 
+  // Before the centre is taken out of SUMO: its context subscriptions end (SUMO would
+  // otherwise look for it in the next step).
+  void forget(const std::string& centre) {
+    for (auto it = entries_.begin(); it != entries_.end();) {
+      const auto& [id, person, domain] = it->first;
+      if (id != centre) {
+        ++it;
+        continue;
+      }
+      if (person) orch_sumo::Person::unsubscribeContext(id, domain, it->second.range);
+      else orch_sumo::Vehicle::unsubscribeContext(id, domain, it->second.range);
+      it = entries_.erase(it);
+    }
+  }
+
   // The objects of `domain` within `range` m of `centre`, with at least `vars` in their
   // results, by id (the centre itself included when it is of `domain`, as in SUMO);
   // subscribes first when needed.

@@ -123,6 +123,19 @@ class WorldReader {
     if (actor.kind == ActorKind::Pedestrian) pending_persons_.push_back(actor.sumo_id);
   }
 
+  // A scenario actor about to be removed from SUMO: no longer followed, subscriptions ended.
+  void forget(const std::string& id) {
+    const auto it = followed_.find(id);
+    if (it != followed_.end()) {
+      if (it->second) sumo::Person::unsubscribe(id);
+      else sumo::Vehicle::unsubscribe(id);
+      contexts::shared_contexts().forget(id);
+      followed_.erase(it);
+    }
+    actor_kind_.erase(id);
+    std::erase(pending_persons_, id);
+  }
+
   engine::WorldSnapshot read(const std::vector<engine::TrackedActor>& actors) {
     engine::WorldSnapshot snap;
     snap.time = time_;

@@ -367,6 +367,24 @@ class SumoSimulator final : public Simulator {
     guard("setting a parameter", [&] { sumo::Vehicle::setParameter(c.sumo_id, c.key, c.value); });
   }
 
+  void execute(const engine::RemoveActor& c) {
+    guard("removing an actor", [&] {
+      reader_.forget(c.sumo_id);
+      if (c.kind == ActorKind::Pedestrian) sumo::Person::remove(c.sumo_id);
+      else sumo::Vehicle::remove(c.sumo_id);
+      sent_.erase(c.sumo_id);
+    });
+  }
+
+  void execute(const engine::ReleaseActor& c) {
+    guard("handing an actor to SUMO", [&] {
+      sumo::Vehicle::setSpeedMode(c.sumo_id, 31);  // SUMO's default: safe speeds, brakes for leaders
+      sumo::Vehicle::setSpeed(c.sumo_id, -1);      // its own speed from now on
+      if (c.max_speed > 0) sumo::Vehicle::setMaxSpeed(c.sumo_id, c.max_speed);
+      sent_.erase(c.sumo_id);
+    });
+  }
+
   SumoBackendOptions options_;
   std::string log_file_;
   bool started_ = false;

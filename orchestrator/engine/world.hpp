@@ -139,6 +139,16 @@ struct SetParameter {
   std::string value;
 };
 
-using Command = std::variant<SpawnVehicle, SpawnPerson, SetPose, SetSignals, SetMaxSpeed, SetStop, SetParameter>;
+struct RemoveActor {  // takes a spawned actor out of the simulation (OpenSCENARIO DeleteEntityAction)
+  std::string sumo_id;
+  ActorKind kind = ActorKind::Vehicle;
+};
+struct ReleaseActor {  // a scripted vehicle is driven by SUMO from now on, at most at `max_speed`
+  std::string sumo_id;
+  double max_speed = 0;
+};
+
+using Command = std::variant<SpawnVehicle, SpawnPerson, SetPose, SetSignals, SetMaxSpeed, SetStop, SetParameter,
+                             RemoveActor, ReleaseActor>;
 
 }  // namespace orch::engine

@@ -1,4 +1,7 @@
-// PrivateAction: the longitudinal, lateral, controller and teleport actions run today.
+// PrivateAction and GlobalAction: one table entry per action run (name, reader); the
+// readers of the motion and controller actions.
+#include <algorithm>
+
 #include <fmt/format.h>
 
 #include "openscenario/reader_context.hpp"
@@ -120,42 +123,125 @@ ActivateControllerAction read_activate(Element& e) {
   return a;
 }
 
+AssignControllerAction read_assign_controller(Element& e, Context& context) {
+  AssignControllerAction a;
+  a.lateral = e.optional_boolean("activateLateral");
+  a.longitudinal = e.optional_boolean("activateLongitudinal");
+  for (const char* unsupported : {"activateAnimation", "activateLighting"})
+    if (e.optional_boolean(unsupported).value_or(false))
+      e.fail_attribute(unsupported, fmt::format("{} is not supported", unsupported));
+  Element source = e.one_of({"Controller", "CatalogReference"});
+  if (source.name() == "CatalogReference") {
+    Element entry = context.resolve(source, {"Controller"});
+    a.controller = read_controller(entry);
+    source.finish();
+  } else {
+    a.controller = read_controller(source);
+  }
+  e.finish();
+  return a;
+}
+
+VisibilityAction read_visibility(Element& e) {
+  VisibilityAction a{e.boolean("graphics"), e.boolean("traffic"), e.optional_boolean("sensors").value_or(true)};
+  e.finish();
+  return a;
+}
+
+// ---- the tables: one entry per action the orchestrator runs --------------------------
+// `wrapper` is the element between PrivateAction / GlobalAction and the action ("" when
+// the action stands directly in it). A child of a wrapper that is not in the table is an
+// error: "not supported" for an element of the standard, else "unknown" with "did you mean".
+// Entity references of every action are checked where the storyboard is read (by member:
+// `entity`, `relative_to`, positions); what an action does is in action_start.cpp.
+using ActionReader = PrivateAction (*)(Element& wrapper, Element& action, Context& context);
+struct ActionEntry {
+  std::string_view wrapper;
+  std::string_view name;
+  ActionReader read;
+};
+
+const std::vector<ActionEntry> kPrivateActions = {
+    {"", "TeleportAction",
+     [](Element&, Element& e, Context&) -> PrivateAction {
+       Element position = e.child("Position");
+       return TeleportAction{read_position(position)};
+     }},
+    {"", "VisibilityAction", [](Element&, Element& e, Context&) -> PrivateAction { return read_visibility(e); }},
+    // OpenSCENARIO 1.0 places ActivateControllerAction directly in PrivateAction.
+    {"", "ActivateControllerAction", [](Element&, Element& e, Context&) -> PrivateAction { return read_activate(e); }},
+    {"LongitudinalAction", "SpeedAction", [](Element&, Element& e, Context&) -> PrivateAction { return read_speed(e); }},
+    {"LongitudinalAction", "LongitudinalDistanceAction",
+     [](Element&, Element& e, Context&) -> PrivateAction { return read_distance(e); }},
+    {"LateralAction", "LaneChangeAction",
+     [](Element&, Element& e, Context&) -> PrivateAction { return read_lane_change(e); }},
+    {"LateralAction", "LaneOffsetAction",
+     [](Element&, Element& e, Context&) -> PrivateAction { return read_lane_offset(e); }},
+    {"ControllerAction", "ActivateControllerAction",
+     [](Element&, Element& e, Context&) -> PrivateAction { return read_activate(e); }},
+    {"ControllerAction", "AssignControllerAction",
+     [](Element&, Element& e, Context& c) -> PrivateAction { return read_assign_controller(e, c); }},
+    {"RoutingAction", "AssignRouteAction",
+     [](Element&, Element& e, Context& c) -> PrivateAction { return read_assign_route(e, c); }},
+    {"RoutingAction", "AcquirePositionAction",
+     [](Element&, Element& e, Context&) -> PrivateAction {
+       Element position = e.child("Position");
+       return AcquirePositionAction{read_position(position)};
+     }},
+    {"RoutingAction", "FollowTrajectoryAction",
+     [](Element&, Element& e, Context& c) -> PrivateAction { return read_follow_trajectory(e, c); }},
+};
+
+const std::vector<ActionEntry> kGlobalActions = {
+    {"EntityAction", "AddEntityAction",
+     [](Element& w, Element& e, Context&) -> PrivateAction {
+       Element position = e.child("Position");
+       return AddEntityAction{w.text("entityRef"), read_position(position)};
+     }},
+    {"EntityAction", "DeleteEntityAction",
+     [](Element& w, Element&, Context&) -> PrivateAction { return DeleteEntityAction{w.text("entityRef")}; }},
+    {"ParameterAction", "SetAction",
+     [](Element& w, Element& e, Context&) -> PrivateAction { return read_parameter_set(w, e); }},
+    {"ParameterAction", "ModifyAction",
+     [](Element& w, Element& e, Context&) -> PrivateAction { return read_parameter_modify(w, e); }},
+};
+
+PrivateAction read_from_table(Element& holder, const std::vector<ActionEntry>& table, Context& context) {
+  std::vector<std::string> outer;
+  for (const ActionEntry& entry : table) {
+    const std::string name(entry.wrapper.empty() ? entry.name : entry.wrapper);
+    if (std::find(outer.begin(), outer.end(), name) == outer.end()) outer.push_back(name);
+  }
+  Element kind = holder.one_of(outer);  // an unlisted standard action: "not supported"
+  holder.finish();
+  for (const ActionEntry& entry : table)
+    if (entry.wrapper.empty() && entry.name == kind.name()) {
+      PrivateAction result = entry.read(kind, kind, context);
+      kind.finish();
+      return result;
+    }
+  std::vector<std::string> inner;
+  for (const ActionEntry& entry : table)
+    if (entry.wrapper == kind.name()) inner.emplace_back(entry.name);
+  Element action = kind.one_of(inner);
+  for (const ActionEntry& entry : table)
+    if (entry.wrapper == kind.name() && entry.name == action.name()) {
+      PrivateAction result = entry.read(kind, action, context);
+      action.finish();
+      kind.finish();
+      return result;
+    }
+  action.fail("unreachable: one_of returned an element outside the table");
+}
+
 }  // namespace
 
-PrivateAction read_private_action(Element& private_action) {
-  Element kind = private_action.one_of({"LongitudinalAction", "LateralAction", "VisibilityAction",
-                                        "SynchronizeAction", "ActivateControllerAction", "ControllerAction",
-                                        "TeleportAction", "RoutingAction", "AppearanceAction", "TrailerAction"});
-  private_action.finish();
-  const std::string_view name = kind.name();
-  PrivateAction result = ActivateControllerAction{};
-  if (name == "TeleportAction") {
-    Element position = kind.child("Position");
-    result = TeleportAction{read_position(position)};
-  } else if (name == "LongitudinalAction") {
-    Element action = kind.one_of({"SpeedAction", "LongitudinalDistanceAction", "SpeedProfileAction"});
-    if (action.name() == "SpeedAction") result = read_speed(action);
-    else if (action.name() == "LongitudinalDistanceAction") result = read_distance(action);
-    else action.fail("SpeedProfileAction is an OpenSCENARIO element the orchestrator does not run (not supported)");
-  } else if (name == "LateralAction") {
-    Element action = kind.one_of({"LaneChangeAction", "LaneOffsetAction", "LateralDistanceAction"});
-    if (action.name() == "LaneChangeAction") result = read_lane_change(action);
-    else if (action.name() == "LaneOffsetAction") result = read_lane_offset(action);
-    else action.fail("LateralDistanceAction is an OpenSCENARIO element the orchestrator does not run (not supported)");
-  } else if (name == "ActivateControllerAction") {
-    result = read_activate(kind);  // OpenSCENARIO 1.0 places it here
-  } else if (name == "ControllerAction") {
-    // 1.1+: ActivateControllerAction inside ControllerAction; the others are not run.
-    Element action = kind.one_of({"ActivateControllerAction", "AssignControllerAction", "OverrideControllerValueAction"});
-    if (action.name() != "ActivateControllerAction")
-      action.fail(fmt::format("{} is an OpenSCENARIO element the orchestrator does not run (not supported)",
-                              action.name()));
-    result = read_activate(action);
-  } else {
-    kind.fail(fmt::format("{} is an OpenSCENARIO element the orchestrator does not run (not supported)", name));
-  }
-  kind.finish();
-  return result;
+PrivateAction read_private_action(Element& private_action, Context& context) {
+  return read_from_table(private_action, kPrivateActions, context);
+}
+
+PrivateAction read_global_action(Element& global_action, Context& context) {
+  return read_from_table(global_action, kGlobalActions, context);
 }
 
 }  // namespace orch::openscenario::reading

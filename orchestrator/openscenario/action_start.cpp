@@ -2,10 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include <fmt/format.h>
 
 #include "core/errors.hpp"
+#include "openscenario/expression.hpp"
+#include "openscenario/text_number.hpp"
 #include "openscenario/transition_shape.hpp"
 
 namespace orch::openscenario {
@@ -59,10 +62,20 @@ int lane_to_the_left(const opendrive::Road& road, int lane, int value) {
   return shifted_lane(lane, travel_direction(road, lane) * value);
 }
 
-void longitudinal_distance(const LongitudinalDistanceAction& a, EntityState& state, ActionContext& ctx,
-                           const std::string& entity) {
-  if (a.max_acceleration || a.max_deceleration || a.max_speed)
-    throw MapError(fmt::format("LongitudinalDistanceAction of \"{}\" with DynamicConstraints is not run yet", entity));
+bool has_limits(const LongitudinalDistanceAction& a) {
+  return a.max_acceleration || a.max_deceleration || a.max_speed;
+}
+
+// Where the entity keeps the distance: the s on the referenced entity's road, and the
+// direction of travel there.
+struct DistanceTarget {
+  const EntityState* ref = nullptr;
+  double s = 0;
+  int direction = 1;
+};
+
+DistanceTarget distance_target(const LongitudinalDistanceAction& a, const EntityState& state, ActionContext& ctx,
+                               const std::string& entity) {
   const EntityState& ref = placed(ctx, a.entity);
   if (!state.placed) throw MapError(fmt::format("entity \"{}\" has no position yet", entity));
   const opendrive::Road& road = ctx.roads.road(ref.road_id);
@@ -76,10 +89,96 @@ void longitudinal_distance(const LongitudinalDistanceAction& a, EntityState& sta
     gap += ahead ? (other.center_x + other.length / 2) - (own.center_x - own.length / 2)
                  : (own.center_x + own.length / 2) - (other.center_x - other.length / 2);
   }
-  state.road_id = ref.road_id;
-  state.s = ref.s + direction * (ahead ? gap : -gap);
-  state.speed = ref.speed;
+  return {&ref, ref.s + direction * (ahead ? gap : -gap), direction};
+}
+
+// Without DynamicConstraints: placed at the distance at once, at the referenced speed.
+void longitudinal_distance(const LongitudinalDistanceAction& a, EntityState& state, ActionContext& ctx,
+                           const std::string& entity) {
+  const DistanceTarget target = distance_target(a, state, ctx, entity);
+  state.road_id = target.ref->road_id;
+  state.s = target.s;
+  state.speed = target.ref->speed;
   update_pose(state, ctx.roads);
+}
+
+// With DynamicConstraints: the entity stays in its lane and sets its speed for the next
+// step towards the distance: the speed from which braking (or speeding up) at the limit
+// ends at the referenced speed on the target, v = v_ref + sign(e) sqrt(2 a |e|) (e: metres
+// short of the target), within [0, maxSpeed] and changed by at most maxAcceleration /
+// maxDeceleration per second (absent limits: none). True once within kDistanceReached m
+// and m/s of the target and the referenced speed.
+inline constexpr double kDistanceReached = 0.1;
+bool approach_distance(const LongitudinalDistanceAction& a, EntityState& state, ActionContext& ctx,
+                       const std::string& entity) {
+  const DistanceTarget target = distance_target(a, state, ctx, entity);
+  const double unlimited = std::numeric_limits<double>::infinity();
+  const double accelerate = a.max_acceleration.value_or(unlimited);
+  const double decelerate = a.max_deceleration.value_or(unlimited);
+  const double error = state.road_id == target.ref->road_id ? (target.s - state.s) * target.direction : 0.0;
+  const double v_ref = target.ref->speed;
+  double wanted = v_ref + std::copysign(std::sqrt(2 * (error > 0 ? decelerate : accelerate) * std::abs(error)), error);
+  wanted = std::clamp(wanted, 0.0, a.max_speed.value_or(unlimited));
+  const double dt = ctx.dt > 0 ? ctx.dt : unlimited;
+  state.speed += std::clamp(wanted - state.speed, -decelerate * dt, accelerate * dt);
+  return std::abs(error) <= kDistanceReached && std::abs(state.speed - v_ref) <= kDistanceReached;
+}
+
+// A resolved position as a route waypoint on a lane of the roads.
+EntityState::Waypoint waypoint_at(const Position& position, ActionContext& ctx, const std::string& what) {
+  const ResolvedPosition r = ctx.resolver.resolve(position, poses(ctx));
+  if (!r.road || !r.lane || *r.lane == 0)
+    throw MapError(fmt::format("{} (x {:.3f}, y {:.3f}) is on no lane of the road network", what, r.pose.x, r.pose.y));
+  return {r.road->road_id, r.road->s, *r.lane};
+}
+
+// Whether the entity has reached or passed `w` along its road in its direction of travel.
+bool reached(const EntityState& state, const EntityState::Waypoint& w, const opendrive::RoadNetwork& roads) {
+  if (state.road_id != w.road_id) return false;
+  return (state.s - w.s) * travel_direction(roads.road(w.road_id), state.lane) >= -1e-6;
+}
+
+void count_passed_waypoints(EntityState& state, const opendrive::RoadNetwork& roads) {
+  while (state.route_passed < state.route.size() && reached(state, state.route[state.route_passed], roads))
+    ++state.route_passed;
+}
+
+PathMotion trajectory_path(const FollowTrajectoryAction& a, ActionContext& ctx, const std::string& entity) {
+  // Vertex times to simulation times: t = (start of the action when relative) + time * scale + offset.
+  const auto due = [&](std::optional<double> time) -> std::optional<double> {
+    if (!a.timing || !time) return std::nullopt;
+    return (a.timing->absolute ? 0.0 : ctx.t) + *time * a.timing->scale + a.timing->offset;
+  };
+  std::vector<PathPoint> points;
+  if (const auto* polyline = std::get_if<PolylineShape>(&a.trajectory.shape)) {
+    for (const TrajectoryVertex& v : polyline->vertices) {
+      const opendrive::Pose2 p = ctx.resolver.resolve(v.position, poses(ctx)).pose;
+      points.push_back({p.x, p.y, 0.0, due(v.time)});
+    }
+  } else {
+    const auto& c = std::get<ClothoidShape>(a.trajectory.shape);
+    const opendrive::Pose2 start = ctx.resolver.resolve(c.start, poses(ctx)).pose;
+    points = clothoid_points(start, c.curvature, c.curvature_dot, c.length);
+    if (a.timing) {  // constant speed from startTime to stopTime
+      for (std::size_t i = 0; i < points.size(); ++i) {
+        const double f = static_cast<double>(i) / static_cast<double>(points.size() - 1);
+        points[i].due = due(*c.start_time + f * (*c.stop_time - *c.start_time));
+      }
+    }
+  }
+  try {
+    PathMotion path = make_path(std::move(points), a.timing.has_value());
+    path.distance = std::min(a.initial_distance_offset, path.length());
+    return path;
+  } catch (const MapError& e) {
+    throw MapError(fmt::format("trajectory \"{}\" of \"{}\": {}", a.trajectory.name, entity, e.what()));
+  }
+}
+
+double parameter_number(const Parameter& p) {
+  const auto value = parse_whole<double>(p.value);
+  if (!value) throw MapError(fmt::format("parameter {} holds \"{}\", not a number", p.name, p.value));
+  return *value;
 }
 
 }  // namespace
@@ -87,7 +186,8 @@ void longitudinal_distance(const LongitudinalDistanceAction& a, EntityState& sta
 std::vector<std::string> start_action(const PrivateAction& action, const std::string& entity,
                                       const std::string& action_name, ActionContext& ctx,
                                       std::vector<RunningAction>& running) {
-  EntityState& state = state_of(ctx, entity);
+  EntityState no_entity;  // global actions have no actor
+  EntityState& state = entity.empty() ? no_entity : state_of(ctx, entity);
   std::vector<std::string> replaced;
   const auto take_over = [&](MotionDomain domain, bool takes_time, bool continuous) {
     for (auto it = running.begin(); it != running.end();) {
@@ -119,6 +219,7 @@ std::vector<std::string> start_action(const PrivateAction& action, const std::st
           if (!state.placed) throw MapError(fmt::format("entity \"{}\" has no position yet", entity));
           const opendrive::Road& road = ctx.roads.road(state.road_id);
           const int target = a.relative_to ? lane_to_the_left(road, from.lane, a.lane) : a.lane;
+          state.path.reset();
           const double start_offset = state.t - road.lane_center_t(target, state.s);
           const double end_offset = a.target_lane_offset.value_or(0.0);
           const double duration = transition_duration(a.dynamics, end_offset - start_offset, state.speed, state.speed);
@@ -134,6 +235,7 @@ std::vector<std::string> start_action(const PrivateAction& action, const std::st
         } else if constexpr (std::is_same_v<T, LaneOffsetAction>) {
           if (!state.placed) throw MapError(fmt::format("entity \"{}\" has no position yet", entity));
           const double to = a.relative_to ? placed(ctx, *a.relative_to).offset + a.value : a.value;
+          state.path.reset();
           const double duration =
               a.max_lateral_acc ? duration_for_lateral_acceleration(a.shape, to - state.offset, *a.max_lateral_acc) : 0.0;
           state.lateral_profile = LateralProfile{ctx.t, duration, state.offset, to, a.shape};
@@ -144,11 +246,64 @@ std::vector<std::string> start_action(const PrivateAction& action, const std::st
             update_pose(state, ctx.roads);
           }
         } else if constexpr (std::is_same_v<T, LongitudinalDistanceAction>) {
-          longitudinal_distance(a, state, ctx, entity);
           state.speed_profile.reset();
-          take_over(MotionDomain::Longitudinal, false, a.continuous);
-        } else {  // ActivateControllerAction: the system under test drives from now on
+          if (has_limits(a)) {
+            (void)distance_target(a, state, ctx, entity);  // both placed: checked now
+            take_over(MotionDomain::Longitudinal, true, a.continuous);
+          } else {
+            longitudinal_distance(a, state, ctx, entity);
+            take_over(MotionDomain::Longitudinal, false, a.continuous);
+          }
+        } else if constexpr (std::is_same_v<T, ActivateControllerAction>) {
+          // The entity's controller drives from now on (on SUMO: SUMO's driver, see openscenario_world).
           state.controller_active = a.longitudinal.value_or(true) || a.lateral.value_or(true);
+        } else if constexpr (std::is_same_v<T, AssignControllerAction>) {
+          state.controller = a.controller.name;
+          state.controller_active = a.longitudinal.value_or(false) || a.lateral.value_or(false);
+        } else if constexpr (std::is_same_v<T, VisibilityAction>) {
+          state.visibility = a;
+        } else if constexpr (std::is_same_v<T, FollowTrajectoryAction>) {
+          if (!state.placed) throw MapError(fmt::format("entity \"{}\" has no position yet", entity));
+          state.path = trajectory_path(a, ctx, entity);
+          state.lateral_profile.reset();
+          state.pose = state.path->pose_at(state.path->distance);
+          relocate(state, ctx.roads);
+          // Timed: the trajectory sets the speed too; untimed: the speed actions keep it.
+          if (a.timing) {
+            state.speed_profile.reset();
+            take_over(MotionDomain::Longitudinal, false, false);
+          }
+          take_over(MotionDomain::Lateral, true, false);
+        } else if constexpr (std::is_same_v<T, AssignRouteAction>) {
+          state.route.clear();
+          for (std::size_t i = 0; i < a.waypoints.size(); ++i)
+            state.route.push_back(waypoint_at(a.waypoints[i], ctx,
+                                              fmt::format("waypoint {} of route \"{}\" of \"{}\"", i + 1, a.name, entity)));
+          state.route_passed = 0;
+          if (state.placed) count_passed_waypoints(state, ctx.roads);
+        } else if constexpr (std::is_same_v<T, AcquirePositionAction>) {
+          state.route = {waypoint_at(a.position, ctx, fmt::format("the position \"{}\" is to acquire", entity))};
+          state.route_passed = 0;
+          take_over(MotionDomain::Route, true, false);
+        } else if constexpr (std::is_same_v<T, AddEntityAction>) {
+          EntityState& added = state_of(ctx, a.entity);
+          added = EntityState{};
+          added.controller = ctx.scenario.entity(a.entity)->controller ? ctx.scenario.entity(a.entity)->controller->name : "";
+          teleport(TeleportAction{a.position}, added, ctx, a.entity);
+        } else if constexpr (std::is_same_v<T, DeleteEntityAction>) {
+          state_of(ctx, a.entity).placed = false;
+          std::erase_if(running, [&](const RunningAction& r) {
+            if (r.entity != a.entity) return false;
+            if (!r.action.empty()) replaced.push_back(r.action);
+            return true;
+          });
+        } else if constexpr (std::is_same_v<T, ParameterSetAction>) {
+          ctx.parameters.at(a.parameter).value = a.value;
+        } else {  // ParameterModifyAction
+          Parameter& p = ctx.parameters.at(a.parameter);
+          const double now = parameter_number(p);
+          const double value = a.multiply ? now * a.value : now + a.value;
+          p.value = p.type == "double" ? format_number(value) : format_number(std::round(value));
         }
       },
       action);
@@ -156,19 +311,32 @@ std::vector<std::string> start_action(const PrivateAction& action, const std::st
 }
 
 std::vector<std::string> update_running_actions(ActionContext& ctx, std::vector<RunningAction>& running) {
+  for (auto& [name, state] : ctx.entities)
+    if (state.placed && !state.route.empty()) count_passed_waypoints(state, ctx.roads);
   std::vector<std::string> ended;
   for (auto it = running.begin(); it != running.end();) {
     EntityState& state = ctx.entities.at(it->entity);
     bool done = false;
     if (it->domain == MotionDomain::Longitudinal) {
       if (const auto* distance = std::get_if<LongitudinalDistanceAction>(it->spec)) {
-        longitudinal_distance(*distance, state, ctx, it->entity);  // continuous: keep the distance
+        if (!has_limits(*distance)) longitudinal_distance(*distance, state, ctx, it->entity);  // continuous: keep it
+        else done = approach_distance(*distance, state, ctx, it->entity) && !it->continuous;
       } else if (state.speed_profile && state.speed_profile->done(ctx.t)) {
         state.speed = state.speed_profile->to;
         state.speed_profile.reset();
         done = !it->continuous;
       } else if (!state.speed_profile && it->continuous) {
         state.speed = target_speed(std::get<SpeedAction>(*it->spec), ctx);  // follows the reference
+      }
+    } else if (it->domain == MotionDomain::Route) {
+      count_passed_waypoints(state, ctx.roads);
+      done = !state.placed || state.route_passed >= state.route.size();
+    } else if (std::holds_alternative<FollowTrajectoryAction>(*it->spec)) {
+      if (!state.path || state.path->done(ctx.t)) {  // continues along its lane from where the path ended
+        state.path.reset();
+        state.lateral_rate = 0;
+        update_pose(state, ctx.roads);
+        done = true;
       }
     } else if (state.lateral_profile && state.lateral_profile->done(ctx.t)) {
       state.offset = state.lateral_profile->to;

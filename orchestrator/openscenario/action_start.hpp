@@ -16,10 +16,13 @@ struct ActionContext {
   const opendrive::RoadNetwork& roads;
   const PositionResolver& resolver;
   std::map<std::string, EntityState>& entities;
+  std::map<std::string, Parameter>& parameters;  // as ParameterSet/ModifyActions left them
   double t;
+  double dt = 0;  // the step that led to t (0 at the start)
 };
 
-enum class MotionDomain { Longitudinal, Lateral };
+// Route: an AcquirePositionAction waiting for its entity to reach the position.
+enum class MotionDomain { Longitudinal, Lateral, Route };
 
 // An action still shaping one entity's motion.
 struct RunningAction {
@@ -30,7 +33,7 @@ struct RunningAction {
   const PrivateAction* spec = nullptr;
 };
 
-// Starts `action` for `entity`: immediate actions take effect now; actions that take time
+// Starts `action` for `entity` ("" for global actions): immediate actions take effect now; actions that take time
 // are added to `running`. Returns the names of running storyboard actions it replaced
 // (same entity, same motion domain). Throws MapError when a position cannot be resolved.
 std::vector<std::string> start_action(const PrivateAction& action, const std::string& entity,

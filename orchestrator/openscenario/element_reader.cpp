@@ -152,11 +152,12 @@ void Element::finish() {
   for (const pugi::xml_node c : node_.children()) {
     if (c.type() != pugi::node_element || children_asked_.contains(c.name())) continue;
     const Element child(*source_, c, *scope_);
-    const std::string suggestion = did_you_mean(c.name(), known_children);
-    if (is_standard_element(c.name()) && suggestion.empty())
+    // An element of the standard is never a misspelling, even when it is close to one read
+    // here (RelativeClearanceCondition ~ RelativeDistanceCondition).
+    if (is_standard_element(c.name()))
       child.fail(fmt::format("{} in {} is an OpenSCENARIO element the orchestrator does not run (not supported)",
                              c.name(), name()));
-    child.fail(fmt::format("unknown element {} in {}{}", c.name(), name(), suggestion));
+    child.fail(fmt::format("unknown element {} in {}{}", c.name(), name(), did_you_mean(c.name(), known_children)));
   }
 }
 

@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+
+#include "engine/collision.hpp"
 
 namespace orch::openscenario {
 namespace {
@@ -13,7 +16,38 @@ double gap(double d, double from_low, double from_high, double to_low, double to
   return std::max(0.0, -d - to_high + from_low);
 }
 
+// The body moved on at its speed and heading for `h` seconds (and along its road by as much).
+EntityState moved_on(const EntityState& state, const opendrive::RoadNetwork& roads, double h) {
+  EntityState later = state;
+  later.pose.x += state.speed * std::cos(state.pose.heading) * h;
+  later.pose.y += state.speed * std::sin(state.pose.heading) * h;
+  if (!state.road_id.empty()) later.s += travel_direction(roads.road(state.road_id), state.lane) * state.speed * h;
+  return later;
+}
+
+engine::Box box_of(const Body& body) {
+  const opendrive::Pose2& p = body.state->pose;
+  const double c = std::cos(p.heading), s = std::sin(p.heading);
+  const BoundingBox& b = *body.box;
+  return {Vec2(p.x + b.center_x * c - b.center_y * s, p.y + b.center_x * s + b.center_y * c), p.heading, b.length,
+          b.width};
+}
+
 }  // namespace
+
+double time_to_collision(const Body& from, const Body& to, const opendrive::RoadNetwork& roads,
+                         const std::string& distance_type, const std::string& coordinate_system, bool freespace) {
+  const double now = relative_distance(from, to, distance_type, coordinate_system, freespace);
+  if (freespace && now <= 0) return 0.0;
+  const EntityState a = moved_on(*from.state, roads, kTtcHorizon);
+  const EntityState b = moved_on(*to.state, roads, kTtcHorizon);
+  const double later = relative_distance({&a, from.box}, {&b, to.box}, distance_type, coordinate_system, freespace);
+  const double closing = (now - later) / kTtcHorizon;
+  if (closing <= 1e-9) return std::numeric_limits<double>::infinity();
+  return now / closing;
+}
+
+bool boxes_overlap(const Body& a, const Body& b) { return engine::boxes_touch(box_of(a), box_of(b)); }
 
 double relative_distance(const Body& from, const Body& to, const std::string& distance_type,
                          const std::string& coordinate_system, bool freespace) {

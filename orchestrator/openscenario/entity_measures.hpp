@@ -17,4 +17,15 @@ struct Body {
 double relative_distance(const Body& from, const Body& to, const std::string& distance_type,
                          const std::string& coordinate_system, bool freespace);
 
+// Time until that distance reaches 0 at today's velocities: distance / closing rate, the
+// rate from both bodies moved on at their speed and heading for kTtcHorizon seconds (exact
+// for longitudinal distances on straight roads). Infinity when the distance does not shrink;
+// 0 when freespace boxes already touch.
+inline constexpr double kTtcHorizon = 0.1;  // s
+double time_to_collision(const Body& from, const Body& to, const opendrive::RoadNetwork& roads,
+                         const std::string& distance_type, const std::string& coordinate_system, bool freespace);
+
+// The two bounding boxes overlap (touching counts).
+bool boxes_overlap(const Body& a, const Body& b);
+
 }  // namespace orch::openscenario

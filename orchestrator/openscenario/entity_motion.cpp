@@ -42,8 +42,53 @@ void update_pose(EntityState& state, const opendrive::RoadNetwork& roads) {
   state.pose = {p.x, p.y, heading};
 }
 
+void relocate(EntityState& state, const opendrive::RoadNetwork& roads) {
+  const auto on_road = roads.to_road(state.pose.x, state.pose.y);
+  if (!on_road) return;
+  const opendrive::Road& road = roads.road(on_road->road_id);
+  auto lane = road.lane_at(on_road->s, on_road->t);
+  if (!lane || *lane == 0) {
+    // Off the lanes (a pedestrian on the verge): measured from its last lane on this road.
+    if (state.road_id != road.id || state.lane == 0) return;
+    lane = state.lane;
+  }
+  state.road_id = on_road->road_id;
+  state.s = on_road->s;
+  state.lane = *lane;
+  state.t = on_road->t;
+  state.offset = on_road->t - road.lane_center_t(*lane, on_road->s);
+}
+
+namespace {
+
+// Along a trajectory: timed paths give the distance (and so the speed), untimed ones are
+// driven at the entity's own speed (its speed profile's).
+void advance_on_path(EntityState& state, const opendrive::RoadNetwork& roads, double t, double dt) {
+  PathMotion& path = *state.path;
+  const double previous_speed = state.speed;
+  const double before = path.distance;
+  if (path.timed) {
+    path.distance = path.distance_at(t);
+    state.speed = dt > 0 ? (path.distance - before) / dt : 0.0;
+  } else {
+    if (state.speed_profile) state.speed = state.speed_profile->at(t);
+    path.distance = std::min(path.length(), before + std::max(state.speed, 0.0) * dt);
+  }
+  state.acceleration = dt > 0 ? (state.speed - previous_speed) / dt : 0.0;
+  state.lateral_rate = 0.0;
+  state.odometer += std::abs(path.distance - before);
+  state.pose = path.pose_at(path.distance);
+  relocate(state, roads);
+}
+
+}  // namespace
+
 void advance(EntityState& state, const opendrive::RoadNetwork& roads, double t, double dt) {
   if (!state.placed) return;
+  if (state.path) {
+    advance_on_path(state, roads, t, dt);
+    return;
+  }
   const double previous_speed = state.speed;
   if (state.speed_profile) state.speed = state.speed_profile->at(t);
   state.acceleration = dt > 0 ? (state.speed - previous_speed) / dt : 0.0;

@@ -8,6 +8,7 @@
 
 #include "opendrive/road_network.hpp"
 #include "openscenario/model.hpp"
+#include "openscenario/trajectory_motion.hpp"
 
 namespace orch::openscenario {
 
@@ -43,6 +44,18 @@ struct EntityState {
   std::optional<SpeedProfile> speed_profile;
   std::optional<LateralProfile> lateral_profile;
   bool controller_active = false;  // ActivateControllerAction (the ego's system under test)
+  std::string controller;          // its controller's name ("" = none; AssignControllerAction replaces it)
+  VisibilityAction visibility;     // graphics, traffic, sensors
+  std::optional<PathMotion> path;  // FollowTrajectoryAction: moves along this instead of its lane
+  // AssignRouteAction / AcquirePositionAction: the waypoints mapped onto the roads, and how
+  // many of them the entity has passed.
+  struct Waypoint {
+    std::string road_id;
+    double s = 0;
+    int lane = 0;
+  };
+  std::vector<Waypoint> route;
+  std::size_t route_passed = 0;
 };
 
 // Direction of travel along s: +1 on right lanes, -1 on left lanes (right-hand traffic;
@@ -54,5 +67,9 @@ int travel_direction(const opendrive::Road& road, int lane);
 void advance(EntityState& state, const opendrive::RoadNetwork& roads, double t, double dt);
 // Recomputes the inertial pose from (road, s, lane, offset) and the lateral rate.
 void update_pose(EntityState& state, const opendrive::RoadNetwork& roads);
+// The road coordinates (road, s, lane, offset, t) of the state's inertial pose: for an entity
+// placed by a trajectory or a simulator. Off every lane it keeps its last lane (s and offset
+// from it follow the pose while it stays beside the same road).
+void relocate(EntityState& state, const opendrive::RoadNetwork& roads);
 
 }  // namespace orch::openscenario

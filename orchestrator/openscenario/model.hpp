@@ -5,6 +5,7 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <type_traits>
 #include <variant>
 #include <vector>
 
@@ -121,8 +122,66 @@ struct LongitudinalDistanceAction {
   std::optional<double> max_acceleration, max_deceleration, max_speed;
 };
 struct ActivateControllerAction { std::optional<bool> lateral, longitudinal; };
+// Replaces the entity's controller; 1.2's activateLateral / activateLongitudinal activate it.
+struct AssignControllerAction {
+  Controller controller;
+  std::optional<bool> lateral, longitudinal;
+};
+struct VisibilityAction { bool graphics = true, traffic = true, sensors = true; };
+// Trajectories: positions resolved when the action starts (relative ones against the
+// entities then). Vertex times are in the trajectory's own time (see TrajectoryTiming).
+struct TrajectoryVertex {
+  std::optional<double> time;
+  Position position;
+};
+struct PolylineShape { std::vector<TrajectoryVertex> vertices; };
+struct ClothoidShape {
+  Position start;
+  double curvature = 0, curvature_dot = 0, length = 0;
+  std::optional<double> start_time, stop_time;
+};
+struct Trajectory {
+  std::string name;
+  bool closed = false;
+  std::variant<PolylineShape, ClothoidShape> shape;
+};
+// TimeReference/Timing: trajectory time = (simulation time, or time since the action
+// started when relative) ; a vertex is due at vertex time * scale + offset.
+struct TrajectoryTiming {
+  bool absolute = true;
+  double scale = 1, offset = 0;
+};
+struct FollowTrajectoryAction {
+  Trajectory trajectory;
+  std::optional<TrajectoryTiming> timing;  // None: the entity keeps its own speed along the path
+  bool follow_mode = false;               // followingMode "follow" (else "position")
+  double initial_distance_offset = 0;
+};
+// Routes: waypoints mapped onto the road network when the action starts.
+struct AssignRouteAction {
+  std::string name;
+  bool closed = false;
+  std::vector<Position> waypoints;
+};
+struct AcquirePositionAction { Position position; };
+// Global actions (no actors).
+struct AddEntityAction { std::string entity; Position position; };
+struct DeleteEntityAction { std::string entity; };
+struct ParameterSetAction { std::string parameter; std::string value; };
+struct ParameterModifyAction {
+  std::string parameter;
+  bool multiply = false;  // ParameterMultiplyByValueRule, else ParameterAddValueRule
+  double value = 0;
+};
 using PrivateAction = std::variant<TeleportAction, SpeedAction, LaneChangeAction, LaneOffsetAction,
-                                   LongitudinalDistanceAction, ActivateControllerAction>;
+                                   LongitudinalDistanceAction, ActivateControllerAction, AssignControllerAction,
+                                   VisibilityAction, FollowTrajectoryAction, AssignRouteAction, AcquirePositionAction,
+                                   AddEntityAction, DeleteEntityAction, ParameterSetAction, ParameterModifyAction>;
+// Which alternatives are global actions (they take no actors).
+template <class T>
+inline constexpr bool kIsGlobalAction =
+    std::is_same_v<T, AddEntityAction> || std::is_same_v<T, DeleteEntityAction> ||
+    std::is_same_v<T, ParameterSetAction> || std::is_same_v<T, ParameterModifyAction>;
 
 // ---- Conditions and triggers --------------------------------------------------------
 enum class Rule { EqualTo, GreaterThan, LessThan, GreaterOrEqual, LessOrEqual, NotEqualTo };
@@ -165,12 +224,30 @@ struct DistanceCondition {
   Rule rule = Rule::LessThan;
   double value = 0;
 };
+// Time to collision with an entity or a position (a point at rest): the distance (as in
+// RelativeDistanceCondition) divided by the rate at which it shrinks; infinite when it does not.
+struct TimeToCollisionCondition {
+  std::optional<std::string> entity;  // else `position`
+  std::optional<Position> position;
+  std::string distance_type = "euclidianDistance";
+  std::string coordinate_system = "entity";
+  bool freespace = false;
+  Rule rule = Rule::LessThan;
+  double value = 0;
+};
+// The bounding boxes overlap: with the entity `entity`, or with any entity of `object_type`
+// (vehicle, pedestrian, miscellaneous).
+struct CollisionCondition {
+  std::optional<std::string> entity;
+  std::string object_type;
+};
 struct ByEntityCondition {
   bool all = false;  // triggeringEntitiesRule
   std::vector<std::string> triggering_entities;
   std::variant<SpeedCondition, RelativeDistanceCondition, TraveledDistanceCondition, StandStillCondition,
                EndOfRoadCondition, OffroadCondition, AccelerationCondition, ReachPositionCondition,
-               RelativeSpeedCondition, TimeHeadwayCondition, DistanceCondition>
+               RelativeSpeedCondition, TimeHeadwayCondition, DistanceCondition, TimeToCollisionCondition,
+               CollisionCondition>
       condition;
 };
 struct Condition {
@@ -188,7 +265,7 @@ struct Trigger {
 // ---- Storyboard ---------------------------------------------------------------------
 struct Action {
   std::string name;
-  std::vector<std::string> actors;  // filled for private actions from the maneuver group
+  std::vector<std::string> actors;  // private actions: the maneuver group's; global actions: none
   PrivateAction action;
   Place place;
 };
@@ -222,7 +299,7 @@ struct Story {
   std::vector<Act> acts;
 };
 struct InitAction {
-  std::string entity;
+  std::string entity;  // "" for a global action
   PrivateAction action;
   Place place;
 };

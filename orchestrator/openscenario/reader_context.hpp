@@ -37,9 +37,17 @@ Entity read_entity(Element& scenario_object, Context& context);
 Controller read_controller(Element& controller);
 
 Position read_position(Element& position);
-PrivateAction read_private_action(Element& private_action);
+// The action in a PrivateAction or GlobalAction element (action_reader.cpp's tables).
+PrivateAction read_private_action(Element& private_action, Context& context);
+PrivateAction read_global_action(Element& global_action, Context& context);
 Trigger read_trigger(Element& trigger);
-Storyboard read_storyboard(Element& storyboard, const Scenario& scenario);
+Storyboard read_storyboard(Element& storyboard, const Scenario& scenario, Context& context);
+
+// Readers of single actions used by the tables (routing_reader.cpp, global_action_reader.cpp).
+AssignRouteAction read_assign_route(Element& e, Context& context);
+FollowTrajectoryAction read_follow_trajectory(Element& e, Context& context);
+ParameterSetAction read_parameter_set(Element& parameter_action, Element& set);
+ParameterModifyAction read_parameter_modify(Element& parameter_action, Element& modify);
 
 // Closed sets shared by several readers.
 Rule read_rule(Element& e);

@@ -8,10 +8,15 @@
 namespace orch::openscenario {
 namespace {
 
-// The absolute positions of the storyboard with the place they are written at.
+// The absolute positions of the storyboard (teleports, added entities, positions to acquire,
+// route waypoints) with the place they are written at.
 void collect(const PrivateAction& action, const Place& place,
              std::vector<std::pair<const Position*, Place>>& positions) {
   if (const auto* teleport = std::get_if<TeleportAction>(&action)) positions.emplace_back(&teleport->position, place);
+  if (const auto* add = std::get_if<AddEntityAction>(&action)) positions.emplace_back(&add->position, place);
+  if (const auto* acquire = std::get_if<AcquirePositionAction>(&action)) positions.emplace_back(&acquire->position, place);
+  if (const auto* route = std::get_if<AssignRouteAction>(&action))
+    for (const Position& p : route->waypoints) positions.emplace_back(&p, place);
 }
 
 void check_position(const Position& position, const opendrive::RoadNetwork& roads, const std::string& file,

@@ -10,25 +10,35 @@
 namespace orch::openscenario::reading {
 namespace {
 
-// Entities a private action refers to besides its actors.
+void position_entities(const Position& p, std::vector<std::string>& names) {
+  std::visit(
+      [&](const auto& kind) {
+        if constexpr (requires { kind.entity; }) names.push_back(kind.entity);
+      },
+      p);
+}
+
+// Entities an action refers to besides its actors: by member, so a new action's references
+// are checked without an entry here (`entity`, `relative_to`, positions, waypoints, vertices).
 std::vector<std::string> referenced_entities(const PrivateAction& action) {
   std::vector<std::string> names;
-  const auto position_ref = [&](const Position& p) {
-    std::visit(
-        [&](const auto& kind) {
-          if constexpr (requires { kind.entity; }) names.push_back(kind.entity);
-        },
-        p);
-  };
   std::visit(
       [&](const auto& a) {
         using T = std::decay_t<decltype(a)>;
-        if constexpr (std::is_same_v<T, TeleportAction>) position_ref(a.position);
+        if constexpr (requires { a.position; }) position_entities(a.position, names);
+        if constexpr (requires { a.entity; }) names.push_back(a.entity);
+        if constexpr (requires { a.relative_to; })
+          if (a.relative_to) names.push_back(*a.relative_to);
         if constexpr (std::is_same_v<T, SpeedAction>)
           if (const auto* r = std::get_if<RelativeTargetSpeed>(&a.target)) names.push_back(r->entity);
-        if constexpr (std::is_same_v<T, LaneChangeAction> || std::is_same_v<T, LaneOffsetAction>)
-          if (a.relative_to) names.push_back(*a.relative_to);
-        if constexpr (std::is_same_v<T, LongitudinalDistanceAction>) names.push_back(a.entity);
+        if constexpr (std::is_same_v<T, AssignRouteAction>)
+          for (const Position& p : a.waypoints) position_entities(p, names);
+        if constexpr (std::is_same_v<T, FollowTrajectoryAction>) {
+          if (const auto* polyline = std::get_if<PolylineShape>(&a.trajectory.shape))
+            for (const TrajectoryVertex& v : polyline->vertices) position_entities(v.position, names);
+          else
+            position_entities(std::get<ClothoidShape>(a.trajectory.shape).start, names);
+        }
       },
       action);
   return names;
@@ -36,7 +46,7 @@ std::vector<std::string> referenced_entities(const PrivateAction& action) {
 
 class StoryboardReader {
  public:
-  explicit StoryboardReader(const Scenario& scenario) : scenario_(scenario) {
+  StoryboardReader(const Scenario& scenario, Context& context) : scenario_(scenario), context_(context) {
     for (const Entity& e : scenario.entities) entity_names_.push_back(e.name);
   }
 
@@ -49,12 +59,16 @@ class StoryboardReader {
       const std::string entity = entity_ref(p, "entityRef");
       for (Element a : p.children("PrivateAction")) {
         const Place place = a.place();
-        board.init.push_back({entity, read_private_action(a), place});
+        board.init.push_back({entity, read_private_action(a, context_), place});
         check_action_references(board.init.back().action, place);
       }
       p.finish();
     }
-    for (Element g : actions.children("GlobalAction")) unsupported(g);
+    for (Element g : actions.children("GlobalAction")) {
+      const Place place = g.place();
+      board.init.push_back({"", read_global_action(g, context_), place});
+      check_action_references(board.init.back().action, place);
+    }
     for (Element u : actions.children("UserDefinedAction")) unsupported(u);
     actions.finish();
     for (Element story : storyboard.children("Story")) board.stories.push_back(read_story(story));
@@ -160,10 +174,14 @@ class StoryboardReader {
       declare("action", a, action.name);
       action.place = a.place();
       Element kind = a.one_of({"PrivateAction", "GlobalAction", "UserDefinedAction"});
-      if (kind.name() != "PrivateAction") unsupported(kind);
-      if (actors.empty()) a.fail("a private action needs actors in its ManeuverGroup");
-      action.actors = actors;
-      action.action = read_private_action(kind);
+      if (kind.name() == "UserDefinedAction") unsupported(kind);
+      if (kind.name() == "GlobalAction") {
+        action.action = read_global_action(kind, context_);
+      } else {
+        if (actors.empty()) a.fail("a private action needs actors in its ManeuverGroup");
+        action.actors = actors;
+        action.action = read_private_action(kind, context_);
+      }
       check_action_references(action.action, action.place);
       a.finish();
       ev.actions.push_back(std::move(action));
@@ -192,13 +210,19 @@ class StoryboardReader {
           for (const std::string& name : b->triggering_entities) check_entity(name, c, file);
           std::visit(
               [&](const auto& kind) {
-                if constexpr (requires { kind.entity; }) check_entity(kind.entity, c, file);
-                if constexpr (requires { kind.position; })
-                  std::visit(
-                      [&](const auto& p) {
-                        if constexpr (requires { p.entity; }) check_entity(p.entity, c, file);
-                      },
-                      kind.position);
+                using K = std::decay_t<decltype(kind)>;
+                std::vector<std::string> names;
+                if constexpr (std::is_same_v<K, TimeToCollisionCondition> || std::is_same_v<K, CollisionCondition>) {
+                  if (kind.entity) names.push_back(*kind.entity);
+                } else if constexpr (requires { kind.entity; }) {
+                  names.push_back(kind.entity);
+                }
+                if constexpr (std::is_same_v<K, TimeToCollisionCondition>) {
+                  if (kind.position) position_entities(*kind.position, names);
+                } else if constexpr (requires { kind.position; }) {
+                  position_entities(kind.position, names);
+                }
+                for (const std::string& name : names) check_entity(name, c, file);
               },
               b->condition);
         }
@@ -231,14 +255,15 @@ class StoryboardReader {
   }
 
   const Scenario& scenario_;
+  Context& context_;
   std::vector<std::string> entity_names_;
   std::map<std::string, std::set<std::string>> names_;
 };
 
 }  // namespace
 
-Storyboard read_storyboard(Element& storyboard, const Scenario& scenario) {
-  return StoryboardReader(scenario).read(storyboard);
+Storyboard read_storyboard(Element& storyboard, const Scenario& scenario, Context& context) {
+  return StoryboardReader(scenario, context).read(storyboard);
 }
 
 }  // namespace orch::openscenario::reading

@@ -34,6 +34,16 @@ struct ConditionMemory {
   std::vector<std::pair<double, bool>> history;  // edged value per evaluation, for delays
 };
 
+// CollisionCondition ByType names.
+std::string object_type(EntityKind kind) {
+  switch (kind) {
+    case EntityKind::Vehicle: return "vehicle";
+    case EntityKind::Pedestrian: return "pedestrian";
+    case EntityKind::MiscObject: return "miscellaneous";
+  }
+  return "";
+}
+
 }  // namespace
 
 struct StoryboardRuntime::Impl {
@@ -48,10 +58,15 @@ struct StoryboardRuntime::Impl {
   std::map<std::pair<std::string, std::string>, Record> records;
   std::map<const Condition*, ConditionMemory> memory;
   std::vector<RunningAction> running;
+  std::map<std::string, Parameter> parameters;  // values as the parameter actions set them
 
-  Impl(const Scenario& s, const opendrive::RoadNetwork& r) : scenario(s), roads(r), resolver(r) {}
+  Impl(const Scenario& s, const opendrive::RoadNetwork& r) : scenario(s), roads(r), resolver(r) {
+    for (const Parameter& p : s.parameters) parameters[p.name] = p;
+  }
 
-  ActionContext context() { return ActionContext{scenario, roads, resolver, entities, t}; }
+  double last_dt = 0;  // the last step's
+
+  ActionContext context() { return ActionContext{scenario, roads, resolver, entities, parameters, t, last_dt}; }
 
   Record& record(const std::string& type, const std::string& name) { return records[{type, name}]; }
 
@@ -80,15 +95,12 @@ struct StoryboardRuntime::Impl {
             return std::any_of(r.transitions.begin(), r.transitions.end(),
                                [&](const auto& e) { return e.first == kind.state && e.second == step_index; });
           } else if constexpr (std::is_same_v<T, ParameterCondition>) {
-            for (const Parameter& p : scenario.parameters)
-              if (p.name == kind.parameter) {
-                if (p.type == "string" || p.type == "boolean" || p.type == "dateTime")
-                  return satisfies(kind.rule, p.value, kind.value);
-                // Both texts were checked as numbers of the parameter's type at load.
-                return satisfies(kind.rule, parse_whole<double>(p.value).value_or(0.0),
-                                 parse_whole<double>(kind.value).value_or(0.0));
-              }
-            return false;
+            const Parameter& p = parameters.at(kind.parameter);  // declared: checked at load
+            if (p.type == "string" || p.type == "boolean" || p.type == "dateTime")
+              return satisfies(kind.rule, p.value, kind.value);
+            // Both texts were checked as numbers of the parameter's type at load.
+            return satisfies(kind.rule, parse_whole<double>(p.value).value_or(0.0),
+                             parse_whole<double>(kind.value).value_or(0.0));
           } else {
             return by_entity(kind, m);
           }
@@ -158,6 +170,27 @@ struct StoryboardRuntime::Impl {
                                                k.coordinate_system, k.freespace);
             return satisfies(k.rule, d / self.speed, k.value);
           }
+          if constexpr (std::is_same_v<T, TimeToCollisionCondition>) {
+            if (k.entity) {
+              const EntityState& other = entities.at(*k.entity);
+              if (!other.placed) return false;
+              return satisfies(k.rule, time_to_collision(me, {&other, &scenario.entity(*k.entity)->box}, roads,
+                                                         k.distance_type, k.coordinate_system, k.freespace),
+                               k.value);
+            }
+            const EntityState target = point_state(*k.position);
+            return satisfies(k.rule, time_to_collision(me, {&target, &kPoint}, roads, k.distance_type,
+                                                       k.coordinate_system, k.freespace),
+                             k.value);
+          }
+          if constexpr (std::is_same_v<T, CollisionCondition>) {
+            for (const Entity& other : scenario.entities) {
+              if (other.name == name || !entities.at(other.name).placed) continue;
+              if (k.entity ? other.name != *k.entity : object_type(other.kind) != k.object_type) continue;
+              if (boxes_overlap(me, {&entities.at(other.name), &other.box})) return true;
+            }
+            return false;
+          }
           if constexpr (std::is_same_v<T, RelativeDistanceCondition>) {
             const EntityState& other = entities.at(k.entity);
             if (!other.placed) return false;
@@ -223,7 +256,9 @@ struct StoryboardRuntime::Impl {
     transition("event", e.name, "startTransition", ElementState::Running);
     for (const Action& a : e.actions) {
       transition("action", a.name, "startTransition", ElementState::Running);
-      for (const std::string& actor : a.actors) {
+      // Global actions have no actors: they run once, for no entity ("").
+      const std::vector<std::string> actors = a.actors.empty() ? std::vector<std::string>{""} : a.actors;
+      for (const std::string& actor : actors) {
         ActionContext ctx = context();
         // An action that takes over an entity's motion ends the one it replaces.
         for (const std::string& replaced : start_action(a.action, actor, a.name, ctx, running))
@@ -372,6 +407,7 @@ struct StoryboardRuntime::Impl {
   void step(double dt) {
     if (finished) return;
     ++step_index;
+    last_dt = dt;
     t = static_cast<double>(step_index) * dt;
     for (auto& [name, state] : entities) advance(state, roads, t, dt);
     ActionContext ctx = context();
@@ -384,7 +420,10 @@ struct StoryboardRuntime::Impl {
 
 StoryboardRuntime::StoryboardRuntime(const Scenario& scenario, const opendrive::RoadNetwork& roads)
     : impl_(std::make_unique<Impl>(scenario, roads)) {
-  for (const Entity& e : scenario.entities) impl_->entities[e.name] = EntityState{};
+  for (const Entity& e : scenario.entities) {
+    EntityState& state = impl_->entities[e.name];
+    if (e.controller) state.controller = e.controller->name;
+  }
   impl_->run_init();
   impl_->evaluate_storyboard();
 }
@@ -399,17 +438,10 @@ void StoryboardRuntime::observe(const std::string& name, const opendrive::Pose2&
   e.pose = pose;
   e.speed = speed;
   e.acceleration = acceleration;
-  const auto on_road = impl_->roads.to_road(pose.x, pose.y);
-  if (!on_road) return;
-  const opendrive::Road& road = impl_->roads.road(on_road->road_id);
-  const auto lane = road.lane_at(on_road->s, on_road->t);
-  if (!lane || *lane == 0) return;  // off the lanes: keeps its last lane
-  e.road_id = on_road->road_id;
-  e.s = on_road->s;
-  e.lane = *lane;
-  e.t = on_road->t;
-  e.offset = on_road->t - road.lane_center_t(*lane, on_road->s);
+  relocate(e, impl_->roads);
 }
+
+const std::map<std::string, Parameter>& StoryboardRuntime::parameters() const { return impl_->parameters; }
 
 double StoryboardRuntime::time() const { return impl_->t; }
 bool StoryboardRuntime::finished() const { return impl_->finished; }

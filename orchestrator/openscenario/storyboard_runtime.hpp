@@ -50,6 +50,8 @@ class StoryboardRuntime {
   [[nodiscard]] const std::map<std::string, EntityState>& entities() const;
   [[nodiscard]] const std::vector<TransitionLog>& log() const;
   [[nodiscard]] ElementState state(const std::string& type, const std::string& name) const;
+  // Parameter values now (ParameterSetAction / ParameterModifyAction change them).
+  [[nodiscard]] const std::map<std::string, Parameter>& parameters() const;
 
  private:
   struct Impl;

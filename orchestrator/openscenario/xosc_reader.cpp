@@ -156,7 +156,7 @@ Scenario load_scenario(const std::string& path, const LoadOptions& options) {
   }
   entities.finish();
   Element storyboard = root.child("Storyboard");
-  scenario.storyboard = reading::read_storyboard(storyboard, scenario);
+  scenario.storyboard = reading::read_storyboard(storyboard, scenario, context);
   root.finish();
   return scenario;
 }

@@ -45,7 +45,8 @@ class EntityTrace {
       const std::string& name = actors.name_of(a.id);
       fmt::print(file_, "{:.3f},,{},{:.3f},{:.3f},{:.4f},{:.3f},{:.3f},{},{},{:.3f},{:.3f},{},0,{}\n", time, name,
                  ref.x(), ref.y(), a.heading, a.speed, a.accel, a.edge, a.lane, a.lane_pos, a.lat_offset.value_or(0.0),
-                 a.signals, name == ego ? ego_driver : "script");
+                 a.signals,
+                 name == ego ? ego_driver : (actors.is_sumo_driven(name) ? "sumo" : "script"));
       ++rows_;
     }
     if (++steps_ % 200 == 0) std::fflush(file_);
@@ -179,12 +180,14 @@ RunResult run_openscenario(const RunRequest& req, Simulator& sim) {
       const auto ego_driver = ego.empty() ? OpenScenarioEgo::Driver::Sumo
                                           : actors->ego_drive().driver(runtime->entities().at(ego));
       trace->record(t, snap, *actors, ego, OpenScenarioEgo::label(ego_driver));
-      // The ego as SUMO (or the external ego) drove it is what the storyboard's conditions
-      // see from now on; while the storyboard moves it laterally, its own state stands.
-      if (const engine::ActorState* e = ego.empty() ? nullptr : find_actor(snap, *actors, ego);
-          e && e->present && ego_driver != OpenScenarioEgo::Driver::Storyboard) {
-        const Vec2 ref = actors->reference_point(*e);
-        runtime->observe(ego, {ref.x(), ref.y(), e->heading}, e->speed, e->accel);
+      // Entities SUMO (or the external ego) drove are what the storyboard's conditions see of
+      // them from now on; while the storyboard moves the ego laterally, its own state stands.
+      for (const std::string& driven : actors->sumo_driven()) {
+        if (driven == ego && ego_driver == OpenScenarioEgo::Driver::Storyboard) continue;
+        if (const engine::ActorState* e = find_actor(snap, *actors, driven); e && e->present) {
+          const Vec2 ref = actors->reference_point(*e);
+          runtime->observe(driven, {ref.x(), ref.y(), e->heading}, e->speed, e->accel);
+        }
       }
       for (const auto& l = runtime->log(); logged < l.size(); ++logged)
         log.at(l[logged].time, fmt::format("{} {} {}", l[logged].type, l[logged].name, l[logged].transition));

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/errors.hpp"
@@ -83,54 +84,100 @@ Vec2 OpenScenarioActors::reference_point(const engine::ActorState& state) const 
           state.position.y() - body.centre_x * s - body.centre_y * c};
 }
 
+namespace {
+
+// The desired speed of a SUMO-driven entity: the storyboard's speed target (the last
+// SpeedAction's), else the speed it has.
+double desired_speed(const openscenario::EntityState& state, double last) {
+  if (state.speed_profile) return state.speed_profile->to;
+  return last >= 0 ? last : state.speed;
+}
+
+}  // namespace
+
+void OpenScenarioActors::spawn(const std::string& name, Body& body, const openscenario::EntityState& state,
+                               std::vector<engine::Command>& out) {
+  const auto hint = lanes_.find(state.road_id, state.lane, state.s);
+  if (!hint)
+    throw MapError(fmt::format("entity {} starts on road {} lane {} at s={:.2f}, of which the SUMO net has no lane",
+                               name, state.road_id, state.lane, state.s));
+  ++body.lives;
+  const std::string first_id = name == ego_ ? ego_drive_.sumo_id() : name;
+  body.sumo_id = body.lives == 1 ? first_id : fmt::format("{}~{}", first_id, body.lives);
+  engine::TrackedActor actor{body.id, body.sumo_id, body.model.kind, body.model.length, body.model.width};
+  engine::SpawnVehicle command;
+  command.actor = actor;
+  command.model = body.model;
+  command.route = {hint->edge};
+  command.edge = hint->edge;
+  command.lane = hint->index;
+  command.lane_pos = hint->lane_pos + body.centre_x;
+  command.speed = state.speed;
+  if (body.driven) {
+    command.scripted = false;
+    body.desired_speed = desired_speed(state, -1);
+    command.max_speed = name == ego_ ? ego_drive_.spawn_speed(state) : body.desired_speed;
+  }
+  out.push_back(std::move(command));
+  const auto known = std::find_if(tracked_.begin(), tracked_.end(), [&](const auto& t) { return t.id == body.id; });
+  if (known == tracked_.end()) tracked_.push_back(actor);
+  else *known = actor;
+  body.spawned = true;
+}
+
 std::vector<engine::Command> OpenScenarioActors::place(const std::map<std::string, openscenario::EntityState>& entities) {
   std::vector<engine::Command> out;
   for (const auto& [name, state] : entities) {
-    if (!state.placed) continue;
     Body& body = bodies_.at(name);
     const bool is_ego = name == ego_;
+    const bool in_traffic = state.placed && state.visibility.traffic;
+    if (!in_traffic) {
+      if (body.spawned) {
+        out.push_back(engine::RemoveActor{body.sumo_id, body.model.kind});
+        body.spawned = false;
+      }
+      continue;
+    }
+    const bool hand_over = !body.driven && !is_ego && state.controller_active && !state.controller.empty();
+    if (is_ego || hand_over) body.driven = true;
+    const bool first = !body.spawned;
+    if (first) {
+      spawn(name, body, state, out);
+    } else if (body.driven && !is_ego) {
+      const double desired = desired_speed(state, body.desired_speed);
+      if (hand_over) out.push_back(engine::ReleaseActor{body.sumo_id, desired});
+      else if (desired != body.desired_speed) out.push_back(engine::SetMaxSpeed{body.sumo_id, desired});
+      body.desired_speed = desired;
+      continue;
+    }
     const auto hint = lanes_.find(state.road_id, state.lane, state.s);
-    const Vec2 centre = centre_of(body, state.pose);
-    const std::string sumo_id = is_ego ? ego_drive_.sumo_id() : name;
     engine::SetPose pose;
-    pose.sumo_id = sumo_id;
+    pose.sumo_id = body.sumo_id;
     pose.kind = body.model.kind;
     pose.length = body.model.length;
-    pose.position = centre;
+    pose.position = centre_of(body, state.pose);
     pose.heading = state.pose.heading;
     pose.speed = state.speed;
     pose.edge = hint ? hint->edge : "";
     pose.lane = hint ? hint->index : 0;
     pose.centred = std::abs(state.offset) < 0.5;
-    if (is_ego && body.spawned) {
+    if (is_ego && !first) {  // who moves the ego this step: openscenario_ego.hpp
       for (auto& c : ego_drive_.commands(state, pose)) out.push_back(std::move(c));
       continue;
     }
-    if (!body.spawned) {
-      if (!hint)
-        throw MapError(fmt::format("entity {} starts on road {} lane {} at s={:.2f}, of which the SUMO net has no lane",
-                                   name, state.road_id, state.lane, state.s));
-      engine::TrackedActor actor{body.id, sumo_id, body.model.kind, body.model.length, body.model.width};
-      engine::SpawnVehicle spawn;
-      spawn.actor = actor;
-      spawn.model = body.model;
-      spawn.route = {hint->edge};
-      spawn.edge = hint->edge;
-      spawn.lane = hint->index;
-      spawn.lane_pos = hint->lane_pos + body.centre_x;
-      spawn.speed = state.speed;
-      if (is_ego) {
-        spawn.scripted = false;
-        spawn.max_speed = ego_drive_.spawn_speed(state);
-      }
-      out.push_back(std::move(spawn));
-      tracked_.push_back(actor);
-      body.spawned = true;
-    }
-    pose.scripted = !is_ego;  // the ego: one placement, then SUMO drives
+    pose.scripted = !body.driven;  // SUMO-driven: one placement, then SUMO drives
     out.push_back(std::move(pose));
   }
   return out;
 }
+
+std::vector<std::string> OpenScenarioActors::sumo_driven() const {
+  std::vector<std::string> names;
+  for (const auto& [name, body] : bodies_)
+    if (body.driven && body.spawned) names.push_back(name);
+  return names;
+}
+
+bool OpenScenarioActors::is_sumo_driven(const std::string& name) const { return bodies_.at(name).driven; }
 
 }  // namespace orch

@@ -30,8 +30,15 @@ class OpenScenarioActors {
                      std::string ego, bool external_ego = false);
 
   // Commands for the entities' states now: a spawn for each newly placed entity, then a pose
-  // for every placed scripted one (the ego: its desired speed when it changed). Throws MapError when an entity first appears where SUMO has no lane.
+  // for every placed scripted one (SUMO-driven ones: their desired speed when it changed).
+  // An entity deleted (DeleteEntityAction) or invisible to traffic (VisibilityAction) is
+  // taken out of SUMO, and spawned again (under a new SUMO id) when it comes back. A non-ego
+  // entity whose controller is activated (Assign/ActivateControllerAction) is handed to
+  // SUMO's driver like the ego. Throws MapError when an entity first appears where SUMO has no lane.
   std::vector<engine::Command> place(const std::map<std::string, openscenario::EntityState>& entities);
+  // Entities SUMO drives (the ego, activated controllers): the storyboard observes them.
+  [[nodiscard]] std::vector<std::string> sumo_driven() const;
+  [[nodiscard]] bool is_sumo_driven(const std::string& name) const;
 
   // The actors SUMO knows (spawned so far), for Simulator::read.
   [[nodiscard]] const std::vector<engine::TrackedActor>& tracked() const { return tracked_; }
@@ -47,8 +54,14 @@ class OpenScenarioActors {
     ModelInfo model;
     double centre_x = 0, centre_y = 0;  // bounding box centre relative to the reference point
     bool spawned = false;
+    int lives = 0;            // spawns so far; the SUMO id is the name, then name~2, name~3, ...
+    std::string sumo_id;
+    bool driven = false;      // by SUMO (the ego, an activated controller)
+    double desired_speed = -1;  // last sent to a SUMO-driven one
   };
   [[nodiscard]] Vec2 centre_of(const Body& body, const opendrive::Pose2& pose) const;
+  void spawn(const std::string& name, Body& body, const openscenario::EntityState& state,
+             std::vector<engine::Command>& out);
 
   const opendrive::SumoLaneIndex& lanes_;
   std::string ego_;

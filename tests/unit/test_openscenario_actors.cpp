@@ -36,6 +36,26 @@ openscenario::Entity car(const std::string& name, const std::string& controller)
   return e;
 }
 
+// An entity placed on road 3's `lane` at `s`, as the storyboard has it.
+openscenario::EntityState placed_on(const opendrive::RoadNetwork& roads, int lane, double s, double speed) {
+  openscenario::EntityState state;
+  state.placed = true;
+  state.road_id = "3";
+  state.lane = lane;
+  state.s = s;
+  state.speed = speed;
+  state.pose = roads.lane_pose("3", lane, s, 0);
+  return state;
+}
+
+// Road 3 and the SUMO lanes of its right side, in a temporary folder.
+class OpenScenarioActorsOnRoad3 : public ::testing::Test {
+ protected:
+  test::TempDir dir;
+  const opendrive::RoadNetwork roads = opendrive::read_xodr_file(dir.write("r.xodr", kRoad).string());
+  const opendrive::SumoLaneIndex lanes{roads, dir.write("n.net.xml", kNet).string()};
+};
+
 TEST(OpenScenarioActors, TheEgoIsTheSystemUnderTestsEntityUnlessNamed) {
   openscenario::Scenario s;
   s.file = "s.xosc";
@@ -52,20 +72,11 @@ TEST(OpenScenarioActors, TheEgoIsTheSystemUnderTestsEntityUnlessNamed) {
   EXPECT_EQ(choose_ego_entity(s, ""), "");
 }
 
-TEST(OpenScenarioActors, SpawnsOnceOnTheSumoLaneAndPosesTheBoxCentre) {
-  test::TempDir dir;
-  const auto roads = opendrive::read_xodr_file(dir.write("r.xodr", kRoad).string());
-  const opendrive::SumoLaneIndex lanes(roads, dir.write("n.net.xml", kNet).string());
+TEST_F(OpenScenarioActorsOnRoad3, SpawnsOnceOnTheSumoLaneAndPosesTheBoxCentre) {
   openscenario::Scenario s;
   s.entities = {car("Lead", "")};
   OpenScenarioActors actors(s, lanes, "");
-  openscenario::EntityState state;
-  state.placed = true;
-  state.road_id = "3";
-  state.lane = -2;  // the inner kept lane: SUMO's leftmost of two
-  state.s = 40;
-  state.speed = 20;
-  state.pose = roads.lane_pose("3", -2, 40, 0);
+  openscenario::EntityState state = placed_on(roads, -2, 40, 20);  // the inner kept lane: SUMO's leftmost of two
   std::map<std::string, openscenario::EntityState> entities{{"Lead", state}};
 
   const auto first = actors.place(entities);
@@ -100,20 +111,11 @@ TEST(OpenScenarioActors, SpawnsOnceOnTheSumoLaneAndPosesTheBoxCentre) {
   EXPECT_THROW((void)other.place(entities), MapError);
 }
 
-TEST(OpenScenarioActors, TheEgoIsPlacedOnceThenOnlyItsDesiredSpeedFollowsTheStoryboard) {
-  test::TempDir dir;
-  const auto roads = opendrive::read_xodr_file(dir.write("r.xodr", kRoad).string());
-  const opendrive::SumoLaneIndex lanes(roads, dir.write("n.net.xml", kNet).string());
+TEST_F(OpenScenarioActorsOnRoad3, TheEgoIsPlacedOnceThenOnlyItsDesiredSpeedFollowsTheStoryboard) {
   openscenario::Scenario s;
   s.entities = {car("Ego", "ALKSController")};
   OpenScenarioActors actors(s, lanes, "Ego");
-  openscenario::EntityState state;
-  state.placed = true;
-  state.road_id = "3";
-  state.lane = -3;
-  state.s = 10;
-  state.speed = 15;
-  state.pose = roads.lane_pose("3", -3, 10, 0);
+  openscenario::EntityState state = placed_on(roads, -3, 10, 15);
   std::map<std::string, openscenario::EntityState> entities{{"Ego", state}};
   const auto first = actors.place(entities);
   ASSERT_EQ(first.size(), 2u);
@@ -128,6 +130,47 @@ TEST(OpenScenarioActors, TheEgoIsPlacedOnceThenOnlyItsDesiredSpeedFollowsTheStor
   ASSERT_EQ(changed.size(), 1u);
   EXPECT_DOUBLE_EQ(std::get<engine::SetMaxSpeed>(changed[0]).speed, 25);
   EXPECT_TRUE(actors.place(entities).empty());  // sent once
+}
+
+// DeleteEntityAction / VisibilityAction(traffic=false) take the entity out of SUMO; it comes
+// back under a new SUMO id. An activated controller of a non-ego entity hands it to SUMO.
+TEST_F(OpenScenarioActorsOnRoad3, DeletedOrInvisibleEntitiesLeaveSumoActivatedControllersHandOver) {
+  openscenario::Scenario s;
+  s.entities = {car("Lead", "")};
+  OpenScenarioActors actors(s, lanes, "");
+  openscenario::EntityState state = placed_on(roads, -2, 40, 20);
+  std::map<std::string, openscenario::EntityState> entities{{"Lead", state}};
+  ASSERT_EQ(actors.place(entities).size(), 2u);  // spawn, pose
+
+  entities["Lead"].visibility.traffic = false;
+  auto out = actors.place(entities);
+  ASSERT_EQ(out.size(), 1u);
+  EXPECT_EQ(std::get<engine::RemoveActor>(out[0]).sumo_id, "Lead");
+  EXPECT_TRUE(actors.place(entities).empty());  // removed once
+
+  entities["Lead"].visibility.traffic = true;
+  out = actors.place(entities);
+  ASSERT_EQ(out.size(), 2u);
+  EXPECT_EQ(std::get<engine::SpawnVehicle>(out[0]).actor.sumo_id, "Lead~2");
+  ASSERT_EQ(actors.tracked().size(), 1u);  // the same actor, a new SUMO id
+  EXPECT_EQ(actors.tracked()[0].sumo_id, "Lead~2");
+  EXPECT_EQ(actors.name_of(actors.tracked()[0].id), "Lead");
+
+  entities["Lead"].controller = "Driver";
+  entities["Lead"].controller_active = true;
+  out = actors.place(entities);
+  ASSERT_EQ(out.size(), 1u);
+  EXPECT_EQ(std::get<engine::ReleaseActor>(out[0]).sumo_id, "Lead~2");
+  EXPECT_DOUBLE_EQ(std::get<engine::ReleaseActor>(out[0]).max_speed, 20);
+  EXPECT_TRUE(actors.is_sumo_driven("Lead"));
+  EXPECT_EQ(actors.sumo_driven(), std::vector<std::string>{"Lead"});
+  EXPECT_TRUE(actors.place(entities).empty());  // SUMO drives it now
+
+  entities["Lead"].placed = false;  // DeleteEntityAction
+  out = actors.place(entities);
+  ASSERT_EQ(out.size(), 1u);
+  EXPECT_EQ(std::get<engine::RemoveActor>(out[0]).sumo_id, "Lead~2");
+  EXPECT_TRUE(actors.sumo_driven().empty());
 }
 
 }  // namespace

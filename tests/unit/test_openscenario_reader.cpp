@@ -211,7 +211,7 @@ TEST_F(XoscReader, MisspeltElementsAndAttributesGetSuggestions) {
 TEST_F(XoscReader, StandardElementsNotRunAreNamed) {
   const std::string message = error("<SimulationTimeCondition value=\"0\" rule=\"greaterThan\"/>",
                                     "<TimeOfDayCondition animation=\"false\" dateTime=\"2020-01-01T00:00:00\" rule=\"greaterThan\"/>");
-  EXPECT_NE(message.find("TimeOfDayCondition is an OpenSCENARIO element the orchestrator does not run"),
+  EXPECT_NE(message.find("TimeOfDayCondition in ByValueCondition is an OpenSCENARIO element the orchestrator does not run"),
             std::string::npos)
       << message;
 }

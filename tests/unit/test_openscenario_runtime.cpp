@@ -9,32 +9,14 @@
 #include "openscenario/storyboard_runtime.hpp"
 #include "openscenario/xosc_reader.hpp"
 #include "support/cli_runner.hpp"
+#include "unit/openscenario_snippets.hpp"
 
 namespace orch::openscenario {
 namespace {
 
-const char* kRoad = R"(<OpenDRIVE><header revMajor="1" revMinor="6"/>
-<road id="0" length="2000" junction="-1"><planView><geometry s="0" x="0" y="0" hdg="0" length="2000"><line/></geometry></planView>
-<lanes><laneSection s="0"><right>
- <lane id="-1" type="driving"><width sOffset="0" a="3.5" b="0" c="0" d="0"/></lane>
- <lane id="-2" type="driving"><width sOffset="0" a="3.5" b="0" c="0" d="0"/></lane>
-</right></laneSection></lanes></road></OpenDRIVE>)";
-
-std::string vehicle(const std::string& name) {
-  return R"(<ScenarioObject name=")" + name + R"("><Vehicle name="car" vehicleCategory="car">
-  <BoundingBox><Center x="1.5" y="0" z="0.9"/><Dimensions width="2" length="5" height="1.8"/></BoundingBox>
-  <Performance maxSpeed="70" maxDeceleration="10" maxAcceleration="10"/>
-  <Axles><FrontAxle maxSteering="0.5" wheelDiameter="0.8" trackWidth="1.68" positionX="3" positionZ="0.4"/>
-  <RearAxle maxSteering="0" wheelDiameter="0.8" trackWidth="1.68" positionX="0" positionZ="0.4"/></Axles>
-  </Vehicle></ScenarioObject>)";
-}
-
-std::string place(const std::string& name, double s, int lane, double speed) {
-  return R"(<Private entityRef=")" + name + R"("><PrivateAction><TeleportAction><Position><LanePosition roadId="0" laneId=")" +
-         std::to_string(lane) + R"(" s=")" + std::to_string(s) + R"(" offset="0"/></Position></TeleportAction></PrivateAction>
-  <PrivateAction><LongitudinalAction><SpeedAction><SpeedActionDynamics dynamicsShape="step" dynamicsDimension="time" value="0"/>
-  <SpeedActionTarget><AbsoluteTargetSpeed value=")" + std::to_string(speed) + R"("/></SpeedActionTarget></SpeedAction></LongitudinalAction></PrivateAction></Private>)";
-}
+using test::kStraightTwoLaneRoad;
+using test::place;
+using test::vehicle;
 
 std::string time_condition(const std::string& name, double at, const std::string& edge = "rising", double delay = 0) {
   return R"(<Condition name=")" + name + R"(" delay=")" + std::to_string(delay) + R"(" conditionEdge=")" + edge +
@@ -72,19 +54,14 @@ class Runtime : public ::testing::Test {
                              R"(</Maneuver></ManeuverGroup><StartTrigger><ConditionGroup>)" + time_condition("ActStart", 0, "none") +
                              R"(</ConditionGroup></StartTrigger></Act></Story>
 <StopTrigger><ConditionGroup>)" + time_condition("Stop", stop) + R"(</ConditionGroup></StopTrigger></Storyboard></OpenSCENARIO>)";
-    dir_.write("road.xodr", kRoad);
+    dir_.write("road.xodr", kStraightTwoLaneRoad);
     scenario_ = load_scenario(dir_.write("s.xosc", text).string());
     roads_ = opendrive::read_xodr_file((dir_ / "road.xodr").string());
     runtime_ = std::make_unique<StoryboardRuntime>(scenario_, roads_);
   }
-  void run_until(double t) {
-    while (runtime_->time() < t - 1e-9 && !runtime_->finished()) runtime_->step(0.05);
-  }
+  void run_until(double t) { test::run_until(*runtime_, t); }
   [[nodiscard]] std::vector<double> times(const std::string& name, const std::string& transition) const {
-    std::vector<double> out;
-    for (const TransitionLog& l : runtime_->log())
-      if (l.name == name && l.transition == transition) out.push_back(l.time);
-    return out;
+    return test::transition_times(*runtime_, name, transition);
   }
   const EntityState& a() const { return runtime_->entities().at("A"); }
 

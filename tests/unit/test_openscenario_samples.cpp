@@ -42,5 +42,32 @@ TEST(OpenScenarioSamples, OvertakingChangesLeftAt30mAndBack5mAhead) {
   EXPECT_NEAR(runtime.time(), back_end + 2.0, 0.05 + 1e-9);
 }
 
+// Without SUMO every event of every_condition.xosc starts too, at the times its story gives.
+TEST(OpenScenarioSamples, EveryConditionStartsItsEvent) {
+  const Scenario scenario = load_scenario(std::string(ORCH_SOURCE_DIR) + "/scenarios/openscenario/every_condition.xosc");
+  const auto roads = opendrive::read_xodr_file(scenario.road_file);
+  StoryboardRuntime runtime(scenario, roads);
+  while (!runtime.finished() && runtime.time() < 60) runtime.step(0.05);
+  ASSERT_TRUE(runtime.finished());
+  for (const char* event : {"AddObstacle", "LeadSpeedsUp", "MarkAccelerating", "FollowerChases", "CountFaster",
+                            "FollowerChangesLane", "DoubleAfterLaneChange", "WalkerStepsAside", "WalkerStops",
+                            "MarkOffRoad", "FollowerStops", "ClearObstacle", "MarkStopped", "LeadToTheEnd",
+                            "EndReached"})
+    EXPECT_GE(start_of(runtime, event), 0.0) << event;
+  EXPECT_NEAR(start_of(runtime, "AddObstacle"), 1.0, 1e-9);
+  EXPECT_NEAR(start_of(runtime, "LeadSpeedsUp"), 2.0, 1e-9);     // 30 m at 15 m/s
+  EXPECT_NEAR(start_of(runtime, "MarkAccelerating"), 2.05, 1e-9);  // the first step of the ramp
+  EXPECT_EQ(runtime.parameters().at("Phase").value, "100");
+  // Phase: 1, + 1 (faster), * 2 (beside the lead), then 10 (stopped), 11 (walker off road), 100 (end).
+  EXPECT_FALSE(runtime.entities().at("Obstacle").placed);
+  EXPECT_LT(runtime.entities().at("Walker").pose.y, -10.0);  // beyond the shoulder
+  EXPECT_DOUBLE_EQ(runtime.entities().at("Follower").speed, 0.0);
+  EXPECT_GE(runtime.entities().at("Lead").s, 600.0);
+  // AcquirePositionAction replaced the assigned route by one to s = 590, which it passed.
+  ASSERT_EQ(runtime.entities().at("Lead").route.size(), 1u);
+  EXPECT_NEAR(runtime.entities().at("Lead").route[0].s, 590.0, 1e-9);
+  EXPECT_EQ(runtime.entities().at("Lead").route_passed, 1u);
+}
+
 }  // namespace
 }  // namespace orch::openscenario

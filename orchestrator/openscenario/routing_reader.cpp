@@ -1,0 +1,158 @@
+// RoutingAction: routes (AssignRouteAction, inline or from a RouteCatalog) and
+// trajectories (FollowTrajectoryAction: Polyline and Clothoid shapes, inline or from a
+// TrajectoryCatalog, with TimeReference and TrajectoryFollowingMode).
+#include <fmt/format.h>
+
+#include "openscenario/reader_context.hpp"
+
+namespace orch::openscenario::reading {
+namespace {
+
+AssignRouteAction read_route(Element& route) {
+  AssignRouteAction a;
+  a.name = route.text("name");
+  a.closed = route.optional_boolean("closed").value_or(false);
+  route.ignore_children({"ParameterDeclarations"});  // catalog entries: read by Context::resolve
+  for (Element waypoint : route.children("Waypoint")) {
+    waypoint.choice<std::string>("routeStrategy", {{"fastest", "fastest"},
+                                                   {"shortest", "shortest"},
+                                                   {"leastIntersections", "leastIntersections"},
+                                                   {"random", "random"}});
+    Element position = waypoint.child("Position");
+    a.waypoints.push_back(read_position(position));
+    waypoint.finish();
+  }
+  if (a.waypoints.size() < 2) route.fail("a Route needs at least two Waypoints");
+  route.finish();
+  return a;
+}
+
+PolylineShape read_polyline(Element& polyline) {
+  PolylineShape shape;
+  for (Element vertex : polyline.children("Vertex")) {
+    TrajectoryVertex v;
+    v.time = vertex.optional_number("time");
+    Element position = vertex.child("Position");
+    v.position = read_position(position);
+    vertex.finish();
+    shape.vertices.push_back(std::move(v));
+  }
+  if (shape.vertices.size() < 2) polyline.fail("a Polyline needs at least two Vertex elements");
+  const bool timed = shape.vertices.front().time.has_value();
+  for (std::size_t i = 0; i < shape.vertices.size(); ++i) {
+    if (shape.vertices[i].time.has_value() != timed)
+      polyline.fail("give a time to every Vertex of the Polyline or to none");
+    if (timed && i > 0 && *shape.vertices[i].time < *shape.vertices[i - 1].time)
+      polyline.fail(fmt::format("Vertex {} has an earlier time than the one before", i + 1));
+  }
+  polyline.finish();
+  return shape;
+}
+
+ClothoidShape read_clothoid(Element& clothoid) {
+  ClothoidShape shape;
+  shape.curvature = clothoid.number("curvature");
+  // curvatureDot (1.0, 1.1) was renamed curvaturePrime in 1.2.
+  const auto dot = clothoid.optional_number("curvatureDot");
+  const auto prime = clothoid.optional_number("curvaturePrime");
+  if (dot && prime) clothoid.fail("give curvaturePrime or curvatureDot, not both");
+  shape.curvature_dot = prime ? *prime : dot.value_or(0.0);
+  shape.length = clothoid.number("length");
+  if (shape.length <= 0) clothoid.fail_attribute("length", "a Clothoid's length must be positive");
+  shape.start_time = clothoid.optional_number("startTime");
+  shape.stop_time = clothoid.optional_number("stopTime");
+  if (shape.start_time.has_value() != shape.stop_time.has_value())
+    clothoid.fail("give both startTime and stopTime, or neither");
+  if (shape.start_time && *shape.stop_time <= *shape.start_time)
+    clothoid.fail_attribute("stopTime", "stopTime must be after startTime");
+  Element position = clothoid.child("Position");
+  shape.start = read_position(position);
+  clothoid.finish();
+  return shape;
+}
+
+Trajectory read_trajectory(Element& e) {
+  Trajectory t;
+  t.name = e.text("name");
+  t.closed = e.boolean("closed");
+  if (t.closed) e.fail_attribute("closed", "closed trajectories are not supported");
+  e.ignore_children({"ParameterDeclarations"});
+  Element holder = e.child("Shape");
+  Element shape = holder.one_of({"Polyline", "Clothoid"});  // Nurbs, ClothoidSpline: "not supported"
+  holder.finish();
+  if (shape.name() == "Polyline") t.shape = read_polyline(shape);
+  else t.shape = read_clothoid(shape);
+  e.finish();
+  return t;
+}
+
+// A Trajectory inline or a CatalogReference to one.
+Trajectory read_trajectory_or_reference(Element& e, Context& context) {
+  if (e.name() == "CatalogReference") {
+    Element entry = context.resolve(e, {"Trajectory"});
+    e.finish();
+    return read_trajectory(entry);
+  }
+  return read_trajectory(e);
+}
+
+}  // namespace
+
+AssignRouteAction read_assign_route(Element& e, Context& context) {
+  Element source = e.one_of({"Route", "CatalogReference"});
+  AssignRouteAction a;
+  if (source.name() == "CatalogReference") {
+    Element entry = context.resolve(source, {"Route"});
+    source.finish();
+    a = read_route(entry);
+  } else {
+    a = read_route(source);
+  }
+  e.finish();
+  return a;
+}
+
+FollowTrajectoryAction read_follow_trajectory(Element& e, Context& context) {
+  FollowTrajectoryAction a;
+  a.initial_distance_offset = e.optional_number("initialDistanceOffset").value_or(0.0);
+  if (a.initial_distance_offset < 0) e.fail_attribute("initialDistanceOffset", "cannot be negative");
+  // 1.2: TrajectoryRef holds the Trajectory or its CatalogReference; 1.0 and 1.1 hold them directly.
+  Element source = e.one_of({"TrajectoryRef", "Trajectory", "CatalogReference"});
+  if (source.name() == "TrajectoryRef") {
+    Element inner = source.one_of({"Trajectory", "CatalogReference"});
+    a.trajectory = read_trajectory_or_reference(inner, context);
+    source.finish();
+  } else {
+    a.trajectory = read_trajectory_or_reference(source, context);
+  }
+  Element reference = e.child("TimeReference");
+  Element timing = reference.one_of({"None", "Timing"});
+  reference.finish();
+  if (timing.name() == "Timing") {
+    TrajectoryTiming t;
+    t.absolute = timing.choice<bool>("domainAbsoluteRelative", {{"absolute", true}, {"relative", false}});
+    t.scale = timing.number("scale");
+    t.offset = timing.number("offset");
+    if (t.scale <= 0) timing.fail_attribute("scale", "a timing scale must be positive");
+    a.timing = t;
+  }
+  timing.finish();
+  Element mode = e.child("TrajectoryFollowingMode");
+  a.follow_mode = mode.choice<bool>("followingMode", {{"position", false}, {"follow", true}});
+  mode.finish();
+  if (a.timing) {
+    const bool timed = std::visit(
+        [](const auto& shape) {
+          if constexpr (std::is_same_v<std::decay_t<decltype(shape)>, PolylineShape>)
+            return shape.vertices.front().time.has_value();
+          else
+            return shape.start_time.has_value();
+        },
+        a.trajectory.shape);
+    if (!timed) e.fail("a Timing needs vertex times (Polyline) or startTime and stopTime (Clothoid)");
+  }
+  e.finish();
+  return a;
+}
+
+}  // namespace orch::openscenario::reading

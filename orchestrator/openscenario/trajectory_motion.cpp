@@ -1,0 +1,67 @@
+#include "openscenario/trajectory_motion.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/errors.hpp"
+
+namespace orch::openscenario {
+
+std::vector<PathPoint> clothoid_points(const opendrive::Pose2& start, double k0, double k_prime, double length) {
+  const opendrive::Geometry geometry{0.0, start, length, opendrive::Spiral{k0, k0 + k_prime * length}};
+  const int pieces = std::max(2, static_cast<int>(std::ceil(length / kClothoidStep)));
+  std::vector<PathPoint> points;
+  for (int i = 0; i <= pieces; ++i) {
+    const opendrive::Pose2 p = opendrive::evaluate(geometry, length * i / pieces);
+    points.push_back({p.x, p.y, 0.0, std::nullopt});
+  }
+  return points;
+}
+
+PathMotion make_path(std::vector<PathPoint> points, bool timed) {
+  PathMotion path;
+  path.timed = timed;
+  for (PathPoint& p : points) {
+    if (!path.points.empty()) {
+      const PathPoint& last = path.points.back();
+      const double step = std::hypot(p.x - last.x, p.y - last.y);
+      if (step < 1e-3) continue;
+      p.distance = last.distance + step;
+    } else {
+      p.distance = 0;
+    }
+    path.points.push_back(p);
+  }
+  if (path.points.size() < 2) throw MapError("a trajectory whose points all lie within 1 mm of each other");
+  return path;
+}
+
+opendrive::Pose2 PathMotion::pose_at(double d) const {
+  d = std::clamp(d, 0.0, length());
+  const auto next = std::upper_bound(points.begin() + 1, points.end() - 1, d,
+                                     [](double value, const PathPoint& p) { return value < p.distance; });
+  const PathPoint& b = *next;
+  const PathPoint& a = *(next - 1);
+  const double f = (d - a.distance) / (b.distance - a.distance);
+  return {a.x + f * (b.x - a.x), a.y + f * (b.y - a.y), std::atan2(b.y - a.y, b.x - a.x)};
+}
+
+double PathMotion::distance_at(double t) const {
+  if (t <= *points.front().due) return 0.0;
+  for (std::size_t i = 1; i < points.size(); ++i) {
+    const PathPoint& a = points[i - 1];
+    const PathPoint& b = points[i];
+    if (t <= *b.due) {
+      const double span = *b.due - *a.due;
+      return span <= 0 ? b.distance : a.distance + (b.distance - a.distance) * (t - *a.due) / span;
+    }
+  }
+  return length();
+}
+
+bool PathMotion::done(double t) const {
+  if (timed) return t >= *points.back().due - 1e-9;
+  return distance >= length() - 1e-9;
+}
+
+}  // namespace orch::openscenario

@@ -1,0 +1,40 @@
+#pragma once
+// A FollowTrajectoryAction's path as the storyboard moves an entity along it: the trajectory
+// (Polyline vertices, or a Clothoid sampled every kClothoidStep metres) as inertial points
+// with their distance along the path and, when timed, the simulation time each is due.
+// Pure geometry; positions are resolved by the caller when the action starts.
+#include <optional>
+#include <vector>
+
+#include "opendrive/plan_view.hpp"
+
+namespace orch::openscenario {
+
+struct PathPoint {
+  double x = 0, y = 0;
+  double distance = 0;          // along the path from its first point
+  std::optional<double> due;    // simulation time (s) the entity is here (timed paths)
+};
+
+struct PathMotion {
+  std::vector<PathPoint> points;  // at least two, distances increasing
+  bool timed = false;
+  double distance = 0;  // where the entity is now
+
+  [[nodiscard]] double length() const { return points.back().distance; }
+  // Reference point and heading (of the segment) at `d` along the path, clamped to it.
+  [[nodiscard]] opendrive::Pose2 pose_at(double d) const;
+  // Timed paths: the distance due at simulation time `t` (linear between points; the first
+  // point before its time, the last after it).
+  [[nodiscard]] double distance_at(double t) const;
+  [[nodiscard]] bool done(double t) const;
+};
+
+inline constexpr double kClothoidStep = 0.25;  // m
+
+// Points of a clothoid from `start`: curvature k0 + k' s for s in [0, length].
+std::vector<PathPoint> clothoid_points(const opendrive::Pose2& start, double k0, double k_prime, double length);
+// Fills in distances; points closer than 1 mm to the one before are dropped.
+PathMotion make_path(std::vector<PathPoint> points, bool timed);
+
+}  // namespace orch::openscenario
