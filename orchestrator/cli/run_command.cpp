@@ -92,6 +92,7 @@ int run_command(const RunOptions& o) {
   req.traffic = o.traffic;
   req.trace_background = o.trace_background;
   req.ego_entity = o.ego_entity;
+  req.ssm = o.ssm;
 
   RunOptions options = o;
   if (is_evaluation_file(o.file)) {

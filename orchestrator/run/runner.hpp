@@ -36,6 +36,8 @@ struct RunRequest {
   std::optional<EvaluationRequest> evaluation;
   // OpenSCENARIO runs: the ego entity (--ego NAME); empty: the one with the ALKSController.
   std::string ego_entity;
+  // --ssm: SUMO's device.ssm on the ego while SUMO drives it, output ssm.xml (run/ssm_device.hpp).
+  bool ssm = false;
 };
 
 RunResult run_scenario(const RunRequest& request, Simulator& simulator);
