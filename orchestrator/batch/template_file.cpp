@@ -2,7 +2,6 @@
 
 #include "batch/template_binder.hpp"
 #include "core/errors.hpp"
-#include "core/scenario_format.hpp"
 #include "evaluation/evaluation_file.hpp"
 #include "evaluation/yaml_tree.hpp"
 #include "json/json_text.hpp"
@@ -25,11 +24,10 @@ Json* scenario_value(Json& tree) {
   return &*scenario;
 }
 
-// A ScenarioExecutor file with at least one placeholder: a scenario template.
+// A JSON (ScenarioExecutor) file with at least one placeholder: a scenario template. Any
+// other file (OpenSCENARIO XML, not JSON at all) is not one.
 bool is_scenario_template(const std::filesystem::path& file) {
-  if (!std::filesystem::is_regular_file(file) || is_evaluation_file(file) ||
-      detect_scenario_format(file.string()) != ScenarioFormat::ScenarioExecutorJson)
-    return false;
+  if (!std::filesystem::is_regular_file(file) || is_evaluation_file(file)) return false;
   try {
     Diagnostics ignored;  // a broken file is reported when it is loaded as a scenario
     return !find_placeholders(JsonDocument::load(file.string()), ignored).empty();
