@@ -164,12 +164,13 @@ BatchPlan plan_batch(const std::vector<std::string>& inputs, const std::optional
                           fmt::format("the parameter file names logical scenario \"{}\", its logical file has \"{}\"",
                                       params.logical_uuid, pl.logical.uuid));
     pl.template_doc = std::make_shared<const JsonDocument>(load_template(pl.logical.template_file));
-    if (Diagnostics d = check_template(pl.logical, *pl.template_doc); d.has_errors()) throw ScenarioError(d);
+    if (Diagnostics d = check_templates(pl.logical, *pl.template_doc); d.has_errors()) throw ScenarioError(d);
     hash(logical_file);
     hash(parameter_file);
     hash(pl.logical.template_file);
+    if (const auto scenario = scenario_template_of(*pl.template_doc)) hash(*scenario);
     for (const auto& set : params.sets) {
-      bound_scenario_text(pl.logical, *pl.template_doc, set);  // every set binds, or the batch does not start
+      bound_run_files(pl.logical, *pl.template_doc, set);  // every set binds, or the batch does not start
       PlannedRun run{run_id(pl.logical.uuid, set.uuid), pl.logical.uuid, set.uuid, pl.logical.name,
                      plan.logicals.size(), set};
       if (ids.insert(run.id).second) all.push_back(std::move(run));

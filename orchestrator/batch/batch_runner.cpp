@@ -59,11 +59,12 @@ void apply_manifest_defaults(BatchOptions& o, const Manifest& m) {
     for (const auto& d : opt["maps"]) o.map_dirs.push_back(d.get<std::string>());
   if (o.catalog.empty() && opt.contains("catalog") && opt["catalog"].is_string()) o.catalog = opt["catalog"].get<std::string>();
   if (o.wrapper.empty() && opt.contains("wrapper") && opt["wrapper"].is_string()) o.wrapper = opt["wrapper"].get<std::string>();
+  if (!o.ssm && opt.contains("ssm") && opt["ssm"].is_boolean()) o.ssm = opt["ssm"].get<bool>();
 }
 
 ordered_json options_json(const BatchOptions& o) {
   return {{"jobs", *o.jobs}, {"timeout_s", *o.timeout_s}, {"retries", *o.retries}, {"maps", o.map_dirs},
-          {"catalog", o.catalog}, {"wrapper", o.wrapper}};
+          {"catalog", o.catalog}, {"wrapper", o.wrapper}, {"ssm", o.ssm}};
 }
 
 void verify_unchanged(const Manifest& m, const BatchPlan& plan) {
@@ -163,6 +164,7 @@ std::vector<std::string> run_command_line(const BatchOptions& o, const PlannedRu
     argv.push_back(o.catalog);
   }
   for (auto& f : pass_through_flags(cfg, o.run_flags)) argv.push_back(std::move(f));
+  if (o.ssm) argv.emplace_back("--ssm");
   return argv;
 }
 
@@ -221,7 +223,8 @@ int run_batch(const BatchOptions& given) {
       for (auto& a : variation_run_arguments(*pl.variation, run.set)) argv.push_back(std::move(a));
     } else {
       const std::string bound_file = bound_file_name(pl.logical.template_file);
-      write_file_atomically(dir / bound_file, bound_scenario_text(pl.logical, *pl.template_doc, run.set));
+      for (const auto& f : bound_run_files(pl.logical, *pl.template_doc, run.set))
+        write_file_atomically(dir / f.name, f.text);
       argv = run_command_line(o, run, dir, dir / bound_file);
     }
     if (!o.wrapper.empty()) argv.insert(argv.begin(), o.wrapper);

@@ -33,6 +33,7 @@ struct BatchOptions {
   std::optional<Shard> shard;
   std::vector<std::string> map_dirs;  // passed to each run as --maps
   std::string catalog;                // passed to each run as --catalog
+  bool ssm = false;                   // passed to each run as --ssm (SUMO's SSM device on the ego)
   std::string wrapper;                // program each run is started through (nice, a test double)
   std::filesystem::path orchestrator; // the binary to run children with
   // Flags `orchestrator run` offers; a sumo_config value (traffic, backend) is passed only

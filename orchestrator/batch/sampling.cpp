@@ -47,9 +47,18 @@ std::string bound_scenario_text(const LogicalScenario& logical, const JsonDocume
   return json_text(bound, 2) + "\n";
 }
 
+std::vector<BoundFile> bound_run_files(const LogicalScenario& logical, const JsonDocument& tmpl, const ParameterSet& set) {
+  std::vector<BoundFile> files{{bound_file_name(logical.template_file), bound_scenario_text(logical, tmpl, set)}};
+  if (const auto scenario = scenario_template_of(tmpl)) {
+    const JsonDocument scenario_tmpl = JsonDocument::load(scenario->string());
+    files.push_back({kBoundScenarioFile, json_text(bind_template(scenario_tmpl, flatten_values(set.sampled_values)), 2) + "\n"});
+  }
+  return files;
+}
+
 SampleOutcome sample_parameter_sets(const LogicalScenario& logical, const SampleRequest& request) {
   const JsonDocument tmpl = load_template(logical.template_file);
-  if (Diagnostics problems = check_template(logical, tmpl); problems.has_errors()) throw ScenarioError(problems);
+  if (Diagnostics problems = check_templates(logical, tmpl); problems.has_errors()) throw ScenarioError(problems);
 
   SampleOutcome outcome;
   const auto path = logical.parameter_file();
@@ -85,9 +94,9 @@ SampleOutcome sample_parameter_sets(const LogicalScenario& logical, const Sample
 
     // Bind and load now, so a template that yields an invalid scenario for some values is
     // reported at sampling time with the set's values, not at 3 a.m. in the batch.
-    const std::string text = bound_scenario_text(logical, tmpl, set);
+    const std::vector<BoundFile> files = bound_run_files(logical, tmpl, set);
     const std::string label = fmt::format("{} bound with seed {}", logical.template_file.string(), seed);
-    set.sumo_config.map = map_of_bound(text, label, logical.template_file);
+    set.sumo_config.map = map_of_bound(files, label, logical.template_file);
 
     set.output = nlohmann::json(output_block(logical.uuid, set.uuid));
     outcome.new_set_ids.push_back(set.uuid);

@@ -9,6 +9,7 @@
 
 #include "batch/logical_scenario.hpp"
 #include "batch/parameter_file.hpp"
+#include "batch/template_file.hpp"
 #include "json/json_document.hpp"
 
 namespace orch::batch {
@@ -38,5 +39,9 @@ SampleOutcome sample_parameter_sets(const LogicalScenario& logical, const Sample
 std::string bound_scenario_text(const LogicalScenario& logical, const ParameterSet& set);
 // The same with the template already loaded (a batch binds every set into one template).
 std::string bound_scenario_text(const LogicalScenario& logical, const JsonDocument& tmpl, const ParameterSet& set);
+// Every file of the run folder bound with one set: first the one `run` gets (as
+// bound_scenario_text), then an evaluation template's bound scenario when its scenario is a
+// template too (template_file.hpp).
+std::vector<BoundFile> bound_run_files(const LogicalScenario& logical, const JsonDocument& tmpl, const ParameterSet& set);
 
 }  // namespace orch::batch

@@ -114,20 +114,27 @@ std::vector<Placeholder> find_placeholders(const JsonDocument& tmpl, Diagnostics
 }
 
 Diagnostics check_template(const LogicalScenario& logical, const JsonDocument& tmpl) {
+  return check_template(logical, std::vector<const JsonDocument*>{&tmpl});
+}
+
+Diagnostics check_template(const LogicalScenario& logical, const std::vector<const JsonDocument*>& docs) {
   Diagnostics diags;
-  const auto placeholders = find_placeholders(tmpl, diags);
   const auto keys = logical.keys();
   std::set<std::string> used;
-  for (const auto& p : placeholders) {
-    used.insert(p.key);
-    if (!logical.find(p.key))
-      diags.error(tmpl.where(p.pointer), fmt::format("placeholder ${{{}}} names no parameter of logical scenario {}{}",
-                                                     p.key, logical.file.string(), did_you_mean(p.key, keys)));
+  std::string names;
+  for (const JsonDocument* tmpl : docs) {
+    names += (names.empty() ? "" : " and ") + tmpl->path();
+    for (const auto& p : find_placeholders(*tmpl, diags)) {
+      used.insert(p.key);
+      if (!logical.find(p.key))
+        diags.error(tmpl->where(p.pointer), fmt::format("placeholder ${{{}}} names no parameter of logical scenario {}{}",
+                                                        p.key, logical.file.string(), did_you_mean(p.key, keys)));
+    }
   }
   for (const auto& spec : logical.parameters)
     if (!used.count(spec.key()))
       diags.error(spec.where, fmt::format("parameter \"{}\" is used nowhere in the template {}: bind it with "
-                                          "\"${{{}}}\" or remove it", spec.key(), tmpl.path(), spec.key()));
+                                          "\"${{{}}}\" or remove it", spec.key(), names, spec.key()));
   return diags;
 }
 

@@ -33,6 +33,9 @@ std::vector<Placeholder> find_placeholders(const JsonDocument& tmpl, Diagnostics
 // error at the template's line (with "did you mean"), a parameter no placeholder uses is an
 // error at the parameter's line in the logical file.
 Diagnostics check_template(const LogicalScenario& logical, const JsonDocument& tmpl);
+// The same for a template made of several files (an evaluation YAML and the scenario
+// template it names): a parameter must be used in one of them.
+Diagnostics check_template(const LogicalScenario& logical, const std::vector<const JsonDocument*>& docs);
 
 // The template with every placeholder replaced. `values` maps "group.name" to the value.
 // Throws ScenarioError when the template does not fit the values (unknown or malformed

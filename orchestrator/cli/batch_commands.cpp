@@ -42,6 +42,7 @@ struct BatchCliOptions {
   std::string shard;
   std::string wrapper;
   bool video = false;  // --video: video.mp4 of every failing run
+  bool ssm = false;    // --ssm: passed to every run
   CommonOptions common;
 };
 
@@ -110,6 +111,7 @@ int batch_command(const BatchCliOptions& o, const CLI::App& app) {
   for (auto& d : b.map_dirs) d = fs::absolute(d).string();  // the children run elsewhere
   b.catalog = o.common.catalog.empty() ? "" : fs::absolute(o.common.catalog).string();
   b.wrapper = resolve_program(o.wrapper);
+  b.ssm = o.ssm;
   if (o.video) {
     if (const auto missing = video::missing_video_tools(); !missing.empty()) throw OrchError("batch " + missing);
   }
@@ -168,6 +170,7 @@ class BatchCommandsImpl : public BatchCommands {
     batch_->add_option("--shard", batch_opts_.shard, "Run only shard K of N (K/N, 1-based): a deterministic 1/N of the runs");
     batch_->add_option("--wrapper", batch_opts_.wrapper, "Start each run through this program (e.g. nice)");
     batch_->add_flag("--video", batch_opts_.video, "Write video.mp4 of every failing run (sumo-gui, ffmpeg)");
+    batch_->add_flag("--ssm", batch_opts_.ssm, "Pass --ssm to every run: SUMO's SSM device on the ego (ssm.xml)");
     batch_->add_option("--maps", batch_opts_.common.map_dirs, "Folder holding map folders (repeatable), passed to every run")
         ->allow_extra_args(false);
     batch_->add_option("--catalog", batch_opts_.common.catalog, "Model catalog JSON, passed to every run");

@@ -84,6 +84,7 @@ struct RunOptions {
   // run options given on the command line, which override the file's Conditions.
   int jsonl_every = 1;
   std::vector<std::string> given;  // e.g. "--step", "--seed"
+  bool ssm = false;  // --ssm: SUMO's SSM device on a SUMO-driven ego (ssm.xml)
 };
 int run_command(const RunOptions& o);
 

@@ -71,6 +71,7 @@ int main(int argc, char** argv) {
   r->add_option("--jsonl-every", run.jsonl_every, "Evaluation files: a result.jsonl frame line every N steps")
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
+  r->add_flag("--ssm", run.ssm, "Equip the ego (when SUMO drives it) with SUMO's SSM device: ssm.xml in the run folder");
   add_common(r, run.common);
 
   orch::cli::BaselineOptions baseline;

@@ -97,6 +97,7 @@ int run_command(const RunOptions& o) {
   req.parameter_overrides = openscenario::parse_parameter_overrides(o.parameters);
   if (!o.parameters.empty() && detect_scenario_format(o.file) != ScenarioFormat::OpenScenario)
     throw OrchError("--param sets OpenSCENARIO parameters: " + o.file + " is not an OpenSCENARIO file");
+  req.ssm = o.ssm;
 
   RunOptions options = o;
   if (is_evaluation_file(o.file)) {

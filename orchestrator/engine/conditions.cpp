@@ -51,7 +51,7 @@ bool compare_signed_gap(double gap, const double* gap_before, Comparison c, doub
   return compare_measure(std::abs(gap), gap_before ? &before_abs : nullptr, c, std::abs(value));
 }
 
-ConditionOutcome position(const PositionCondition& c, const ConditionContext& ctx) {
+ConditionOutcome outcome(const PositionCondition& c, const ConditionContext& ctx) {
   const ActorState* now = present(ctx.now, c.actor);
   if (!now) return {false, {}};
   const Vec2 target = waypoint_point(ctx.waypoints, c.waypoint);
@@ -72,7 +72,7 @@ double speed_measure(const SpeedCondition& c, const WorldSnapshot& snap, bool* o
   return a->speed - t->speed;
 }
 
-ConditionOutcome speed(const SpeedCondition& c, const ConditionContext& ctx) {
+ConditionOutcome outcome(const SpeedCondition& c, const ConditionContext& ctx) {
   bool ok = true;
   const double v = speed_measure(c, ctx.now, &ok);
   if (!ok) return {false, {}};
@@ -110,7 +110,7 @@ std::optional<double> distance_measure(const DistanceCondition& c, const WorldSn
   return gap;
 }
 
-ConditionOutcome distance(const DistanceCondition& c, const ConditionContext& ctx) {
+ConditionOutcome outcome(const DistanceCondition& c, const ConditionContext& ctx) {
   const auto gap = distance_measure(c, ctx.now, ctx);
   if (!gap) return {false, {}};
   const auto before = ctx.before ? distance_measure(c, *ctx.before, ctx) : std::nullopt;
@@ -134,7 +134,7 @@ std::optional<double> headway(const TimeHeadwayCondition& c, const WorldSnapshot
   return gap / a->speed;
 }
 
-ConditionOutcome time_headway(const TimeHeadwayCondition& c, const ConditionContext& ctx) {
+ConditionOutcome outcome(const TimeHeadwayCondition& c, const ConditionContext& ctx) {
   const auto h = headway(c, ctx.now, ctx);
   if (!h) return {false, {}};
   const auto hb = ctx.before ? headway(c, *ctx.before, ctx) : std::nullopt;
@@ -144,7 +144,7 @@ ConditionOutcome time_headway(const TimeHeadwayCondition& c, const ConditionCont
                              c.waypoint.wp_idx, *h, to_string(c.comparison), c.value)};
 }
 
-ConditionOutcome collision(const CollisionCondition& c, const ConditionContext& ctx) {
+ConditionOutcome outcome(const CollisionCondition& c, const ConditionContext& ctx) {
   if (c.target) {
     const bool hit = ctx.collided_with && ctx.collided_with(c.actor, *c.target);
     return {hit, fmt::format("actor {} collided with actor {}", c.actor, *c.target)};
@@ -153,7 +153,7 @@ ConditionOutcome collision(const CollisionCondition& c, const ConditionContext& 
   return {hit, fmt::format("actor {} collided", c.actor)};
 }
 
-ConditionOutcome simulation_time(const SimulationTimeCondition& c, const ConditionContext& ctx) {
+ConditionOutcome outcome(const SimulationTimeCondition& c, const ConditionContext& ctx) {
   const double before = ctx.before ? ctx.before->time : 0.0;
   const bool holds = compare_measure(ctx.now.time, ctx.before ? &before : nullptr, c.comparison, c.value);
   return {holds, fmt::format("simulation time {:.2f} s {} {}", ctx.now.time, to_string(c.comparison), c.value)};
@@ -186,17 +186,9 @@ double along_road(const WaypointRoute& route, const Vec2& from, const Vec2& to) 
 }
 
 ConditionOutcome evaluate(const Condition& c, const ConditionContext& ctx) {
-  return std::visit(
-      [&](const auto& k) -> ConditionOutcome {
-        using T = std::decay_t<decltype(k)>;
-        if constexpr (std::is_same_v<T, PositionCondition>) return position(k, ctx);
-        else if constexpr (std::is_same_v<T, DistanceCondition>) return distance(k, ctx);
-        else if constexpr (std::is_same_v<T, SpeedCondition>) return speed(k, ctx);
-        else if constexpr (std::is_same_v<T, TimeHeadwayCondition>) return time_headway(k, ctx);
-        else if constexpr (std::is_same_v<T, CollisionCondition>) return collision(k, ctx);
-        else return simulation_time(k, ctx);
-      },
-      c.kind);
+  // One `outcome` overload per condition type (scenario/elements.hpp): a type without one
+  // does not compile.
+  return std::visit([&](const auto& k) { return outcome(k, ctx); }, c.kind);
 }
 
 bool evaluate(const ConditionGroup& g, const ConditionContext& ctx, std::vector<std::string>* fired) {

@@ -94,105 +94,124 @@ void Engine::start_route_move(const RouteMoveAction& a, ScriptedMotion& m, doubl
   else m.plan_route_legs(drive, t);
 }
 
-void Engine::start_action(const Action& action, double t, StepOutput& out) {
-  auto event = [&](const std::string& text) { out.events.push_back({t, EventKind::Action, text}); };
-  auto require_present = [&](ActorId id) {
-    const ActorState* a = current_.find(id);
-    if (a && a->present) return true;
-    fail(fmt::format("an action of this scene names actor {}, which is not in the simulation", id), t, out);
-    return false;
-  };
-  auto motion = [&](ActorId id) -> ScriptedMotion* {
-    auto it = motions_.find(id);
-    return it == motions_.end() ? nullptr : &it->second;
-  };
-  auto ego_only = [&](ActorId id, const char* what) {
-    out.events.push_back({t, EventKind::Warning,
-                          fmt::format("{} on actor {} ignored: the ego is driven by SUMO's driver model", what, id)});
+void Engine::start_action(const Action& action, double now, StepOutput& step_out) {
+  // One action's behaviour per model type (scenario/elements.hpp): the overload set is the
+  // dispatch, so an action type without a behaviour does not compile.
+  struct Start {
+    Engine& e;
+    double t;
+    StepOutput& out;
+
+    void event(const std::string& text) const { out.events.push_back({t, EventKind::Action, text}); }
+    bool require_present(ActorId id) const {
+      const ActorState* a = e.current_.find(id);
+      if (a && a->present) return true;
+      e.fail(fmt::format("an action of this scene names actor {}, which is not in the simulation", id), t, out);
+      return false;
+    }
+    ScriptedMotion* motion(ActorId id) const {
+      auto it = e.motions_.find(id);
+      return it == e.motions_.end() ? nullptr : &it->second;
+    }
+    void ego_only(ActorId id, const char* what) const {
+      out.events.push_back({t, EventKind::Warning,
+                            fmt::format("{} on actor {} ignored: the ego is driven by SUMO's driver model", what, id)});
+    }
+
+    void operator()(const SpeedAction& a) const {
+      if (!require_present(a.actor)) return;
+      event(describe_speed(a));
+      if (ScriptedMotion* m = motion(a.actor)) {
+        m->cancel_moves();  // a longitudinal action replaces a running route_move
+        e.longitudinal_[a.actor] = HoldSpeed{a};
+      } else if (a.type == SpeedType::Absolute) {
+        if (!e.options_.external_ego) out.commands.push_back(SetMaxSpeed{"ego", a.value});
+      } else {
+        ego_only(a.actor, "a relative speed action");
+      }
+    }
+
+    void operator()(const TraveledDistanceAction& a) const {
+      if (!require_present(a.actor) || !require_present(a.target)) return;
+      event(fmt::format("traveled_distance: actor {} keeps {:+.1f} m ({}) from actor {}", a.actor, a.value,
+                        a.measure == MeasureType::Surface ? "surface" : "center", a.target));
+      if (ScriptedMotion* m = motion(a.actor)) {
+        m->cancel_moves();
+        e.longitudinal_[a.actor] = KeepGap{a};
+      } else {
+        ego_only(a.actor, "traveled_distance");
+      }
+    }
+
+    void operator()(const LaneChangeAction& a) const {
+      if (!require_present(a.actor)) return;
+      event(fmt::format("lane_change: actor {} to the lane of {} over {:g} s", a.actor, a.wp_id, a.time));
+      ScriptedMotion* m = motion(a.actor);
+      if (!m) return ego_only(a.actor, "lane_change");
+      const WaypointRoute& target = *e.map_.waypoints.find(a.wp_id);
+      m->change_route(target, 0.0, t, a.time);
+      const RouteLanes* lanes = e.map_.lanes.route(a.wp_id);
+      const double width = lanes && !lanes->lanes.empty() ? e.map_.lanes.lane(lanes->lanes.front()).width : 3.5;
+      e.conflicts_.watch(a.actor, e.actors_.find(a.actor)->tracked.length, target, m->direction(), width, t + a.time);
+    }
+
+    void operator()(const LaneOffsetAction& a) const {
+      if (!require_present(a.actor)) return;
+      event(fmt::format("lane_offset: actor {} to {:+.2f} m over {:g} s", a.actor, a.value, a.time));
+      ScriptedMotion* m = motion(a.actor);
+      if (!m) return ego_only(a.actor, "lane_offset");
+      m->plan_lateral({{a.value, a.time}}, t);
+    }
+
+    void operator()(const RouteMoveAction& a) const {
+      if (!require_present(a.actor)) return;
+      ScriptedMotion* m = motion(a.actor);
+      if (!m) return ego_only(a.actor, "route_move");
+      e.start_route_move(a, *m, t, out);
+    }
+
+    void operator()(const LightStateAction& a) const {
+      if (!require_present(a.actor)) return;
+      int& bits = e.signals_[a.actor];
+      auto apply = [&](const std::optional<bool>& v, int bit) {
+        if (v) bits = *v ? (bits | bit) : (bits & ~bit);
+      };
+      apply(a.blinker_left, kSignalBlinkerLeft);
+      apply(a.blinker_right, kSignalBlinkerRight);
+      apply(a.special1, kSignalEmergencyBlue);
+      event(fmt::format("light_state: actor {} blinker_left {}, blinker_right {}, special1 {}", a.actor,
+                        on_off(a.blinker_left), on_off(a.blinker_right), on_off(a.special1)));
+      out.commands.push_back(SetSignals{e.actors_.find(a.actor)->tracked.sumo_id, bits});
+    }
+
+    void operator()(const SoundStateAction& a) const {
+      if (!require_present(a.actor)) return;
+      if (a.sound) e.sirens_[a.actor] = *a.sound;
+      event(fmt::format("sound_state: actor {} siren {}", a.actor, on_off(a.sound)));
+      out.commands.push_back(
+          SetParameter{e.actors_.find(a.actor)->tracked.sumo_id, "orch.siren", e.siren(a.actor) ? "on" : "off"});
+    }
+
+    void operator()(const HandOverAction& a) const {
+      e.hand_overs_.push_back({t, a});
+      event(fmt::format("hand_over: {}{}", a.hand_over ? "on" : "off",
+                        a.hand_over ? fmt::format(" (throttle {}, brake {}, steer {})", a.throttle.value_or(0.0),
+                                                  a.brake.value_or(0.0), a.steer.value_or(0.0))
+                                    : std::string{}));
+      out.commands.push_back(SetParameter{"ego", "orch.hand_over", a.hand_over ? "1" : "0"});
+    }
+
+    void operator()(const EmptyAction&) const {}  // `{}` in the file does nothing
   };
 
-  const std::size_t first_event = out.events.size();
-  std::visit(
-      [&](const auto& a) {
-        using T = std::decay_t<decltype(a)>;
-        if constexpr (std::is_same_v<T, SpeedAction>) {
-          if (!require_present(a.actor)) return;
-          event(describe_speed(a));
-          if (ScriptedMotion* m = motion(a.actor)) {
-            m->cancel_moves();  // a longitudinal action replaces a running route_move
-            longitudinal_[a.actor] = HoldSpeed{a};
-          } else if (a.type == SpeedType::Absolute) {
-            if (!options_.external_ego) out.commands.push_back(SetMaxSpeed{"ego", a.value});
-          } else {
-            ego_only(a.actor, "a relative speed action");
-          }
-        } else if constexpr (std::is_same_v<T, TraveledDistanceAction>) {
-          if (!require_present(a.actor) || !require_present(a.target)) return;
-          event(fmt::format("traveled_distance: actor {} keeps {:+.1f} m ({}) from actor {}", a.actor, a.value,
-                            a.measure == MeasureType::Surface ? "surface" : "center", a.target));
-          if (ScriptedMotion* m = motion(a.actor)) {
-            m->cancel_moves();
-            longitudinal_[a.actor] = KeepGap{a};
-          } else {
-            ego_only(a.actor, "traveled_distance");
-          }
-        } else if constexpr (std::is_same_v<T, LaneChangeAction>) {
-          if (!require_present(a.actor)) return;
-          event(fmt::format("lane_change: actor {} to the lane of {} over {:g} s", a.actor, a.wp_id, a.time));
-          ScriptedMotion* m = motion(a.actor);
-          if (!m) return ego_only(a.actor, "lane_change");
-          const WaypointRoute& target = *map_.waypoints.find(a.wp_id);
-          m->change_route(target, 0.0, t, a.time);
-          const RouteLanes* lanes = map_.lanes.route(a.wp_id);
-          const double width = lanes && !lanes->lanes.empty() ? map_.lanes.lane(lanes->lanes.front()).width : 3.5;
-          conflicts_.watch(a.actor, actors_.find(a.actor)->tracked.length, target, m->direction(), width, t + a.time);
-        } else if constexpr (std::is_same_v<T, LaneOffsetAction>) {
-          if (!require_present(a.actor)) return;
-          event(fmt::format("lane_offset: actor {} to {:+.2f} m over {:g} s", a.actor, a.value, a.time));
-          ScriptedMotion* m = motion(a.actor);
-          if (!m) return ego_only(a.actor, "lane_offset");
-          m->plan_lateral({{a.value, a.time}}, t);
-        } else if constexpr (std::is_same_v<T, RouteMoveAction>) {
-          if (!require_present(a.actor)) return;
-          ScriptedMotion* m = motion(a.actor);
-          if (!m) return ego_only(a.actor, "route_move");
-          start_route_move(a, *m, t, out);
-        } else if constexpr (std::is_same_v<T, LightStateAction>) {
-          if (!require_present(a.actor)) return;
-          int& bits = signals_[a.actor];
-          auto apply = [&](const std::optional<bool>& v, int bit) {
-            if (v) bits = *v ? (bits | bit) : (bits & ~bit);
-          };
-          apply(a.blinker_left, kSignalBlinkerLeft);
-          apply(a.blinker_right, kSignalBlinkerRight);
-          apply(a.special1, kSignalEmergencyBlue);
-          event(fmt::format("light_state: actor {} blinker_left {}, blinker_right {}, special1 {}", a.actor,
-                            on_off(a.blinker_left), on_off(a.blinker_right), on_off(a.special1)));
-          out.commands.push_back(SetSignals{actors_.find(a.actor)->tracked.sumo_id, bits});
-        } else if constexpr (std::is_same_v<T, SoundStateAction>) {
-          if (!require_present(a.actor)) return;
-          if (a.sound) sirens_[a.actor] = *a.sound;
-          event(fmt::format("sound_state: actor {} siren {}", a.actor, on_off(a.sound)));
-          out.commands.push_back(
-              SetParameter{actors_.find(a.actor)->tracked.sumo_id, "orch.siren", siren(a.actor) ? "on" : "off"});
-        } else if constexpr (std::is_same_v<T, HandOverAction>) {
-          hand_overs_.push_back({t, a});
-          event(fmt::format("hand_over: {}{}", a.hand_over ? "on" : "off",
-                            a.hand_over ? fmt::format(" (throttle {}, brake {}, steer {})", a.throttle.value_or(0.0),
-                                                      a.brake.value_or(0.0), a.steer.value_or(0.0))
-                                        : std::string{}));
-          out.commands.push_back(SetParameter{"ego", "orch.hand_over", a.hand_over ? "1" : "0"});
-        } else {
-          // EmptyAction: `{}` in the file does nothing.
-        }
-      },
-      action.kind);
+  const std::size_t first_event = step_out.events.size();
+  std::visit(Start{*this, now, step_out}, action.kind);
   // The structured field: which actor the action's events are about.
   std::visit(
       [&](const auto& a) {
         if constexpr (requires { a.actor; })
-          for (std::size_t i = first_event; i < out.events.size(); ++i)
-            if (!out.events[i].actor) out.events[i].actor = a.actor;
+          for (std::size_t i = first_event; i < step_out.events.size(); ++i)
+            if (!step_out.events[i].actor) step_out.events[i].actor = a.actor;
       },
       action.kind);
 }

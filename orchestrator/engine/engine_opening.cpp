@@ -202,6 +202,9 @@ StepOutput Engine::start() {
   out.events.insert(out.events.end(), moved.events.begin(), moved.events.end());
   out.events.push_back({0, EventKind::Scene,
                         fmt::format("scene 0 (opening): {} actors placed", actors_.slots().size())});
+  // The start's events belong to the opening scene, as every step's to the scene it ends in.
+  for (Event& e : out.events)
+    if (!e.scene) e.scene = machine_.current();
   current_ = WorldSnapshot{};
   return out;
 }

@@ -61,7 +61,6 @@ void MetricsRecorder::step(const StepView& view) {
     if (!slot) continue;
     Body b{std::to_string(a.id), a.position, a.heading, a.speed, slot->model.length, slot->model.width};
     const engine::Box box{a.position, a.heading, b.length, b.width};
-    append_sample(trajectories_[a.id], {snap.time, box});
     bodies.push_back({std::move(b), box, true});
   }
   for (const auto& v : snap.nearby)
@@ -69,7 +68,13 @@ void MetricsRecorder::step(const StepView& view) {
                       engine::Box{v.position, v.heading, v.length, v.width}, false});
   std::vector<Body> others;
   others.reserve(bodies.size());
-  for (const auto& b : bodies) others.push_back(b.body);
+  std::vector<TrajectoryBook::Seen> seen;
+  seen.reserve(bodies.size());
+  for (const auto& b : bodies) {
+    others.push_back(b.body);
+    seen.push_back({b.body.id, b.box});
+  }
+  trajectories_.record(snap.time, seen);
 
   current_.clear();
   for (const auto& a : snap.actors) {
@@ -132,13 +137,9 @@ std::vector<ActorSummary> MetricsRecorder::summaries() const {
   std::vector<ActorSummary> out;
   for (const auto& [id, s] : summaries_) {
     ActorSummary with_pet = s;
-    // PET against every other actor whose path crossed this one's.
-    for (const auto& [other, trajectory] : trajectories_) {
-      if (other == id || !trajectories_.count(id)) continue;
-      const auto pet = post_encroachment_time(trajectories_.at(id), trajectory);
-      if (pet && (!with_pet.min_pet || pet->pet < with_pet.min_pet->value))
-        with_pet.min_pet = Extreme{pet->pet, pet->time, std::to_string(other)};
-    }
+    // PET against every other body (actors and background vehicles) whose path crossed this one's.
+    if (const auto pet = trajectories_.min_pet(std::to_string(id)))
+      with_pet.min_pet = Extreme{pet->pet.pet, pet->pet.time, pet->partner};
     out.push_back(std::move(with_pet));
   }
   return out;

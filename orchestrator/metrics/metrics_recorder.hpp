@@ -46,7 +46,7 @@ class MetricsRecorder : public RunObserver {
   std::map<scenario::ActorId, KinematicSample> last_sample_;
   std::map<scenario::ActorId, Kinematics> last_kinematics_;
   std::map<scenario::ActorId, ActorSummary> summaries_;
-  std::map<scenario::ActorId, std::vector<TrajectorySample>> trajectories_;
+  TrajectoryBook trajectories_;  // every body seen, for PET at the end
   std::optional<double> last_time_;
   int steps_since_flush_ = 0;
 };

@@ -53,11 +53,13 @@ std::optional<PetResult> post_encroachment_time(const std::vector<TrajectorySamp
   // a's path segments by the grid cells their ends fall in (segments are short: a step).
   std::unordered_map<long long, std::vector<std::size_t>> cells;
   for (std::size_t i = 0; i + 1 < a.size(); ++i) {
+    if (a[i + 1].resumed) continue;
     cells[cell_key(a[i].box.centre)].push_back(i);
     if (cell_key(a[i + 1].box.centre) != cell_key(a[i].box.centre)) cells[cell_key(a[i + 1].box.centre)].push_back(i);
   }
   std::vector<Vec2> points;
   for (std::size_t j = 0; j + 1 < b.size(); ++j) {
+    if (b[j + 1].resumed) continue;
     const Vec2& q0 = b[j].box.centre;
     const Vec2& q1 = b[j + 1].box.centre;
     for (int dx = -1; dx <= 1; ++dx)
@@ -90,7 +92,7 @@ std::optional<PetResult> post_encroachment_time(const std::vector<TrajectorySamp
 }
 
 void append_sample(std::vector<TrajectorySample>& trajectory, const TrajectorySample& s, double min_move) {
-  if (!trajectory.empty() && (trajectory.back().box.centre - s.box.centre).norm() < min_move) {
+  if (!trajectory.empty() && !s.resumed && (trajectory.back().box.centre - s.box.centre).norm() < min_move) {
     // Standing: keep the time the stop ends at, without a sample per step.
     if (trajectory.size() >= 2 &&
         (trajectory[trajectory.size() - 2].box.centre - trajectory.back().box.centre).norm() < min_move) {
@@ -101,6 +103,29 @@ void append_sample(std::vector<TrajectorySample>& trajectory, const TrajectorySa
     return;
   }
   trajectory.push_back(s);
+}
+
+void TrajectoryBook::record(double time, const std::vector<Seen>& bodies) {
+  ++step_;
+  for (const auto& b : bodies) {
+    Track& t = trajectories_[b.id];
+    if (t.last_step == step_) continue;  // the same id twice in a step: the first counts
+    const bool resumed = t.last_step >= 0 && t.last_step != step_ - 1;
+    append_sample(t.samples, {time, b.box, resumed});
+    t.last_step = step_;
+  }
+}
+
+std::optional<PetWith> TrajectoryBook::min_pet(const std::string& id) const {
+  const auto own = trajectories_.find(id);
+  if (own == trajectories_.end()) return std::nullopt;
+  std::optional<PetWith> best;
+  for (const auto& [other, track] : trajectories_) {
+    if (other == id) continue;
+    const auto pet = post_encroachment_time(own->second.samples, track.samples);
+    if (pet && (!best || pet->pet < best->pet.pet)) best = PetWith{*pet, other};
+  }
+  return best;
 }
 
 }  // namespace orch::metrics

@@ -8,7 +8,13 @@
 //   PET             the later body's first covering sample minus the earlier body's last
 //                   one; 0 when both cover it at once.
 // The smallest PET over all conflict points of the pair.
+//
+// TrajectoryBook keeps the trajectories of every body a run sees (the actors, and the
+// background vehicles while they are near an actor), so that each measured actor's PET is
+// taken against all of them.
+#include <map>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "engine/collision.hpp"
@@ -20,6 +26,9 @@ inline constexpr double kMinCrossing = 0.35;  // rad (20 degrees) between the pa
 struct TrajectorySample {
   double time = 0;
   engine::Box box;
+  // The body was out of sight before this sample (a background vehicle that left the
+  // actors' surroundings and came back): no path between this sample and the one before.
+  bool resumed = false;
 };
 
 struct PetResult {
@@ -35,5 +44,33 @@ std::optional<PetResult> post_encroachment_time(const std::vector<TrajectorySamp
 // (a standing body adds nothing), keeping trajectories of long runs small. The last sample
 // of a stop is still kept when the body moves on.
 void append_sample(std::vector<TrajectorySample>& trajectory, const TrajectorySample& s, double min_move = 0.1);
+
+struct PetWith {
+  PetResult pet;
+  std::string partner;
+};
+
+class TrajectoryBook {
+ public:
+  struct Seen {
+    std::string id;  // actor id as text, or the SUMO id of a background vehicle
+    engine::Box box;
+  };
+  // Every body present at `time`, recorded once per step in step order. A body missing from
+  // a step starts a new piece of its trajectory when it is seen again.
+  void record(double time, const std::vector<Seen>& bodies);
+  // The smallest PET of body `id` against every other body, with the partner; none when no
+  // path crossed its own.
+  [[nodiscard]] std::optional<PetWith> min_pet(const std::string& id) const;
+  [[nodiscard]] std::size_t bodies() const { return trajectories_.size(); }
+
+ private:
+  struct Track {
+    std::vector<TrajectorySample> samples;
+    long long last_step = -1;
+  };
+  std::map<std::string, Track> trajectories_;
+  long long step_ = -1;
+};
 
 }  // namespace orch::metrics

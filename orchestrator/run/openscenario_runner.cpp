@@ -17,6 +17,7 @@
 #include "run/openscenario_world.hpp"
 #include "run/run_outcome.hpp"
 #include "run/run_log.hpp"
+#include "run/ssm_device.hpp"
 #include "run/trace_writer.hpp"
 
 namespace orch {
@@ -161,6 +162,10 @@ RunResult run_openscenario(const RunRequest& req, Simulator& sim) {
     config.log_file = std::filesystem::absolute(req.out_dir / "sumo.log").string();
     if (const auto traffic = traffic_route_file(req, net.net_file, result, log); !traffic.empty())
       config.route_files.push_back(traffic);
+    if (req.ssm && !ego.empty()) {  // the ego is SUMO's (its vehicle id is the entity's name)
+      const auto ssm = ssm_device_arguments(ego, req.out_dir / kSsmFileName);
+      config.extra_args.insert(config.extra_args.end(), ssm.begin(), ssm.end());
+    }
     result.sumo_args = sumo_arguments(config);
     if (req.ego_link) log.note(req.ego_link->listen());
     sim.start(config);

@@ -22,6 +22,7 @@
 #include "run/run_outcome.hpp"
 #include "run/run_log.hpp"
 #include "run/run_observer.hpp"
+#include "run/ssm_device.hpp"
 #include "run/trace_writer.hpp"
 #include "run/traffic_trace.hpp"
 #include "scenario/catalog.hpp"
@@ -134,6 +135,20 @@ void add_evaluation_observers(const RunRequest& req, const metrics::MetricsRecor
   observers.push_back(std::move(jsonl));
 }
 
+// --ssm: SUMO's own SSM device on the ego, when SUMO drives it.
+void equip_ssm_device(const RunRequest& req, const engine::Engine& engine, SimulatorConfig& config, RunLog& log) {
+  if (req.ego_link) {
+    log.note("--ssm: the ego is driven by the plug-in, not by SUMO: no SSM device");
+    return;
+  }
+  for (const auto& slot : engine.actors().slots())
+    if (slot.is_ego()) {
+      const auto args = ssm_device_arguments(slot.tracked.sumo_id, req.out_dir / kSsmFileName);
+      config.extra_args.insert(config.extra_args.end(), args.begin(), args.end());
+      log.note(fmt::format("--ssm: SUMO's SSM device on the ego ({}) writes {}", slot.tracked.sumo_id, kSsmFileName));
+    }
+}
+
 }  // namespace
 
 RunResult run_scenario(const RunRequest& req, Simulator& sim) {
@@ -174,6 +189,7 @@ RunResult run_scenario(const RunRequest& req, Simulator& sim) {
     config.log_file = std::filesystem::absolute(req.out_dir / "sumo.log").string();
     if (const auto traffic = resolve_traffic(req, *in, result, log); !traffic.empty())
       config.route_files.push_back(traffic.string());
+    if (req.ssm) equip_ssm_device(req, *engine, config, log);
     result.sumo_args = sumo_arguments(config);
     if (req.ego_link) log.note(req.ego_link->listen());
     sim.start(config);

@@ -39,6 +39,8 @@ struct RunRequest {
   std::string ego_entity;
   // OpenSCENARIO runs: --param NAME=VALUE overrides of declared parameters.
   std::map<std::string, std::string> parameter_overrides;
+  // --ssm: SUMO's device.ssm on the ego while SUMO drives it, output ssm.xml (run/ssm_device.hpp).
+  bool ssm = false;
 };
 
 RunResult run_scenario(const RunRequest& request, Simulator& simulator);

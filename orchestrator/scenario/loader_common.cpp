@@ -8,17 +8,21 @@
 
 #include "core/suggest.hpp"
 #include "json/json_text.hpp"
+#include "scenario/elements.hpp"
 #include "scenario/loader_internal.hpp"
 
 namespace orch::scenario_loading {
 
 using namespace orch::scenario;
 
-const std::vector<std::string> kConditionKinds = {"position", "distance", "speed",
-                                                  "time_headway", "collision", "simulation_time"};
-const std::vector<std::string> kActionKinds = {"speed",       "traveled_distance", "lane_change",
-                                               "lane_offset", "route_move",        "light_state",
-                                               "sound_state", "hand_over"};
+const std::vector<std::string>& condition_kinds() {
+  static const std::vector<std::string> names = scenario_elements::element_names(scenario_elements::condition_elements());
+  return names;
+}
+const std::vector<std::string>& action_kinds() {
+  static const std::vector<std::string> names = scenario_elements::element_names(scenario_elements::action_elements());
+  return names;
+}
 
 std::optional<Comparison> read_comparison(ObjectReader& r, Need need) {
   static const std::vector<std::pair<std::string, Comparison>> kComparisons = {

@@ -1,9 +1,11 @@
-// Conditions: the groups of scenes' and stop conditions, and the six condition kinds.
+// Conditions: the groups of scenes' and stop conditions; each condition's own reader is in
+// its row of scenario/condition_elements.cpp.
 #include <fmt/format.h>
 
 #include <algorithm>
 
 #include "core/suggest.hpp"
+#include "scenario/elements.hpp"
 #include "scenario/loader_internal.hpp"
 
 namespace orch::scenario_loading {
@@ -12,89 +14,9 @@ using namespace orch::scenario;
 
 namespace {
 
-std::optional<ConditionKind> read_position(LoadContext&, ObjectReader& r) {
-  const auto actor = r.integer("actor_id", Need::Required);
-  r.choice("type", {"reach"}, Need::Optional);  // "reach" is the only kind, and the default
-  const auto waypoint = read_waypoint_ref(r);
-  const auto tolerance = r.number("tolerance", Need::Required);
-  if (!actor || !waypoint || !tolerance) return std::nullopt;
-  return PositionCondition{*actor, *waypoint, *tolerance};
-}
-
-std::optional<ConditionKind> read_distance(LoadContext& ctx, ObjectReader& r) {
-  DistanceCondition c;
-  const auto actor = r.integer("actor_id", Need::Required);
-  const auto type = r.choice("type", {"traveled", "straight"}, Need::Optional);
-  // Absent target_actor_id: the distance to the ego, as in the reference implementation.
-  const auto target = r.integer("target_actor_id", Need::Optional);
-  const auto comparison = read_comparison(r, Need::Required);
-  const auto value = r.number("value", Need::Required);
-  const auto measure = read_measure_type(r);
-  if (!actor || !comparison || !value || !measure) return std::nullopt;
-  c.actor = *actor;
-  c.type = type && *type == "straight" ? DistanceType::Straight : DistanceType::Traveled;
-  c.target = target.value_or(ctx.ego_id);
-  c.comparison = *comparison;
-  c.value = *value;
-  c.measure = *measure;
-  return c;
-}
-
-std::optional<ConditionKind> read_speed(LoadContext& ctx, ObjectReader& r) {
-  SpeedCondition c;
-  const auto actor = r.integer("actor_id", Need::Required);
-  const auto type = read_speed_type(r);
-  const auto target = r.integer("target_actor_id", Need::Optional);
-  const auto comparison = read_comparison(r, Need::Required);
-  const auto value = r.number("value", Need::Required);
-  if (!actor || !type || !comparison || !value) return std::nullopt;
-  c.actor = *actor;
-  c.type = *type;
-  c.comparison = *comparison;
-  c.value = kmh_to_ms(*value);
-  if (c.type == SpeedType::Relative) {
-    c.target = target.value_or(ctx.ego_id);  // absent: relative to the ego, as in the reference
-  } else if (target) {
-    r.warning("target_actor_id", "\"target_actor_id\" has no effect on an absolute speed condition");
-  }
-  return c;
-}
-
-std::optional<ConditionKind> read_time_headway(LoadContext&, ObjectReader& r) {
-  const auto actor = r.integer("actor_id", Need::Required);
-  const auto waypoint = read_waypoint_ref(r);
-  const auto comparison = read_comparison(r, Need::Required);
-  const auto value = r.number("value", Need::Required);
-  if (!actor || !waypoint || !comparison || !value) return std::nullopt;
-  return TimeHeadwayCondition{*actor, *waypoint, *comparison, *value};
-}
-
-std::optional<ConditionKind> read_collision(LoadContext&, ObjectReader& r) {
-  const auto actor = r.integer("actor_id", Need::Required);
-  const auto target = r.integer("target_actor_id", Need::Optional);
-  if (!actor) return std::nullopt;
-  return CollisionCondition{*actor, target};
-}
-
-std::optional<ConditionKind> read_simulation_time(LoadContext&, ObjectReader& r) {
-  const auto comparison = read_comparison(r, Need::Required);
-  const auto value = r.number("value", Need::Required);
-  if (!comparison || !value) return std::nullopt;
-  return SimulationTimeCondition{*comparison, *value};
-}
-
-std::optional<ConditionKind> read_kind(LoadContext& ctx, const std::string& kind, ObjectReader& r) {
-  if (kind == "position") return read_position(ctx, r);
-  if (kind == "distance") return read_distance(ctx, r);
-  if (kind == "speed") return read_speed(ctx, r);
-  if (kind == "time_headway") return read_time_headway(ctx, r);
-  if (kind == "collision") return read_collision(ctx, r);
-  return read_simulation_time(ctx, r);
-}
-
 std::vector<std::string> kinds_present(const nlohmann::json& object) {
   std::vector<std::string> present;
-  for (const auto& kind : kConditionKinds)
+  for (const auto& kind : condition_kinds())
     if (object.contains(kind)) present.push_back(kind);
   return present;
 }
@@ -126,7 +48,7 @@ std::optional<ConditionItem> read_item(LoadContext& ctx, const nlohmann::json& i
   const int errors_before = ctx.diags.error_count();
   ObjectReader r(ctx.doc, item, pointer, ctx.diags, "condition");
   const auto outer_description = r.string("description", Need::Optional);
-  r.allow(kConditionKinds);
+  r.allow(condition_kinds());
   if (is_group) {
     reject_key(r, item.contains("and") ? "and" : "or",
                "a list entry is either one condition or a group {\"and\"/\"or\": [...]}, not both; "
@@ -141,7 +63,7 @@ std::optional<ConditionItem> read_item(LoadContext& ctx, const nlohmann::json& i
     // An unknown key gets its "did you mean" from finish(); an empty object gets this.
     const bool only_description = item.size() == (outer_description ? 1u : 0u);
     if (only_description)
-      r.error("", fmt::format("empty condition: expected one of {}", quoted_list(kConditionKinds)));
+      r.error("", fmt::format("empty condition: expected one of {}", quoted_list(condition_kinds())));
     r.finish();
     return std::nullopt;
   }
@@ -153,7 +75,8 @@ std::optional<ConditionItem> read_item(LoadContext& ctx, const nlohmann::json& i
   condition.where = body.where();
   const auto inner_description = body.string("description", Need::Optional);
   condition.description = inner_description.value_or(outer_description.value_or(""));
-  auto parsed = body.is_object() ? read_kind(ctx, kind, body) : std::nullopt;
+  const auto* element = scenario_elements::find_element(scenario_elements::condition_elements(), kind);
+  auto parsed = body.is_object() ? element->read(ctx, body) : std::nullopt;
   body.finish();
   // A condition with an error of its own stays out of the model (see loader_internal.hpp).
   if (!parsed || ctx.diags.error_count() != errors_before) return std::nullopt;

@@ -36,9 +36,10 @@ struct LoadContext {
   }
 };
 
-// Every key one condition / action may hold, for "did you mean" on a misspelt kind.
-extern const std::vector<std::string> kConditionKinds;
-extern const std::vector<std::string> kActionKinds;
+// Every key one condition / action may hold (the names of scenario/elements.hpp's tables),
+// for "did you mean" on a misspelt kind.
+const std::vector<std::string>& condition_kinds();
+const std::vector<std::string>& action_kinds();
 
 // ---------------------------------------------------------------- loader_common.cpp
 inline double kmh_to_ms(double kmh) { return kmh / 3.6; }

@@ -46,4 +46,25 @@ void check_start_cycles(CheckContext& ctx);
 // Text "0, 1 and 2" of the actor ids defined, for "no such actor" messages.
 std::string defined_actor_ids(const scenario::Scenario& s);
 
+// validator_references.cpp: checks the element checkers share (scenario/elements.hpp).
+void check_actor_ref(CheckContext& ctx, scenario::ActorId id, const SourceLocation& where, const char* key);
+// The route `wp_id` names, or null (reported unless "" or the map's waypoints are unknown).
+const WaypointRoute* check_route(CheckContext& ctx, const std::string& wp_id, const SourceLocation& where);
+// Placements put an actor at the point: it must exist. Targets are places to reach: the
+// real ALKS templates, copied to a shorter map, aim past the end of the route, which the
+// reference reads as the route's last point, so that is a warning unless strict.
+enum class WaypointUse { Placement, Target };
+void check_waypoint(CheckContext& ctx, const scenario::WaypointRef& ref, WaypointUse use);
+void check_not_negative(CheckContext& ctx, double value, const SourceLocation& where, const char* key,
+                        const char* unit);
+// Actions that make no sense for what the actor is: an obstacle does not move, a
+// pedestrian has no lane, lights or siren.
+void check_can(CheckContext& ctx, scenario::ActorId actor, const SourceLocation& where, const char* action,
+               bool pedestrian_ok, const char* hint = "");
+// A speed action or an opening's start_speed.
+void check_speed(CheckContext& ctx, const scenario::SpeedAction& a, const SourceLocation& where, const char* what);
+// light_state, sound_state: vehicles only; special lights and sirens on emergency vehicles.
+void check_signals(CheckContext& ctx, scenario::ActorId actor, const SourceLocation& where, const char* action,
+                   bool uses_special);
+
 }  // namespace orch::scenario_checks

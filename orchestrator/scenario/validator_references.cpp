@@ -3,24 +3,18 @@
 #include <fmt/format.h>
 
 #include "core/suggest.hpp"
+#include "scenario/elements.hpp"
 #include "scenario/validator_internal.hpp"
 
 namespace orch::scenario_checks {
 
 using namespace orch::scenario;
 
-namespace {
-
 void check_actor_ref(CheckContext& ctx, ActorId id, const SourceLocation& where, const char* key) {
   if (!ctx.s.find_actor(id))
     ctx.diags.error(where, fmt::format("{} {} is not defined under \"actors\" (defined: {})", key, id,
                                        defined_actor_ids(ctx.s)));
 }
-
-// Placements put an actor at the point: it must exist. Targets are places to reach: the
-// real ALKS templates, copied to a shorter map, aim past the end of the route, which the
-// reference reads as the route's last point, so that is a warning unless strict.
-enum class WaypointUse { Placement, Target };
 
 const WaypointRoute* check_route(CheckContext& ctx, const std::string& wp_id, const SourceLocation& where) {
   if (wp_id.empty()) return nullptr;  // reported by the loader
@@ -64,7 +58,7 @@ void check_not_negative(CheckContext& ctx, double value, const SourceLocation& w
 // Actions that make no sense for what the actor is: an obstacle does not move, a
 // pedestrian has no lane, lights or siren.
 void check_can(CheckContext& ctx, ActorId actor, const SourceLocation& where, const char* action, bool pedestrian_ok,
-               const char* hint = "") {
+               const char* hint) {
   const ModelInfo* model = ctx.model_of(actor);
   if (!model || model->kind == ActorKind::Vehicle) return;
   if (model->kind == ActorKind::Pedestrian && pedestrian_ok) return;
@@ -91,61 +85,6 @@ void check_speed(CheckContext& ctx, const SpeedAction& a, const SourceLocation& 
   check_can(ctx, a.actor, where, what, true);
 }
 
-void check_condition(CheckContext& ctx, const Condition& c) {
-  const auto& where = c.where;
-  std::visit(
-      [&](const auto& k) {
-        using T = std::decay_t<decltype(k)>;
-        if constexpr (std::is_same_v<T, PositionCondition>) {
-          check_actor_ref(ctx, k.actor, where, "actor_id");
-          check_waypoint(ctx, k.waypoint, WaypointUse::Target);
-          check_not_negative(ctx, k.tolerance, where, "tolerance", "m");
-        } else if constexpr (std::is_same_v<T, DistanceCondition>) {
-          check_actor_ref(ctx, k.actor, where, "actor_id");
-          check_actor_ref(ctx, k.target, where, "target_actor_id");
-          if (k.actor == k.target)
-            ctx.diags.error(where, fmt::format("distance condition from actor {} to itself (without "
-                                               "\"target_actor_id\" the target is the ego)",
-                                               k.actor));
-        } else if constexpr (std::is_same_v<T, SpeedCondition>) {
-          check_actor_ref(ctx, k.actor, where, "actor_id");
-          if (k.target) {
-            check_actor_ref(ctx, *k.target, where, "target_actor_id");
-            if (*k.target == k.actor)
-              ctx.diags.error(where, fmt::format("relative speed condition of actor {} to itself (without "
-                                                 "\"target_actor_id\" the target is the ego)",
-                                                 k.actor));
-          }
-        } else if constexpr (std::is_same_v<T, TimeHeadwayCondition>) {
-          check_actor_ref(ctx, k.actor, where, "actor_id");
-          check_waypoint(ctx, k.waypoint, WaypointUse::Target);
-        } else if constexpr (std::is_same_v<T, CollisionCondition>) {
-          check_actor_ref(ctx, k.actor, where, "actor_id");
-          if (k.target) {
-            check_actor_ref(ctx, *k.target, where, "target_actor_id");
-            if (*k.target == k.actor)
-              ctx.diags.error(where, fmt::format("collision condition of actor {} with itself", k.actor));
-          }
-        }
-      },
-      c.kind);
-}
-
-void check_group(CheckContext& ctx, const ConditionGroup& g) {
-  for (const auto& item : g.items) {
-    if (const auto* c = std::get_if<Condition>(&item.node)) check_condition(ctx, *c);
-    else check_group(ctx, std::get<ConditionGroup>(item.node));
-  }
-}
-
-void check_route_move(CheckContext& ctx, const RouteMoveAction& a, const SourceLocation& where) {
-  check_can(ctx, a.actor, where, "route_move", true);
-  for (const auto& leg : a.legs) {
-    check_not_negative(ctx, leg.time, leg.where, "time", "s");
-    if (leg.waypoint) check_waypoint(ctx, *leg.waypoint, WaypointUse::Placement);
-  }
-}
-
 void check_signals(CheckContext& ctx, ActorId actor, const SourceLocation& where, const char* action,
                    bool uses_special) {
   check_can(ctx, actor, where, action, false);
@@ -156,54 +95,30 @@ void check_signals(CheckContext& ctx, ActorId actor, const SourceLocation& where
                                          action, actor, ctx.s.find_actor(actor)->model_id));
 }
 
-void check_hand_over(CheckContext& ctx, const HandOverAction& a, const SourceLocation& where) {
-  if (a.actor && *a.actor != ctx.s.ego.id)
-    ctx.diags.error(where, fmt::format("hand_over applies to the ego (actor {}), not to actor {}", ctx.s.ego.id,
-                                       *a.actor));
-  auto in_range = [&](const std::optional<double>& v, const char* key, double lo, double hi) {
-    if (v && (*v < lo || *v > hi))
-      ctx.diags.error(where, fmt::format("\"{}\" is {}; it must lie in [{}, {}]", key, *v, lo, hi));
-  };
-  in_range(a.throttle, "throttle", 0, 1);
-  in_range(a.brake, "brake", 0, 1);
-  in_range(a.steer, "steer", -1, 1);
-}
+namespace {
 
-void check_action(CheckContext& ctx, const Action& action) {
-  const auto& where = action.where;
+// The actor an element names in `actor` (every kind that has one), then the element's own
+// checks from its table row (scenario/elements.hpp).
+template <typename Kind>
+void check_element(CheckContext& ctx, const std::vector<scenario_elements::Element<Kind>>& table, const Kind& kind,
+                   const SourceLocation& where) {
   std::visit(
       [&](const auto& k) {
-        using T = std::decay_t<decltype(k)>;
-        if constexpr (!std::is_same_v<T, EmptyAction> && !std::is_same_v<T, HandOverAction>)
-          check_actor_ref(ctx, k.actor, where, "actor_id");
-        if constexpr (std::is_same_v<T, SpeedAction>) {
-          check_speed(ctx, k, where, "speed action");
-        } else if constexpr (std::is_same_v<T, TraveledDistanceAction>) {
-          check_actor_ref(ctx, k.target, where, "target_actor_id");
-          if (k.actor == k.target)
-            ctx.diags.error(where, fmt::format("traveled_distance keeps actor {} at a distance from itself (without "
-                                               "\"target_actor_id\" the target is the ego)",
-                                               k.actor));
-          check_can(ctx, k.actor, where, "traveled_distance", true);
-        } else if constexpr (std::is_same_v<T, LaneChangeAction>) {
-          check_route(ctx, k.wp_id, where);
-          // time 0 is allowed and means an instant move onto the target lane.
-          check_not_negative(ctx, k.time, where, "time", "s");
-          check_can(ctx, k.actor, where, "lane_change", false, "; move it with route_move");
-        } else if constexpr (std::is_same_v<T, LaneOffsetAction>) {
-          check_not_negative(ctx, k.time, where, "time", "s");
-          check_can(ctx, k.actor, where, "lane_offset", false, "; move it with route_move");
-        } else if constexpr (std::is_same_v<T, RouteMoveAction>) {
-          check_route_move(ctx, k, where);
-        } else if constexpr (std::is_same_v<T, LightStateAction>) {
-          check_signals(ctx, k.actor, where, "light_state", k.special1.value_or(false));
-        } else if constexpr (std::is_same_v<T, SoundStateAction>) {
-          check_signals(ctx, k.actor, where, "sound_state", k.sound.value_or(false));
-        } else if constexpr (std::is_same_v<T, HandOverAction>) {
-          check_hand_over(ctx, k, where);
-        }
+        if constexpr (requires { k.actor; })
+          if constexpr (std::is_same_v<std::decay_t<decltype(k.actor)>, ActorId>)
+            check_actor_ref(ctx, k.actor, where, "actor_id");
       },
-      action.kind);
+      kind);
+  if (const auto* element = scenario_elements::element_of(table, kind)) element->check(ctx, kind, where);
+}
+
+void check_group(CheckContext& ctx, const ConditionGroup& g) {
+  for (const auto& item : g.items) {
+    if (const auto* c = std::get_if<Condition>(&item.node))
+      check_element(ctx, scenario_elements::condition_elements(), c->kind, c->where);
+    else
+      check_group(ctx, std::get<ConditionGroup>(item.node));
+  }
 }
 
 }  // namespace
@@ -228,7 +143,8 @@ void check_scene_contents(CheckContext& ctx) {
   for (const auto& scene : ctx.s.scenes) {
     check_not_negative(ctx, scene.duration, scene.where, "duration", "s");
     check_group(ctx, scene.conditions);
-    for (const auto& action : scene.actions) check_action(ctx, action);
+    for (const auto& action : scene.actions)
+      check_element(ctx, scenario_elements::action_elements(), action.kind, action.where);
   }
   if (const auto& stop = ctx.s.stop_conditions) {
     check_group(ctx, *stop);

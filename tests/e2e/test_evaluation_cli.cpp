@@ -1,6 +1,7 @@
 // `orchestrator run EVAL.yaml` and `validate EVAL.yaml` on real files: criteria in the
 // verdict, result.json's criteria list, result.jsonl read as an evaluator reads it (the last
 // line), ScenarioFormatError for an invalid file.
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -120,6 +121,25 @@ TEST(EvaluationCli, ValidateChecksEvaluationFilesAndTheirScenario) {
       << bad.output;
 }
 
+// The values of one column of a CSV text, by header name.
+std::vector<std::string> csv_column(const std::string& csv, const std::string& name) {
+  std::istringstream lines(csv);
+  std::string line;
+  std::getline(lines, line);
+  const auto split = [](const std::string& row) {
+    std::vector<std::string> cells;
+    std::istringstream in(row);
+    for (std::string cell; std::getline(in, cell, ',');) cells.push_back(cell);
+    return cells;
+  };
+  const auto header = split(line);
+  const auto at = std::find(header.begin(), header.end(), name);
+  std::vector<std::string> values;
+  if (at == header.end()) return values;
+  while (std::getline(lines, line)) values.push_back(split(line).at(static_cast<std::size_t>(at - header.begin())));
+  return values;
+}
+
 TEST(EvaluationCli, NightlyBatchWithAnEvaluationTemplateTabulatesCriteriaAndMetrics) {
   TempDir out;
   const auto logical = source_path("scenarios/evaluation/nightly/logical_5d3c2a4e-6f1b-4c8e-9a7d-2b1e0f9c8d71.json");
@@ -137,6 +157,14 @@ TEST(EvaluationCli, NightlyBatchWithAnEvaluationTemplateTabulatesCriteriaAndMetr
     const double measured = run["metrics"]["0"]["min_ttc"]["value"];
     EXPECT_EQ(run["criteria"][1]["success"].get<bool>(), measured >= required) << run.dump();
     EXPECT_DOUBLE_EQ(run["criteria"][1]["actual"].get<double>(), measured);
+    // The scenario the evaluation template names is a template too: the run drove the lead's
+    // sampled deceleration (scenario.json beside evaluation.yaml in the run folder).
+    const std::filesystem::path dir = out / run["run_dir"].get<std::string>();
+    const double decel = run["sampled_values"]["lead"]["decel"];
+    EXPECT_NE(slurp(dir / "run.log").find(fmt::format("speed: actor 1 to 0.0 km/h at {:g} m/s^2", decel)),
+              std::string::npos)
+        << decel << "\n" << slurp(dir / "run.log");
+    EXPECT_NE(slurp(dir / "evaluation.yaml").find("\"Scenario\": \"scenario.json\""), std::string::npos);
     (run["verdict"] == "success" ? success : failure)++;
   }
   EXPECT_GT(success, 0);
@@ -146,10 +174,17 @@ TEST(EvaluationCli, NightlyBatchWithAnEvaluationTemplateTabulatesCriteriaAndMetr
   std::istringstream lines(csv);
   std::string header;
   std::getline(lines, header);
-  for (const char* column : {"run_id,logical_uuid,parameter_uuid,seed,verdict", "criteria.min_ttc",
+  for (const char* column : {"run_id,logical_uuid,parameter_uuid,seed,verdict", "criteria.min_ttc", "lead.decel",
                              "criterion.min_ttc.actual", "criterion.min_ttc.success", "metrics.0.min_ttc"})
     EXPECT_NE(header.find(column), std::string::npos) << column;
   EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 9);
+  // The parameter range gives passing and failing criteria: the TTC requirement (a threshold
+  // parameter) and the deceleration bound (met or not depending on how hard the lead brakes).
+  for (const char* criterion : {"criterion.min_ttc.success", "criterion.deceleration.success"}) {
+    const auto column = csv_column(csv, criterion);
+    EXPECT_GT(std::count(column.begin(), column.end(), "true"), 0) << criterion << "\n" << csv;
+    EXPECT_GT(std::count(column.begin(), column.end(), "false"), 0) << criterion << "\n" << csv;
+  }
   // JUnit: a failing run's message names its failing criteria with expected and actual values.
   const std::string junit = slurp(out / "junit.xml");
   EXPECT_NE(junit.find("message=\"criteria failed: min_ttc: expected ttc >= "), std::string::npos);

@@ -352,3 +352,15 @@ TEST(EngineActions, AnExternalEgoGetsNoDrivingCommandsAndTheRestIsUnchanged) {
   EXPECT_EQ(external.other_max_speed, builtin.other_max_speed);
   EXPECT_EQ(external.other_poses, builtin.other_poses);
 }
+
+TEST(EngineEvents, TheStartsEventsBelongToTheOpeningScene) {
+  Rig r(alks(R"({"actor_id": 1, "start_position": {"type": "waypoint", "wp_id": "Waypoint03", "wp_idx": 100},
+                 "start_speed": {"type": "absolute", "value": 36}})",
+             "[]"));
+  const StepOutput out = r.engine.start();
+  ASSERT_FALSE(out.events.empty());
+  for (const Event& e : out.events) {
+    ASSERT_TRUE(e.scene.has_value()) << e.text;
+    EXPECT_EQ(*e.scene, scenario::kOpeningSceneId) << e.text;
+  }
+}

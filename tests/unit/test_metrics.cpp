@@ -190,6 +190,47 @@ TEST(PostEncroachmentTime, AStopIsKeptAsItsFirstAndLastSample) {
   EXPECT_NEAR(t.back().time, 9.9, 1e-9);
 }
 
+// Hand-built snapshots, one per 0.1 s step: the ego eastwards through (0,0) at 10 m/s
+// (covers it for t in [4.805, 5.205], last sample 5.2), a background vehicle northwards
+// through it 3 s later (y = -50.05 + 10 (t - 3): covers it for t in [7.805, 8.205], first
+// sample 7.9): PET = 7.9 - 5.2 = 2.7, against the background vehicle.
+TEST(TrajectoryBook, PetAgainstABackgroundVehicle) {
+  TrajectoryBook book;
+  for (int i = 0; i <= 150; ++i) {
+    const double t = i * 0.1;
+    std::vector<TrajectoryBook::Seen> seen{{"0", {{-50.05 + 10 * t, 0}, 0, 4, 2}}};
+    if (t >= 3 - 1e-9) seen.push_back({"bg.7", {{0, -50.05 + 10 * (t - 3)}, std::numbers::pi / 2, 4, 2}});
+    // A scripted car behind the ego on its path: following, no conflict point.
+    seen.push_back({"1", {{-80.05 + 10 * t, 0}, 0, 4, 2}});
+    book.record(t, seen);
+  }
+  const auto pet = book.min_pet("0");
+  ASSERT_TRUE(pet);
+  EXPECT_EQ(pet->partner, "bg.7");
+  EXPECT_NEAR(pet->pet.pet, 2.7, 1e-9);
+  EXPECT_NEAR(pet->pet.time, 7.9, 1e-9);
+  EXPECT_EQ(book.bodies(), 3u);
+  EXPECT_FALSE(book.min_pet("nobody"));
+}
+
+// A background vehicle seen driving north towards the ego's road until t = 4.5 (y = -5.05),
+// then out of sight, and seen again from t = 9 on the ego's path at (0, 0.5), driving east
+// behind the ego. What it did in between nobody knows: joined, its two pieces would cross
+// the ego's path at (0, 0), which it covers from t = 9 (a PET of 9 - 5.2 = 3.8); kept
+// apart, its path never crosses the ego's.
+TEST(TrajectoryBook, NoPathAcrossTheTimeABodyWasOutOfSight) {
+  TrajectoryBook book;
+  for (int i = 0; i <= 150; ++i) {
+    const double t = i * 0.1;
+    std::vector<TrajectoryBook::Seen> seen{{"0", {{-50.05 + 10 * t, 0}, 0, 4, 2}}};
+    if (t <= 4.5 + 1e-9) seen.push_back({"bg.9", {{0, -50.05 + 10 * t}, std::numbers::pi / 2, 4, 2}});
+    if (t >= 9 - 1e-9) seen.push_back({"bg.9", {{10 * (t - 9), 0.5}, 0, 4, 2}});
+    book.record(t, seen);
+  }
+  EXPECT_FALSE(book.min_pet("0"));
+  EXPECT_FALSE(book.min_pet("bg.9"));
+}
+
 TEST(ActorSummary, ExtremesWithTimeAndPartner) {
   ActorSummary s;
   ActorMetrics m;
