@@ -12,7 +12,7 @@
 #include "core/errors.hpp"
 #include "core/utf8.hpp"
 #include "evaluation/evaluation_file.hpp"
-#include "evaluation/result_jsonl.hpp"
+#include "run/result_jsonl.hpp"
 #include "run/paced_simulator.hpp"
 #include "run/runner.hpp"
 #include "sumo/sumo_ego_control.hpp"
