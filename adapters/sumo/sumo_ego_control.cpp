@@ -11,13 +11,13 @@
 
 #include <algorithm>
 #include <unordered_map>
-#include <unordered_set>
 #include ORCH_SUMO_HEADER
 
 #include "run/ego_link.hpp"
 
 #include "sumo_api.hpp"
 #include "sumo_contexts.hpp"
+#include "traci_server/traci_variables.hpp"
 
 // Classes from ORCH_SUMO_NS, shared types and exceptions from libsumo (sumo_api.hpp).
 namespace sumo = orch_sumo;
@@ -41,25 +41,10 @@ class SumoEgoControl final : public traci::EgoWorld {
     guard([] { sumo::Vehicle::setLaneChangeMode(kEgoSumoId, kPluginEgoLaneChangeMode); });
   }
 
+  // The one list of what the server serves (traci_server/traci_variables.hpp); read_vehicle,
+  // read_person and read_simulation below answer each of its variables.
   [[nodiscard]] bool supports(Domain domain, int variable) const override {
-    static const std::unordered_set<int> simulation = {
-        tc::VAR_TIME, tc::VAR_TIME_STEP, tc::VAR_DELTA_T, tc::VAR_DEPARTED_VEHICLES_IDS,
-        tc::VAR_DEPARTED_VEHICLES_NUMBER, tc::VAR_ARRIVED_VEHICLES_IDS, tc::VAR_ARRIVED_VEHICLES_NUMBER,
-        tc::VAR_MIN_EXPECTED_VEHICLES};
-    static const std::unordered_set<int> vehicle = {
-        tc::TRACI_ID_LIST, tc::ID_COUNT, tc::VAR_POSITION, tc::VAR_POSITION3D, tc::VAR_SPEED, tc::VAR_ACCELERATION,
-        tc::VAR_ANGLE, tc::VAR_ROAD_ID, tc::VAR_LANE_ID, tc::VAR_LANE_INDEX, tc::VAR_LANEPOSITION,
-        tc::VAR_LANEPOSITION_LAT, tc::VAR_LENGTH, tc::VAR_WIDTH, tc::VAR_TYPE, tc::VAR_SIGNALS, tc::VAR_LEADER,
-        tc::VAR_PARAMETER, tc::VAR_SPEEDSETMODE, tc::VAR_LANECHANGE_MODE};
-    static const std::unordered_set<int> person = {
-        tc::TRACI_ID_LIST, tc::ID_COUNT, tc::VAR_POSITION, tc::VAR_POSITION3D, tc::VAR_SPEED, tc::VAR_ANGLE,
-        tc::VAR_ROAD_ID, tc::VAR_LANE_ID, tc::VAR_LANEPOSITION, tc::VAR_LENGTH, tc::VAR_WIDTH, tc::VAR_TYPE};
-    switch (domain) {
-      case Domain::Simulation: return simulation.count(variable) > 0;
-      case Domain::Vehicle: return vehicle.count(variable) > 0;
-      case Domain::Person: return person.count(variable) > 0;
-    }
-    return false;
+    return traci::world_reads(domain, variable);
   }
 
   bool exists(Domain domain, const std::string& id) override {
@@ -209,6 +194,13 @@ class SumoEgoControl final : public traci::EgoWorld {
     throw traci::WorldError("the distance must be a number");
   }
 
+  // A variable of the served list (traci_variables.cpp) that no case below answers: a
+  // mistake in this file, reported to the plug-in instead of a wrong value.
+  static traci::NotImplemented unanswered(const char* domain, int variable) {
+    return traci::NotImplemented(std::string(domain) + " variable " + std::to_string(variable) +
+                                 " is listed as served but not read by the SUMO side");
+  }
+
   static Value read_simulation(int variable) {
     switch (variable) {
       case tc::VAR_TIME: return sumo::Simulation::getTime();
@@ -218,7 +210,8 @@ class SumoEgoControl final : public traci::EgoWorld {
       case tc::VAR_DEPARTED_VEHICLES_NUMBER: return static_cast<std::int32_t>(sumo::Simulation::getDepartedNumber());
       case tc::VAR_ARRIVED_VEHICLES_IDS: return sumo::Simulation::getArrivedIDList();
       case tc::VAR_ARRIVED_VEHICLES_NUMBER: return static_cast<std::int32_t>(sumo::Simulation::getArrivedNumber());
-      default: return static_cast<std::int32_t>(sumo::Simulation::getMinExpectedNumber());
+      case tc::VAR_MIN_EXPECTED_VEHICLES: return static_cast<std::int32_t>(sumo::Simulation::getMinExpectedNumber());
+      default: throw unanswered("simulation", variable);
     }
   }
 
@@ -251,7 +244,8 @@ class SumoEgoControl final : public traci::EgoWorld {
         return V::getParameter(id, *key);
       }
       case tc::VAR_SPEEDSETMODE: return static_cast<std::int32_t>(V::getSpeedMode(id));
-      default: return static_cast<std::int32_t>(V::getLaneChangeMode(id));
+      case tc::VAR_LANECHANGE_MODE: return static_cast<std::int32_t>(V::getLaneChangeMode(id));
+      default: throw unanswered("vehicle", variable);
     }
   }
 
@@ -269,7 +263,8 @@ class SumoEgoControl final : public traci::EgoWorld {
       case tc::VAR_LANEPOSITION: return P::getLanePosition(id);
       case tc::VAR_LENGTH: return P::getLength(id);
       case tc::VAR_WIDTH: return P::getWidth(id);
-      default: return P::getTypeID(id);
+      case tc::VAR_TYPE: return P::getTypeID(id);
+      default: throw unanswered("person", variable);
     }
   }
 

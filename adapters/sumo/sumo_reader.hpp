@@ -14,6 +14,7 @@
 // Included by sumo_simulator.cpp only (compiled once per SUMO client library).
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <map>
 #include <numbers>
 #include <string>
@@ -89,6 +90,10 @@ class WorldReader {
       if (e.empty() || e.front() != ':') edges_.push_back(e);
     next_wait_count_ = 0;
     long_waiting_ = 0;
+    // Measurement only (scripts/bench/split.py): no context subscriptions, so no nearby
+    // vehicles: the run is no longer the scenario's (collisions with background traffic go
+    // unseen), but the benchmark can tell what the contexts cost.
+    contexts_off_ = std::getenv("ORCH_BENCH_NO_CONTEXTS") != nullptr;
   }
 
   [[nodiscard]] double time() const { return time_; }
@@ -181,7 +186,8 @@ class WorldReader {
       sumo::Person::subscribe(id, person_vars);
     else
       sumo::Vehicle::subscribe(id, vehicle_vars);
-    contexts::shared_contexts().subscribe(id, person, tc::CMD_GET_VEHICLE_VARIABLE, kNearbyRange, kNeighbourVars);
+    if (!contexts_off_)
+      contexts::shared_contexts().subscribe(id, person, tc::CMD_GET_VEHICLE_VARIABLE, kNearbyRange, kNeighbourVars);
     followed_[id] = person;
   }
 
@@ -229,6 +235,7 @@ class WorldReader {
   // Background vehicles around any actor, once each, in id order (the same bytes on every
   // backend).
   void read_nearby(const std::vector<engine::TrackedActor>& actors, engine::WorldSnapshot& snap) {
+    if (contexts_off_) return;
     std::map<std::string, engine::NearbyVehicle> found;
     for (const auto& a : actors) {
       const auto it = followed_.find(a.sumo_id);
@@ -267,6 +274,7 @@ class WorldReader {
   int long_waiting_ = 0;
   int colliding_ = 0;                                      // vehicles in a collision in the last step
   double time_ = 0;
+  bool contexts_off_ = false;  // ORCH_BENCH_NO_CONTEXTS (measurement only)
 };
 
 }  // namespace

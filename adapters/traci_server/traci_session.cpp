@@ -1,10 +1,11 @@
 #include "traci_server/traci_session.hpp"
 
+#include "traci_server/traci_variables.hpp"
+
 #include <libsumo/TraCIConstants.h>
 
 #include <cmath>
 #include <cstdio>
-#include <unordered_map>
 
 namespace orch::traci {
 
@@ -31,64 +32,8 @@ const char* domain_of_command(std::uint8_t c) {
   return names[c & 0x0F];
 }
 
-const std::unordered_map<int, const char*>& object_getters() {
-  static const std::unordered_map<int, const char*> names = {
-      {tc::TRACI_ID_LIST, "getIDList"},
-      {tc::ID_COUNT, "getIDCount"},
-      {tc::VAR_POSITION, "getPosition"},
-      {tc::VAR_POSITION3D, "getPosition3D"},
-      {tc::VAR_SPEED, "getSpeed"},
-      {tc::VAR_ACCELERATION, "getAcceleration"},
-      {tc::VAR_ANGLE, "getAngle"},
-      {tc::VAR_ROAD_ID, "getRoadID"},
-      {tc::VAR_LANE_ID, "getLaneID"},
-      {tc::VAR_LANE_INDEX, "getLaneIndex"},
-      {tc::VAR_LANEPOSITION, "getLanePosition"},
-      {tc::VAR_LANEPOSITION_LAT, "getLateralLanePosition"},
-      {tc::VAR_LENGTH, "getLength"},
-      {tc::VAR_WIDTH, "getWidth"},
-      {tc::VAR_TYPE, "getTypeID"},
-      {tc::VAR_SIGNALS, "getSignals"},
-      {tc::VAR_LEADER, "getLeader"},
-      {tc::VAR_PARAMETER, "getParameter"},
-      {tc::VAR_PARAMETER_WITH_KEY, "getParameterWithKey"},
-      {tc::VAR_SPEEDSETMODE, "getSpeedMode"},
-      {tc::VAR_LANECHANGE_MODE, "getLaneChangeMode"},
-  };
-  return names;
-}
-
-const std::unordered_map<int, const char*>& simulation_getters() {
-  static const std::unordered_map<int, const char*> names = {
-      {tc::VAR_TIME, "getTime"},
-      {tc::VAR_TIME_STEP, "getCurrentTime"},
-      {tc::VAR_DELTA_T, "getDeltaT"},
-      {tc::VAR_DEPARTED_VEHICLES_IDS, "getDepartedIDList"},
-      {tc::VAR_DEPARTED_VEHICLES_NUMBER, "getDepartedNumber"},
-      {tc::VAR_ARRIVED_VEHICLES_IDS, "getArrivedIDList"},
-      {tc::VAR_ARRIVED_VEHICLES_NUMBER, "getArrivedNumber"},
-      {tc::VAR_MIN_EXPECTED_VEHICLES, "getMinExpectedNumber"},
-      {tc::VAR_PARAMETER, "getParameter"},
-  };
-  return names;
-}
-
-const std::unordered_map<int, const char*>& vehicle_setters() {
-  static const std::unordered_map<int, const char*> names = {
-      {tc::VAR_SPEED, "setSpeed"},
-      {tc::CMD_SLOWDOWN, "slowDown"},
-      {tc::CMD_CHANGELANE, "changeLane"},
-      {tc::MOVE_TO_XY, "moveToXY"},
-      {tc::VAR_SIGNALS, "setSignals"},
-      {tc::VAR_SPEEDSETMODE, "setSpeedMode"},
-      {tc::VAR_LANECHANGE_MODE, "setLaneChangeMode"},
-  };
-  return names;
-}
-
-std::string lookup(const std::unordered_map<int, const char*>& names, int variable, const char* fallback) {
-  const auto it = names.find(variable);
-  return it != names.end() ? std::string(it->second) : std::string(fallback) + " " + hex2(static_cast<unsigned>(variable));
+std::string named(const char* name, int variable, const char* fallback) {
+  return name ? std::string(name) : std::string(fallback) + " " + hex2(static_cast<unsigned>(variable));
 }
 
 }  // namespace
@@ -105,10 +50,10 @@ std::string command_name(std::uint8_t command, int variable) {
   const std::string prefix = domain ? std::string(domain) + "." : "command " + hex2(command) + ".";
   switch (command & 0xF0) {
     case 0xa0:
-      return prefix + lookup(command == tc::CMD_GET_SIM_VARIABLE ? simulation_getters() : object_getters(), variable, "get");
+      return prefix + named(getter_name(command == tc::CMD_GET_SIM_VARIABLE, variable), variable, "get");
     case 0xc0:
       if (command == tc::CMD_SET_SIM_VARIABLE && variable == tc::VAR_PARAMETER) return prefix + "setParameter";
-      return prefix + lookup(vehicle_setters(), variable, "set");
+      return prefix + named(setter_name(variable), variable, "set");
     case 0xd0: return prefix + "subscribe";
     case 0x80: return prefix + "subscribeContext";
     default: return "command " + hex2(command);
@@ -297,7 +242,7 @@ void Session::set_vehicle(const RawCommand& c) {
   const std::uint8_t variable = r.ubyte();
   const std::string id = r.string();
   count(c.id, variable);
-  if (!vehicle_setters().count(variable)) {
+  if (setter_name(variable) == nullptr) {
     status(c.id, tc::RTYPE_NOTIMPLEMENTED,
            command_name(c.id, variable) + " is not implemented by the orchestrator's ego TraCI server");
     return;

@@ -6,6 +6,7 @@
 
 #include <boost/process.hpp>
 #include <cstdlib>
+#include <memory>
 #include <iostream>
 #include <regex>
 
@@ -16,6 +17,7 @@
 #include "batch/sampling.hpp"
 #include "batch/variation_batch.hpp"
 #include "cli/commands.hpp"
+#include "cli/subcommand.hpp"
 #include "core/errors.hpp"
 #include "core/files.hpp"
 #include "core/process.hpp"
@@ -139,65 +141,57 @@ int merge_command(const MergeOptions& o) {
   return batch::batch_exit_code(report.totals());
 }
 
-class BatchCommandsImpl : public BatchCommands {
- public:
-  explicit BatchCommandsImpl(CLI::App& app) {
-    sample_ = app.add_subcommand("sample", "Add seeded parameter sets to a logical scenario's parameter file");
-    // Input files are not checked here: a missing one is reported as bad input (file: error).
-    sample_->add_option("logical", sample_opts_.logical, "Logical scenario (logical_{uuid}.json)")->required();
-    sample_->add_option("--count", sample_opts_.request.count, "Parameter sets to add")->required()->check(CLI::Range(1, 1000000));
-    sample_->add_option("--seed", sample_opts_.request.first_seed, "Seed of the first new set; the next take seed+1, ... (skipping used ones)")
-        ->capture_default_str()
-        ->check(CLI::Range(0LL, 2147483647LL));
-    sample_->add_option("--step", sample_opts_.request.step, "sumo_config.step of the new sets, s")->check(CLI::Range(0.001, 1.0));
-    sample_->add_option("--max-time", sample_opts_.request.max_time, "sumo_config.max_time of the new sets, s")
-        ->check(CLI::PositiveNumber);
-    sample_->add_option("--traffic", sample_opts_.request.traffic, "sumo_config.traffic of the new sets (passed to run --traffic)");
-    sample_->add_option("--backend", sample_opts_.request.backend, "sumo_config.backend of the new sets (passed to run --backend)");
+Handler setup_sample(CLI::App& cmd) {
+  auto o = std::make_shared<SampleOptions>();
+  // Input files are not checked here: a missing one is reported as bad input (file: error).
+  cmd.add_option("logical", o->logical, "Logical scenario (logical_{uuid}.json)")->required();
+  cmd.add_option("--count", o->request.count, "Parameter sets to add")->required()->check(CLI::Range(1, 1000000));
+  cmd.add_option("--seed", o->request.first_seed, "Seed of the first new set; the next take seed+1, ... (skipping used ones)")
+      ->capture_default_str()
+      ->check(CLI::Range(0LL, 2147483647LL));
+  cmd.add_option("--step", o->request.step, "sumo_config.step of the new sets, s")->check(CLI::Range(0.001, 1.0));
+  cmd.add_option("--max-time", o->request.max_time, "sumo_config.max_time of the new sets, s")
+      ->check(CLI::PositiveNumber);
+  cmd.add_option("--traffic", o->request.traffic, "sumo_config.traffic of the new sets (passed to run --traffic)");
+  cmd.add_option("--backend", o->request.backend, "sumo_config.backend of the new sets (passed to run --backend)");
+  return [o] { return sample_command(*o); };
+}
 
-    batch_ = app.add_subcommand("batch", "Run every parameter set of logical scenarios, in parallel child processes");
-    batch_->require_subcommand(0, 1);
-    batch_->add_option("inputs", batch_opts_.inputs, "Logical scenarios and/or parameter files");
-    batch_->add_option("--out", batch_opts_.out, "Output folder of the batch")->capture_default_str();
-    batch_->add_option("--resume", batch_opts_.resume, "Continue the batch in this folder: run exactly the runs not done")
-        ->check(CLI::ExistingDirectory);
-    batch_->add_option("--jobs,-j", batch_opts_.jobs, "Runs at a time (default: the number of cores)")
-        ->check(CLI::Range(1, 1024));
-    batch_->add_option("--timeout", batch_opts_.timeout, "Wall-clock limit per run, s; its process tree is then killed (default 1800)")
-        ->check(CLI::PositiveNumber);
-    batch_->add_option("--retries", batch_opts_.retries, "Extra attempts for runs ending in error (default 1); failures are never retried")
-        ->check(CLI::Range(0, 100));
-    batch_->add_option("--shard", batch_opts_.shard, "Run only shard K of N (K/N, 1-based): a deterministic 1/N of the runs");
-    batch_->add_option("--wrapper", batch_opts_.wrapper, "Start each run through this program (e.g. nice)");
-    batch_->add_flag("--video", batch_opts_.video, "Write video.mp4 of every failing run (sumo-gui, ffmpeg)");
-    batch_->add_flag("--ssm", batch_opts_.ssm, "Pass --ssm to every run: SUMO's SSM device on the ego (ssm.xml)");
-    batch_->add_option("--maps", batch_opts_.common.map_dirs, "Folder holding map folders (repeatable), passed to every run")
-        ->allow_extra_args(false);
-    batch_->add_option("--catalog", batch_opts_.common.catalog, "Model catalog JSON, passed to every run");
+Handler setup_batch(CLI::App& cmd) {
+  auto o = std::make_shared<BatchCliOptions>();
+  cmd.require_subcommand(0, 1);
+  cmd.add_option("inputs", o->inputs, "Logical scenarios and/or parameter files");
+  cmd.add_option("--out", o->out, "Output folder of the batch")->capture_default_str();
+  cmd.add_option("--resume", o->resume, "Continue the batch in this folder: run exactly the runs not done")
+      ->check(CLI::ExistingDirectory);
+  cmd.add_option("--jobs,-j", o->jobs, "Runs at a time (default: the number of cores)")->check(CLI::Range(1, 1024));
+  cmd.add_option("--timeout", o->timeout, "Wall-clock limit per run, s; its process tree is then killed (default 1800)")
+      ->check(CLI::PositiveNumber);
+  cmd.add_option("--retries", o->retries, "Extra attempts for runs ending in error (default 1); failures are never retried")
+      ->check(CLI::Range(0, 100));
+  cmd.add_option("--shard", o->shard, "Run only shard K of N (K/N, 1-based): a deterministic 1/N of the runs");
+  cmd.add_option("--wrapper", o->wrapper, "Start each run through this program (e.g. nice)");
+  cmd.add_flag("--video", o->video, "Write video.mp4 of every failing run (sumo-gui, ffmpeg)");
+  cmd.add_flag("--ssm", o->ssm, "Pass --ssm to every run: SUMO's SSM device on the ego (ssm.xml)");
+  cmd.add_option("--maps", o->common.map_dirs, "Folder holding map folders (repeatable), passed to every run")
+      ->allow_extra_args(false);
+  cmd.add_option("--catalog", o->common.catalog, "Model catalog JSON, passed to every run");
+  return [o, &cmd] { return batch_command(*o, cmd); };
+}
 
-    merge_ = batch_->add_subcommand("merge", "Combine batch (shard) folders into one summary and JUnit file");
-    merge_->add_option("dirs", merge_opts_.dirs, "Batch folders (e.g. one per shard)")->required()->check(CLI::ExistingDirectory);
-    merge_->add_option("--out", merge_opts_.out, "Folder for the merged summary.json, junit.xml, summary.txt")->required();
-  }
-
-  [[nodiscard]] std::optional<int> run() const override {
-    if (*sample_) return sample_command(sample_opts_);
-    if (*merge_) return merge_command(merge_opts_);
-    if (*batch_) return batch_command(batch_opts_, *batch_);
-    return std::nullopt;
-  }
-
- private:
-  CLI::App* sample_ = nullptr;
-  CLI::App* batch_ = nullptr;
-  CLI::App* merge_ = nullptr;
-  SampleOptions sample_opts_;
-  BatchCliOptions batch_opts_;
-  MergeOptions merge_opts_;
-};
+Handler setup_merge(CLI::App& cmd) {
+  auto o = std::make_shared<MergeOptions>();
+  cmd.add_option("dirs", o->dirs, "Batch folders (e.g. one per shard)")->required()->check(CLI::ExistingDirectory);
+  cmd.add_option("--out", o->out, "Folder for the merged summary.json, junit.xml, summary.txt")->required();
+  return [o] { return merge_command(*o); };
+}
 
 }  // namespace
 
-std::unique_ptr<BatchCommands> add_batch_commands(CLI::App& app) { return std::make_unique<BatchCommandsImpl>(app); }
+std::vector<Subcommand> batch_subcommands() {
+  return {{{"sample"}, "Add seeded parameter sets to a logical scenario's parameter file", setup_sample},
+          {{"batch"}, "Run every parameter set of logical scenarios, in parallel child processes", setup_batch},
+          {{"batch", "merge"}, "Combine batch (shard) folders into one summary and JUnit file", setup_merge}};
+}
 
 }  // namespace orch::cli

@@ -1,25 +1,12 @@
 #pragma once
-// One function per subcommand; main.cpp only parses arguments. Each returns the exit code.
+// One function per subcommand, each returning the exit code; their options are registered in
+// cli/subcommands.cpp (cli/subcommand.hpp).
 #include <filesystem>
-#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
-namespace CLI {
-class App;
-}
-
 namespace orch::cli {
-
-// `sample`, `batch` and `batch merge` (cli/batch_commands.cpp): added to the app before
-// parsing; run() afterwards returns the exit code of the one chosen, or nullopt.
-class BatchCommands {
- public:
-  virtual ~BatchCommands() = default;
-  [[nodiscard]] virtual std::optional<int> run() const = 0;
-};
-std::unique_ptr<BatchCommands> add_batch_commands(CLI::App& app);
 
 // Options every command that needs maps or models shares.
 struct CommonOptions {

@@ -12,6 +12,7 @@
 
 #include "core/errors.hpp"
 #include "core/utf8.hpp"
+#include "json/json_scan.hpp"
 
 namespace orch {
 
@@ -81,17 +82,8 @@ class DuplicateKeyCheck : public PassingSax {
 // skipping strings.
 void check_nesting_depth(const std::string& text, const std::string& path) {
   std::size_t depth = 0;
-  bool in_string = false;
-  for (std::size_t i = 0; i < text.size(); ++i) {
-    const char c = text[i];
-    if (in_string) {
-      if (c == '\\') ++i;
-      else if (c == '"') in_string = false;
-      continue;
-    }
-    if (c == '"') {
-      in_string = true;
-    } else if (c == '[' || c == '{') {
+  for_each_outside_strings(text, [&](std::size_t i, char c) {
+    if (c == '[' || c == '{') {
       if (++depth > kMaxJsonDepth)
         throw ScenarioError(SourceLocation{path, "", line_at_offset(line_starts_of(text), i)},
                             fmt::format("values nested more than {} deep (arrays and objects inside each other)",
@@ -99,7 +91,7 @@ void check_nesting_depth(const std::string& text, const std::string& path) {
     } else if ((c == ']' || c == '}') && depth > 0) {
       --depth;
     }
-  }
+  });
 }
 
 // Where a parse stops: the SAX parser reports every error with its byte position.
@@ -124,6 +116,22 @@ std::string syntax_message(const std::string& what) {
 }
 
 }  // namespace
+
+void release_tree(nlohmann::json& value) noexcept {
+  if (value.is_array()) {
+    auto& items = value.get_ref<nlohmann::json::array_t&>();
+    for (auto& item : items)
+      if (item.is_structured()) release_tree(item);
+    items.clear();  // scalars only now: each is freed where it is
+  } else if (value.is_object()) {
+    auto& members = value.get_ref<nlohmann::json::object_t&>();
+    for (auto& [key, member] : members)
+      if (member.is_structured()) release_tree(member);
+    members.clear();
+  }
+}
+
+JsonDocument::~JsonDocument() { release_tree(root_); }
 
 JsonDocument JsonDocument::load(const std::string& path) {
   std::error_code ec;

@@ -21,6 +21,15 @@ inline constexpr std::size_t kMaxJsonBytes = std::size_t{1} << 31;
 
 class JsonDocument {
  public:
+  JsonDocument() = default;
+  JsonDocument(const JsonDocument&) = default;
+  JsonDocument(JsonDocument&&) noexcept = default;
+  JsonDocument& operator=(const JsonDocument&) = default;
+  JsonDocument& operator=(JsonDocument&&) noexcept = default;
+  // Empties the tree leaves first (release_tree): nlohmann's own destructor first moves every
+  // child of a container into a vector of its own, a second copy of a large array.
+  ~JsonDocument();
+
   // Reads and parses `path`. Throws ScenarioError (with line) on unreadable or invalid JSON,
   // including duplicate keys, which nlohmann would otherwise silently collapse, nesting
   // deeper than kMaxJsonDepth and text longer than kMaxJsonBytes.
@@ -51,6 +60,12 @@ class JsonDocument {
   // shared by copies.
   mutable std::shared_ptr<const LineIndex> lines_;
 };
+
+// Destroys a value tree without nlohmann's destructor's flattening copy (every child of an
+// array or object moved into a vector that grows by doubling: a 100 MB file's tree held
+// twice more at the end of a run; docs/hardening.md). Children are emptied before their
+// parents; the recursion is as deep as the tree (at most kMaxJsonDepth for a parsed text).
+void release_tree(nlohmann::json& value) noexcept;
 
 // Appends one reference token to a JSON pointer, escaping '~' and '/' (RFC 6901).
 std::string json_pointer_child(const std::string& parent, const std::string& key);

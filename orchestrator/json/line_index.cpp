@@ -7,6 +7,7 @@
 
 #include "core/errors.hpp"
 #include "json/json_document.hpp"
+#include "json/json_scan.hpp"
 
 namespace orch {
 
@@ -79,6 +80,18 @@ bool array_index(std::string_view token, std::size_t& index) {
     index = index * 10 + static_cast<std::size_t>(c - '0');
   }
   return true;
+}
+
+// At most this many values in a text nlohmann parses: every value but the root follows a
+// '[', a '{' or a ',' outside strings. Reserving it up front means the entries are never
+// copied into a larger vector while the index grows (for a moment three times the index's
+// size, with a 100 MB file; docs/hardening.md).
+std::size_t value_bound(const std::string& text) {
+  std::size_t bound = 1;
+  for_each_outside_strings(text, [&](std::size_t, char c) {
+    if (c == ',' || c == '[' || c == '{') ++bound;
+  });
+  return bound;
 }
 
 }  // namespace
@@ -177,6 +190,7 @@ class LineIndexBuilder : public nlohmann::json_sax<nlohmann::json> {
 
 LineIndex LineIndex::build(const std::string& text, const std::string& path_for_messages) {
   LineIndex index;
+  index.entries_.reserve(value_bound(text));
   const std::vector<std::size_t> line_starts = line_starts_of(text);
   std::size_t last = 0;
   LineIndexBuilder builder(index, last, line_starts);

@@ -3,7 +3,7 @@
 
 #include <set>
 
-#include "criteria/criteria_judge.hpp"
+#include "run/criteria_judge.hpp"
 #include "criteria/criterion.hpp"
 #include "run/run_result.hpp"
 

@@ -13,7 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/diagnostics.hpp"
-#include "criteria/criteria_judge.hpp"
+#include "run/criteria_judge.hpp"
 #include "run/run_observer.hpp"
 
 namespace orch {

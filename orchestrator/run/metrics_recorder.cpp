@@ -1,4 +1,4 @@
-#include "metrics/metrics_recorder.hpp"
+#include "run/metrics_recorder.hpp"
 
 #include <fmt/format.h>
 

@@ -1,4 +1,4 @@
-#include "criteria/criteria_judge.hpp"
+#include "run/criteria_judge.hpp"
 
 #include <fmt/format.h>
 

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "criteria/criterion.hpp"
-#include "metrics/metrics_recorder.hpp"
+#include "run/metrics_recorder.hpp"
 #include "run/run_observer.hpp"
 
 namespace orch::criteria {

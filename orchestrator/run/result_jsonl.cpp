@@ -1,4 +1,4 @@
-#include "evaluation/result_jsonl.hpp"
+#include "run/result_jsonl.hpp"
 
 #include <fmt/format.h>
 
