@@ -41,6 +41,8 @@ struct BatchCliOptions {
   std::string shard;
   std::string wrapper;
   bool video = false;  // --video: video.mp4 of every failing run
+  std::string ego_model;       // --ego-model: passed to every run
+  bool reference_run = false;  // --reference-run: passed to every run
   CommonOptions common;
 };
 
@@ -111,6 +113,8 @@ int batch_command(const BatchCliOptions& o, const CLI::App& app) {
   }
   b.orchestrator = fs::read_symlink("/proc/self/exe");
   b.run_flags = run_flags_of(b.orchestrator);
+  if (!o.ego_model.empty()) b.run_args = {"--ego-model", o.ego_model};
+  if (o.reference_run) b.run_args.emplace_back("--reference-run");
   b.out_stream = &std::cout;
   b.terminal = ::isatty(STDOUT_FILENO) == 1;
   try {
@@ -164,6 +168,11 @@ class BatchCommandsImpl : public BatchCommands {
     batch_->add_option("--shard", batch_opts_.shard, "Run only shard K of N (K/N, 1-based): a deterministic 1/N of the runs");
     batch_->add_option("--wrapper", batch_opts_.wrapper, "Start each run through this program (e.g. nice)");
     batch_->add_flag("--video", batch_opts_.video, "Write video.mp4 of every failing run (sumo-gui, ffmpeg)");
+    batch_->add_option("--ego-model", batch_opts_.ego_model, "What drives the ego in every run: sumo or r157 (run --ego-model)")
+        ->check(CLI::IsMember({"sumo", "r157"}));
+    batch_->add_flag("--reference-run", batch_opts_.reference_run,
+                     "Give every run a reference run with the R157 reference driver (run --reference-run): the "
+                     "`preventable` column");
     batch_->add_option("--maps", batch_opts_.common.map_dirs, "Folder holding map folders (repeatable), passed to every run")
         ->allow_extra_args(false);
     batch_->add_option("--catalog", batch_opts_.common.catalog, "Model catalog JSON, passed to every run");

@@ -46,6 +46,13 @@ int main(int argc, char** argv) {
                 "An external plug-in drives the ego over TraCI: listen on this port (0: any free port)")
       ->check(CLI::Range(0, 65535));
   r->add_option("--ego", run.ego_entity, "OpenSCENARIO runs: the entity that is the ego (default: the ALKSController's)");
+  r->add_option("--ego-model", run.ego_model,
+                "What drives the ego when no plug-in does: sumo (SUMO's car-following model, default) or r157 (the UN "
+                "R157 reference driver, docs/reference-driver.md)")
+      ->check(CLI::IsMember({"sumo", "r157"}));
+  r->add_flag("--reference-run", run.reference_run,
+              "Run the scenario again with the R157 reference driver (into reference/) and judge whether a collision "
+              "was preventable");
   r->add_option("--ego-address", run.ego_address, "Address the ego TraCI server listens on")->capture_default_str();
   r->add_option("--ego-wait", run.ego_wait, "Seconds to wait for the ego plug-in to connect")
       ->capture_default_str()->check(CLI::PositiveNumber);
@@ -126,7 +133,7 @@ int main(int argc, char** argv) {
   try {
     if (*v) return orch::cli::validate_command(validate);
     if (*r) {
-      for (const char* name : {"--step", "--seed", "--max-time", "--traffic", "--backend"})
+      for (const char* name : {"--step", "--seed", "--max-time", "--traffic", "--backend", "--ego-model", "--reference-run"})
         if (r->count(name) > 0) run.given.emplace_back(name);
       return orch::cli::run_command(run);
     }

@@ -139,6 +139,14 @@ struct SetParameter {
   std::string value;
 };
 
-using Command = std::variant<SpawnVehicle, SpawnPerson, SetPose, SetSignals, SetMaxSpeed, SetStop, SetParameter>;
+// The speed a built-in ego model (reference_driver/) drives in the next step: SUMO drives
+// exactly this speed (speed mode 0 from the first one on: no checks of SUMO's own).
+struct DriveSpeed {
+  std::string sumo_id;
+  double speed = 0;
+};
+
+using Command =
+    std::variant<SpawnVehicle, SpawnPerson, SetPose, SetSignals, SetMaxSpeed, SetStop, SetParameter, DriveSpeed>;
 
 }  // namespace orch::engine

@@ -13,7 +13,9 @@
 #include "opendrive/xodr_reader.hpp"
 #include "openscenario/storyboard_runtime.hpp"
 #include "openscenario/xosc_reader.hpp"
+#include "run/collision_fact.hpp"
 #include "run/openscenario_world.hpp"
+#include "run/reference_ego_setup.hpp"
 #include "run/run_outcome.hpp"
 #include "run/run_log.hpp"
 #include "run/trace_writer.hpp"
@@ -84,13 +86,23 @@ const engine::ActorState* find_actor(const engine::WorldSnapshot& snap, const Op
 }
 
 // The ego's first collision SUMO reported, if any.
-std::optional<std::string> ego_collision(const engine::WorldSnapshot& snap, const std::string& ego, double time) {
+std::optional<CollisionFact> ego_collision(const engine::WorldSnapshot& snap, const OpenScenarioActors& actors,
+                                           const std::string& ego, double time) {
   if (ego.empty()) return std::nullopt;
   for (const auto& c : snap.collisions)
-    if (c.collider == ego || c.victim == ego)
-      return fmt::format("the ego {} collided with {} at t={:.2f} s", ego, c.collider == ego ? c.victim : c.collider,
-                         time);
+    if (c.collider == ego || c.victim == ego) {
+      const std::string& other = c.collider == ego ? c.victim : c.collider;
+      return CollisionFact{other, time, relative_speed(snap, actors.tracked(), ego, other)};
+    }
   return std::nullopt;
+}
+
+// The ego's model: --ego-model, or the reference driver when the ego's controller is named so.
+EgoModelChoice ego_model_of(const RunRequest& req, const openscenario::Scenario& scenario, const std::string& ego) {
+  EgoModelChoice model = req.ego_model;
+  const openscenario::Entity* e = ego.empty() ? nullptr : scenario.entity(ego);
+  if (e && e->controller && e->controller->name == kR157ControllerName) model.name = "r157";
+  return model;
 }
 
 }  // namespace
@@ -109,6 +121,9 @@ RunResult run_openscenario(const RunRequest& req, Simulator& sim) {
   std::optional<OpenScenarioActors> actors;
   std::optional<EntityTrace> trace;
   std::optional<std::string> collision;
+  std::optional<reference_driver::ReferenceEgo> reference_ego;  // --ego-model r157
+  std::optional<reference_driver::EgoWatch> ego_watch;          // the ego's minimum gap and TTC
+  EgoModelChoice ego_model;
   std::string ego;
   int background = 0;  // SUMO vehicles that are not entities, at the last step
   try {
@@ -129,8 +144,12 @@ RunResult run_openscenario(const RunRequest& req, Simulator& sim) {
                          net.from_cache ? "cached" : "converted now"));
     lanes.emplace(*roads, net.net_file.string());
     ego = choose_ego_entity(*scenario, req.ego_entity);
+    ego_model = ego_model_of(req, *scenario, ego);
+    result.ego_model = ego_model.name;
     log.note(ego.empty() ? std::string("no ego (no entity with the ALKSController controller, no --ego)")
-                         : fmt::format("ego {} (driven by SUMO's car-following model)", ego));
+                         : fmt::format("ego {} (driven by {})", ego,
+                                       ego_model.r157() ? "the UN R157 reference driver"
+                                                        : "SUMO's car-following model"));
     runtime.emplace(*scenario, *roads);
     actors.emplace(*scenario, *lanes, ego);
 
@@ -147,7 +166,25 @@ RunResult run_openscenario(const RunRequest& req, Simulator& sim) {
     trace.emplace(req.out_dir / "trace.csv");
 
     std::size_t logged = 0;
-    sim.apply(actors->place(runtime->entities()));
+    // The reference driver takes the ego once the storyboard has placed it.
+    auto drive_ego = [&](std::vector<engine::Command> commands, const engine::WorldSnapshot* snap) {
+      if (!ego_watch && !ego.empty()) {
+        const auto it = runtime->entities().find(ego);
+        if (it != runtime->entities().end() && it->second.placed) {
+          reference_ego = reference_ego_for(ego_model, *scenario, *roads, ego, it->second, req.step);
+          ego_watch.emplace(lane_path(*roads, it->second), ego, object_kinds(*scenario), 150.0);
+        }
+      }
+      if (ego_watch && snap) ego_watch->step(*snap, actors->tracked());
+      if (!reference_ego) return commands;
+      reference_ego->observe(commands);
+      if (!snap) return commands;
+      std::vector<std::string> noticed;
+      for (auto& c : reference_ego->drive(*snap, actors->tracked(), noticed)) commands.push_back(std::move(c));
+      for (const auto& n : noticed) log.at(snap->time, n);
+      return commands;
+    };
+    sim.apply(drive_ego(actors->place(runtime->entities()), nullptr));
     while (true) {
       // The poses of storyboard time t reach SUMO in this step: the row's time is t.
       sim.advance();
@@ -165,8 +202,11 @@ RunResult run_openscenario(const RunRequest& req, Simulator& sim) {
       for (const auto& l = runtime->log(); logged < l.size(); ++logged)
         log.at(l[logged].time, fmt::format("{} {} {}", l[logged].type, l[logged].name, l[logged].transition));
       if (!collision) {
-        collision = ego_collision(snap, ego, t);
-        if (collision) log.at(t, *collision);
+        result.collision = ego_collision(snap, *actors, ego, t);
+        if (result.collision) {
+          collision = fmt::format("the ego {} collided with {} at t={:.2f} s", ego, result.collision->with, t);
+          log.at(t, *collision);
+        }
       }
       if (runtime->finished()) {
         result.verdict = Verdict::Success;
@@ -184,7 +224,7 @@ RunResult run_openscenario(const RunRequest& req, Simulator& sim) {
         break;
       }
       runtime->step(req.step);
-      sim.apply(actors->place(runtime->entities()));
+      sim.apply(drive_ego(actors->place(runtime->entities()), &snap));
     }
     log.at(result.sim_time, result.reason);
     if (!result.traffic.empty() && result.traffic != "none")
@@ -196,6 +236,10 @@ RunResult run_openscenario(const RunRequest& req, Simulator& sim) {
     result.reason = result.verdict == Verdict::Success ? *collision + " (" + result.reason + " afterwards)"
                                                 : *collision + "; " + result.reason;
     result.verdict = Verdict::Failure;
+  }
+  if (ego_watch) {
+    result.ego_min_gap = ego_watch->exposure().min_gap;
+    result.ego_min_ttc = ego_watch->exposure().min_ttc;
   }
   if (trace) {
     trace->flush();

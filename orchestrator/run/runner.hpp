@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "evaluation/evaluation_request.hpp"
+#include "reference_driver/ego_model.hpp"
 #include "run/ego_link.hpp"
 #include "run/run_result.hpp"
 #include "run/simulator.hpp"
@@ -36,6 +37,11 @@ struct RunRequest {
   std::optional<EvaluationRequest> evaluation;
   // OpenSCENARIO runs: the ego entity (--ego NAME); empty: the one with the ALKSController.
   std::string ego_entity;
+  // Which model drives the ego when no plug-in does (docs/reference-driver.md).
+  EgoModelChoice ego_model;
+  // Run the scenario again with the R157 reference driver as the ego (into reference/) and
+  // judge whether a collision was preventable (docs/reference-driver.md).
+  bool reference_run = false;
 };
 
 RunResult run_scenario(const RunRequest& request, Simulator& simulator);

@@ -1,0 +1,73 @@
+// The UN R157 reference driver as the ego of the real ALKS files (../shared/data), both
+// formats: the cut-in without collision stays without one, the unavoidable cut-in collides
+// with the reference driver too, and a reference run calls that collision unavoidable.
+#include <gtest/gtest.h>
+
+#include "support/cli_runner.hpp"
+
+using namespace orch::test;
+
+namespace {
+
+std::string roadeditor(const std::string& name) {
+  return std::string(ORCH_SHARED_DATA_DIR) + "/roadeditor/scenarios/" + name + ".json";
+}
+std::string xosc(const std::string& name) {
+  return std::string(ORCH_SHARED_DATA_DIR) + "/openscenario/" + name + ".xosc";
+}
+
+}  // namespace
+
+TEST(ReferenceDriverAlks, CutInNoCollisionEndsWithoutCollision) {
+  TempDir out;
+  const auto r = run_cli({"run", roadeditor("ALKS_Scenario_4.4_1_CutInNoCollision_TEMPLATE"), "--out",
+                          out.path().string(), "-q", "--no-report", "--ego-model", "r157"});
+  const auto result = read_json(out / "result.json");
+  EXPECT_EQ(result["ego_model"], "r157");
+  EXPECT_EQ(result["verdict"], "success") << result["reason"];
+  EXPECT_TRUE(result["collision"].is_null()) << result["collision"];
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  // The driver saw the cut-in (its steps are in the run log).
+  EXPECT_NE(slurp(out / "run.log").find("r157: cut-in"), std::string::npos);
+}
+
+TEST(ReferenceDriverAlks, UnavoidableCutInCollidesWithTheReferenceDriverToo) {
+  TempDir out;
+  run_cli({"run", roadeditor("ALKS_Scenario_4.4_2_CutInUnavoidableCollision_TEMPLATE"), "--out", out.path().string(),
+           "-q", "--no-report", "--ego-model", "r157"});
+  const auto result = read_json(out / "result.json");
+  EXPECT_EQ(result["ego_model"], "r157");
+  ASSERT_FALSE(result["collision"].is_null()) << result["reason"];
+  EXPECT_EQ(result["collision"]["with"], "actor 1");
+  EXPECT_GT(result["collision"]["relative_speed"].get<double>(), 0.0);
+  EXPECT_EQ(result["verdict"], "failure");
+}
+
+TEST(ReferenceDriverAlks, ReferenceRunCallsTheUnavoidableCutInUnavoidable) {
+  TempDir out;
+  run_cli({"run", roadeditor("ALKS_Scenario_4.4_2_CutInUnavoidableCollision_TEMPLATE"), "--out", out.path().string(),
+           "-q", "--no-report", "--reference-run"});
+  const auto result = read_json(out / "result.json");
+  EXPECT_EQ(result["ego_model"], "sumo");
+  ASSERT_FALSE(result["collision"].is_null());
+  ASSERT_FALSE(result["reference_collision"].is_null());
+  EXPECT_EQ(result["preventable"], "unavoidable");
+  const auto reference = read_json(out / "reference" / "result.json");
+  EXPECT_EQ(reference["ego_model"], "r157");
+  EXPECT_EQ(reference["seed"], result["seed"]);
+  EXPECT_EQ(result["reference_run"]["verdict"], reference["verdict"]);
+  EXPECT_TRUE(result["reference_run"]["min_ttc"].is_number());
+  EXPECT_TRUE(result["reference_run"]["reference_min_ttc"].is_number());
+}
+
+TEST(ReferenceDriverAlks, OpenScenarioCutInNoCollisionEndsWithoutCollision) {
+  TempDir out;
+  const auto r = run_cli({"run", xosc("alks_scenario_4_4_1_cut_in_no_collision_template"), "--out",
+                          out.path().string(), "-q", "--no-report", "--ego-model", "r157"});
+  const auto result = read_json(out / "result.json");
+  EXPECT_EQ(result["ego_model"], "r157");
+  EXPECT_EQ(result["verdict"], "success") << result["reason"];
+  EXPECT_TRUE(result["collision"].is_null()) << result["collision"];
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_TRUE(result["ego_exposure"]["min_gap"].is_number());
+}
