@@ -17,6 +17,7 @@ constexpr double kCruiseGain = 0.5;  // 1/s towards the set speed
 // Below this the constant-time-gap law alone closes up to a slower leader; above it the
 // driver brakes to match the leader's speed with the standstill gap left.
 constexpr double kMatchSpeedFrom = 0.5;  // m/s^2
+constexpr double kStandstill = 0.1;      // m/s
 }  // namespace
 
 const char* to_string(Phase phase) {
@@ -138,6 +139,11 @@ void R157Driver::start_risk(const DriverView& v, const std::string& risk, const 
 }
 
 void R157Driver::detect(const DriverView& v, const Ahead& ahead, Decision& out) {
+  // Standing (or nearly): nothing to brake for; normal driving keeps the standstill gap.
+  if (v.ego.speed < kStandstill) {
+    last_leader_ = ahead.object ? ahead.object->id : "";
+    return;
+  }
   const double range = p_.perception_range;
   // Cut-in: a vehicle whose lane is next to the ego's has left its lane centre towards the
   // ego's lane by more than the wandering threshold.
@@ -200,6 +206,9 @@ void R157Driver::advance_phase(const DriverView& v, Decision& out) {
   }
   if (phase_ != Phase::Brake) return;
   if (full_stop_) {
+    // Stopped: normal driving takes over again and keeps the standstill gap to whatever is
+    // still in the path (it waits behind a pedestrian or an obstacle).
+    if (v.ego.speed <= kEps) return end_risk("stopped");
     const bool still_there = in_path(v, *target) || entering_path(v, *target);
     if (!still_there && target->kind == ObjectKind::Pedestrian) return end_risk("left the path");
     if (!still_there && target->s < v.ego.s) return end_risk("passed");

@@ -1,19 +1,35 @@
 #include "reference_driver/reference_ego.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace orch::reference_driver {
 
 namespace {
 
+// Where a point lies along and beside the path; beyond the path's ends the end segments go
+// on straight (objects past the end of the ego's route are still ahead of it).
+struct PathPlace {
+  double s = 0;
+  double d = 0;
+};
+PathPlace place_on(const Polyline& line, const Vec2& p, double s_hint, double window) {
+  const auto proj = line.project_near(p, s_hint, window);
+  if (!proj.after_end && !proj.before_start) return {proj.s, proj.lateral};
+  const double s_end = proj.after_end ? line.length() : 0.0;
+  const Vec2 t = line.tangent_at(proj.after_end ? line.length() : 0.0);
+  const Vec2 rel = p - line.point_at(s_end);
+  return {s_end + rel.dot(t), rel.dot(left_normal(t))};
+}
+
 // An object's motion split along and across the path at its place.
 PerceivedObject in_path_frame(const Polyline& line, double ego_s, double window, const Vec2& position, double heading,
                               double speed, double accel) {
   PerceivedObject o;
-  const auto proj = line.project_near(position, ego_s, window);
-  o.s = proj.s;
-  o.d = proj.lateral;
-  const double relative = heading - line.heading_at(proj.s);
+  const PathPlace at = place_on(line, position, ego_s, window);
+  o.s = at.s;
+  o.d = at.d;
+  const double relative = heading - line.heading_at(std::clamp(at.s, 0.0, line.length()));
   o.speed_s = speed * std::cos(relative);
   o.speed_d = speed * std::sin(relative);
   o.accel_s = accel * std::cos(relative);
@@ -34,8 +50,8 @@ std::optional<DriverView> perceive(const engine::WorldSnapshot& snap, const std:
   view.time = snap.time;
   view.lane_width = path.lane_width;
   view.path_end = path.end_s;
-  const auto at = path_s < 0 ? path.line.project(me->position) : path.line.project_near(me->position, path_s, 50.0);
-  view.ego = {at.s, at.lateral, me->speed, tracked[me_at].length, tracked[me_at].width};
+  const PathPlace at = place_on(path.line, me->position, path_s < 0 ? path.line.project(me->position).s : path_s, 50.0);
+  view.ego = {at.s, at.d, me->speed, tracked[me_at].length, tracked[me_at].width};
   const double window = range + 50.0;
   auto near_enough = [&](const PerceivedObject& o) {
     return !(o.s < view.ego.s - 50.0 || o.s > view.ego.s + range + 10.0 || std::abs(o.d) > 3 * path.lane_width);
@@ -80,7 +96,11 @@ ReferenceEgo::ReferenceEgo(R157Parameters parameters, DrivingPath path, std::str
 
 void ReferenceEgo::observe(const std::vector<engine::Command>& commands) {
   for (const auto& c : commands) {
-    if (const auto* m = std::get_if<engine::SetMaxSpeed>(&c); m && m->sumo_id == ego_) set_speed_ = m->speed;
+    // A route speed of 0 before the end_position (the waypoints' last speeds) means: stop at
+    // the end. The driver does that itself, where SUMO's stop would put the ego, so it keeps
+    // its set speed until then.
+    if (const auto* m = std::get_if<engine::SetMaxSpeed>(&c); m && m->sumo_id == ego_ && (m->speed > 0 || !path_.end_s))
+      set_speed_ = m->speed;
     if (const auto* v = std::get_if<engine::SpawnVehicle>(&c); v && v->actor.sumo_id == ego_ && v->max_speed > 0)
       set_speed_ = v->max_speed;
     if (const auto* st = std::get_if<engine::SetStop>(&c); st && st->sumo_id == ego_ && path_.stop_to_s)

@@ -202,8 +202,10 @@ TEST(R157Driver, PedestrianEnteringThePathStopsTheEgo) {
     }
     if (walk < 0) {
       EXPECT_TRUE(risk);
-      EXPECT_EQ(ego_v, 0.0);
+      EXPECT_LT(ego_v, 0.5);
+      // Waits behind it, creeping up to the standstill gap (2 m) at most, never touching it.
       EXPECT_LT(ego_s + 2.25, 2.25 + 60) << "stopped before the pedestrian";
+      EXPECT_GT(2.25 + 60 - (ego_s + 2.25), 1.5);
     } else {
       EXPECT_FALSE(risk);
     }
