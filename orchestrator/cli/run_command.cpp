@@ -132,7 +132,11 @@ int run_command(const RunOptions& o) {
   std::cout << "verdict: " << to_string(result.verdict) << " (" << valid_utf8(result.reason) << ")\n"
             << "results: " << (req.out_dir / "result.json").string() << "\n";
   if (o.video) announce_video(req.out_dir);
-  if (!o.no_report) announce_run_report(req.out_dir);
+  if (!o.no_report) {
+    announce_run_report(req.out_dir);
+    if (req.reference_run && std::filesystem::exists(req.out_dir / "reference" / "result.json"))
+      announce_run_report(req.out_dir / "reference");
+  }
   return exit_code_for(result);
 }
 
