@@ -7,11 +7,11 @@ the reference-table markers in docs/reference-driver.md.
 Usage: scripts/reference_driver_table.py [--binary build/bin/orchestrator] [--jobs 2] [--max-time S]
 """
 import argparse
-import concurrent.futures
 import json
 import pathlib
 import subprocess
-import tempfile
+
+from doc_tables import run_all, write_between
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 SHARED = ROOT.parent / "shared" / "data"
@@ -70,12 +70,8 @@ def main() -> None:
     files = scenarios()
     if not files:
         raise SystemExit(f"no ALKS scenarios in {SHARED}")
-    with tempfile.TemporaryDirectory() as tmp, concurrent.futures.ThreadPoolExecutor(args.jobs) as pool:
-        rows = list(pool.map(lambda s: run_one(pathlib.Path(args.binary), s, pathlib.Path(tmp), args.max_time), files))
-    doc = ROOT / "docs" / "reference-driver.md"
-    text = doc.read_text()
-    start, end = text.index(BEGIN) + len(BEGIN), text.index(END)
-    doc.write_text(text[:start] + "\n" + table(rows) + "\n" + text[end:])
+    rows = run_all(lambda f, root: run_one(pathlib.Path(args.binary), f, root, args.max_time), files, args.jobs)
+    write_between(ROOT / "docs" / "reference-driver.md", BEGIN, END, table(rows))
     print(table(rows))
 
 

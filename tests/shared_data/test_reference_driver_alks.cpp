@@ -16,17 +16,22 @@ std::string xosc(const std::string& name) {
   return std::string(ORCH_SHARED_DATA_DIR) + "/openscenario/" + name + ".xosc";
 }
 
-}  // namespace
-
-TEST(ReferenceDriverAlks, CutInNoCollisionEndsWithoutCollision) {
-  TempDir out;
-  const auto r = run_cli({"run", roadeditor("ALKS_Scenario_4.4_1_CutInNoCollision_TEMPLATE"), "--out",
-                          out.path().string(), "-q", "--no-report", "--ego-model", "r157"});
+// Runs `file` with the reference driver as the ego and checks that it ended without collision.
+nlohmann::json expect_r157_without_collision(const std::string& file, const TempDir& out) {
+  const auto r = run_cli({"run", file, "--out", out.path().string(), "-q", "--no-report", "--ego-model", "r157"});
   const auto result = read_json(out / "result.json");
   EXPECT_EQ(result["ego_model"], "r157");
   EXPECT_EQ(result["verdict"], "success") << result["reason"];
   EXPECT_TRUE(result["collision"].is_null()) << result["collision"];
   EXPECT_EQ(r.exit_code, 0) << r.output;
+  return result;
+}
+
+}  // namespace
+
+TEST(ReferenceDriverAlks, CutInNoCollisionEndsWithoutCollision) {
+  TempDir out;
+  expect_r157_without_collision(roadeditor("ALKS_Scenario_4.4_1_CutInNoCollision_TEMPLATE"), out);
   // The driver saw the cut-in (its steps are in the run log).
   EXPECT_NE(slurp(out / "run.log").find("r157: cut-in"), std::string::npos);
 }
@@ -62,12 +67,6 @@ TEST(ReferenceDriverAlks, ReferenceRunCallsTheUnavoidableCutInUnavoidable) {
 
 TEST(ReferenceDriverAlks, OpenScenarioCutInNoCollisionEndsWithoutCollision) {
   TempDir out;
-  const auto r = run_cli({"run", xosc("alks_scenario_4_4_1_cut_in_no_collision_template"), "--out",
-                          out.path().string(), "-q", "--no-report", "--ego-model", "r157"});
-  const auto result = read_json(out / "result.json");
-  EXPECT_EQ(result["ego_model"], "r157");
-  EXPECT_EQ(result["verdict"], "success") << result["reason"];
-  EXPECT_TRUE(result["collision"].is_null()) << result["collision"];
-  EXPECT_EQ(r.exit_code, 0) << r.output;
+  const auto result = expect_r157_without_collision(xosc("alks_scenario_4_4_1_cut_in_no_collision_template"), out);
   EXPECT_TRUE(result["ego_exposure"]["min_gap"].is_number());
 }
