@@ -70,3 +70,31 @@ TEST(ReferenceDriverAlks, OpenScenarioCutInNoCollisionEndsWithoutCollision) {
   const auto result = expect_r157_without_collision(xosc("alks_scenario_4_4_1_cut_in_no_collision_template"), out);
   EXPECT_TRUE(result["ego_exposure"]["min_gap"].is_number());
 }
+
+// The OSC-ALKS cut-in with the ego's controller named R157ReferenceDriver (catalog entry and
+// reference renamed): that entity is the ego and the reference driver drives it, no option needed.
+TEST(ReferenceDriverAlks, OpenScenarioControllerNamedR157ReferenceDriverDrivesTheEgo) {
+  TempDir dir;
+  const std::filesystem::path shared = std::string(ORCH_SHARED_DATA_DIR) + "/openscenario";
+  std::filesystem::copy(shared / "catalogs", dir / "catalogs", std::filesystem::copy_options::recursive);
+  std::filesystem::copy(shared / "road_networks", dir / "road_networks", std::filesystem::copy_options::recursive);
+  auto rename = [](std::string text, const std::string& from, const std::string& to) {
+    const auto at = text.find(from);
+    EXPECT_NE(at, std::string::npos) << from;
+    if (at != std::string::npos) text.replace(at, from.size(), to);
+    return text;
+  };
+  const auto catalog = dir / "catalogs" / "controllers" / "controller_catalog.xosc";
+  const std::string renamed =
+      rename(slurp(catalog), "<Controller name=\"ALKSController\">", "<Controller name=\"R157ReferenceDriver\">");
+  std::ofstream(catalog) << renamed;
+  const auto scenario = dir.write(
+      "cut_in.xosc", rename(slurp(xosc("alks_scenario_4_4_1_cut_in_no_collision_template")),
+                            "entryName=\"ALKSController\"", "entryName=\"R157ReferenceDriver\""));
+  const auto r = run_cli({"run", scenario.string(), "--out", (dir / "out").string(), "-q", "--no-report"});
+  const auto result = read_json(dir / "out" / "result.json");
+  EXPECT_EQ(result["ego_model"], "r157");
+  EXPECT_EQ(result["verdict"], "success") << result["reason"];
+  EXPECT_NE(slurp(dir / "out" / "run.log").find("ego Ego (driven by the UN R157 reference driver)"), std::string::npos);
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+}
