@@ -157,9 +157,11 @@ void R157Driver::detect(const DriverView& v, const Ahead& ahead, Decision& out) 
       return start_risk(v, "cut-in", o, out);
     }
   }
-  // A pedestrian in or entering the path.
+  // A pedestrian in or entering the path that comfortable braking no longer stops for (one
+  // farther away is a standing object ahead: normal driving stops behind it).
+  const double comfortable_stop = v.ego.speed * v.ego.speed / (2 * p_.comfort_deceleration);
   for (const auto& o : v.objects)
-    if (o.kind == ObjectKind::Pedestrian && o.s > v.ego.s && gap_to(v, o) < range &&
+    if (o.kind == ObjectKind::Pedestrian && o.s > v.ego.s && gap_to(v, o) - p_.min_standstill_gap < comfortable_stop &&
         (in_path(v, o) || entering_path(v, o)))
       return start_risk(v, "pedestrian in the path", o, out);
   if (!ahead.object) {

@@ -176,9 +176,10 @@ TEST(R157Driver, LeaderBrakingHarderThanFiveIsARisk) {
   }
 }
 
-// A pedestrian 1.5 m beside the ego's path walking towards it at 1.5 m/s, 60 m ahead, enters
-// the path before the ego passes: a risk; walking away, none. The driver stops before it
-// (it needs 42.35 m from 60 km/h, see above).
+// A pedestrian 1.5 m beside the ego's path walking towards it at 1.5 m/s, 45 m ahead (closer
+// than a comfortable stop, 16.67^2 / (2 * 3) + 2 = 48.3 m), enters the path before the ego
+// passes: a risk; walking away, none. The driver stops before it (it needs 42.35 m from
+// 60 km/h, see above).
 TEST(R157Driver, PedestrianEnteringThePathStopsTheEgo) {
   for (const double walk : {-1.5, 1.5}) {
     R157Driver driver;
@@ -187,7 +188,7 @@ TEST(R157Driver, PedestrianEnteringThePathStopsTheEgo) {
     bool risk = false;
     for (int i = 0; i < 400; ++i) {
       DriverView v = straight_road(i * dt, dt, ego_s, ego_v, kKmh60);
-      PerceivedObject ped = car("walker", 2.25 + 60 + 0.25, ped_d, 0.0);
+      PerceivedObject ped = car("walker", 2.25 + 45 + 0.25, ped_d, 0.0);
       ped.kind = ObjectKind::Pedestrian;
       ped.length = 0.5;
       ped.width = 0.5;
@@ -204,8 +205,8 @@ TEST(R157Driver, PedestrianEnteringThePathStopsTheEgo) {
       EXPECT_TRUE(risk);
       EXPECT_LT(ego_v, 0.5);
       // Waits behind it, creeping up to the standstill gap (2 m) at most, never touching it.
-      EXPECT_LT(ego_s + 2.25, 2.25 + 60) << "stopped before the pedestrian";
-      EXPECT_GT(2.25 + 60 - (ego_s + 2.25), 1.5);
+      EXPECT_LT(ego_s + 2.25, 2.25 + 45) << "stopped before the pedestrian";
+      EXPECT_GT(2.25 + 45 - (ego_s + 2.25), 1.5);
     } else {
       EXPECT_FALSE(risk);
     }
@@ -231,4 +232,29 @@ TEST(R157Driver, StopsWithItsCentreAtTheEndOfItsPath) {
   EXPECT_NEAR(ego_s, 200.0, 1.0);
   EXPECT_LT(ego_v, 0.05);
   EXPECT_LE(max_decel, 3.0 + 1e-9);
+}
+
+// A pedestrian standing in the path 140 m ahead is no emergency: normal driving stops behind
+// it comfortably (at most 3 m/s^2), with the standstill gap left.
+TEST(R157Driver, FarPedestrianInThePathIsAComfortableStop) {
+  R157Driver driver;
+  const double dt = 0.05;
+  double ego_s = 0, ego_v = kKmh60, max_decel = 0;
+  for (int i = 0; i < 1200; ++i) {
+    DriverView v = straight_road(i * dt, dt, ego_s, ego_v, kKmh60);
+    PerceivedObject ped = car("walker", 2.25 + 140 + 0.25, 0.0, 0.0);
+    ped.kind = ObjectKind::Pedestrian;
+    ped.length = 0.5;
+    ped.width = 0.5;
+    v.objects.push_back(ped);
+    const Decision d = driver.step(v);
+    EXPECT_EQ(d.phase, Phase::Drive) << v.time;
+    max_decel = std::max(max_decel, -d.accel);
+    ego_s += (ego_v + d.speed) / 2 * dt;
+    ego_v = d.speed;
+  }
+  EXPECT_LE(max_decel, 3.0 + 1e-9);
+  EXPECT_LT(ego_v, 0.5);
+  EXPECT_LT(ego_s + 2.25, 2.25 + 140);
+  EXPECT_GT(2.25 + 140 - (ego_s + 2.25), 1.5);
 }
