@@ -60,8 +60,9 @@ void apply_overrides(R157Parameters& p, const std::map<std::string, double>& ove
   std::vector<std::string> names;
   for (const auto& info : parameter_infos()) names.push_back(info.name);
   for (const auto& [key, value] : overrides) {
+    const std::string& name = key;  // (a structured binding cannot be captured before C++20 in clang)
     const auto it = std::find_if(parameter_infos().begin(), parameter_infos().end(),
-                                 [&](const ParameterInfo& i) { return i.name == key; });
+                                 [&name](const ParameterInfo& i) { return i.name == name; });
     if (it == parameter_infos().end())
       throw std::invalid_argument(fmt::format("unknown r157 parameter \"{}\"{}; expected one of {}", key,
                                               did_you_mean(key, names), quoted_list(names)));
