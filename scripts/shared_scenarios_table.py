@@ -5,11 +5,11 @@ orchestrator and rewrites the table between the shared-table markers in docs/sha
 Usage: scripts/shared_scenarios_table.py [--binary build/bin/orchestrator] [--jobs 2]
 """
 import argparse
-import concurrent.futures
 import json
 import pathlib
 import subprocess
-import tempfile
+
+from doc_tables import run_all, write_between
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 SHARED = ROOT.parent / "shared" / "data" / "roadeditor" / "scenarios"
@@ -43,12 +43,8 @@ def main() -> None:
     scenarios = sorted(SHARED.glob("*.json"))
     if not scenarios:
         raise SystemExit(f"no scenarios in {SHARED}")
-    with tempfile.TemporaryDirectory() as tmp, concurrent.futures.ThreadPoolExecutor(args.jobs) as pool:
-        rows = list(pool.map(lambda s: run_one(pathlib.Path(args.binary), s, pathlib.Path(tmp)), scenarios))
-    readme = ROOT / "docs" / "shared-scenarios.md"
-    text = readme.read_text()
-    start, end = text.index(BEGIN) + len(BEGIN), text.index(END)
-    readme.write_text(text[:start] + "\n" + table(rows) + "\n" + text[end:])
+    rows = run_all(lambda f, root: run_one(pathlib.Path(args.binary), f, root), scenarios, args.jobs)
+    write_between(ROOT / "docs" / "shared-scenarios.md", BEGIN, END, table(rows))
     print(table(rows))
 
 

@@ -363,6 +363,17 @@ class SumoSimulator final : public Simulator {
     });
   }
 
+  void execute(const engine::DriveSpeed& c) {
+    guard("driving the ego", [&] {
+      Sent& sent = sent_[c.sumo_id];
+      if (!sent.speed_mode_off) {
+        sumo::Vehicle::setSpeedMode(c.sumo_id, 0);
+        sent.speed_mode_off = true;
+      }
+      sumo::Vehicle::setSpeed(c.sumo_id, c.speed);
+    });
+  }
+
   void execute(const engine::SetParameter& c) {
     guard("setting a parameter", [&] { sumo::Vehicle::setParameter(c.sumo_id, c.key, c.value); });
   }
@@ -397,6 +408,7 @@ class SumoSimulator final : public Simulator {
   struct Sent {  // what a scripted vehicle was last given
     std::optional<double> speed;
     int signals = 0;  // SUMO's own until set
+    bool speed_mode_off = false;  // DriveSpeed switched SUMO's own speed checks off
   };
   std::unordered_map<std::string, Sent> sent_;
 };

@@ -32,6 +32,8 @@ std::string read_result(const std::filesystem::path& file, Attempt& a) {
     // The evaluation's figures travel on to summary.json and the batch's metrics.csv as they are.
     if (doc.root().contains("metrics") && doc.root()["metrics"].is_object()) a.metrics = doc.root()["metrics"];
     if (doc.root().contains("criteria") && doc.root()["criteria"].is_array()) a.criteria = doc.root()["criteria"];
+    if (doc.root().contains("preventable") && doc.root()["preventable"].is_string())
+      a.preventable = doc.root()["preventable"].get<std::string>();
     // The rest of result.json is the run's business; only these keys matter here.
     if (diags.has_errors() || !verdict) return "result.json unreadable: " + diags.format();
     a.verdict = *verdict;

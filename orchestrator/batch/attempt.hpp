@@ -27,6 +27,7 @@ struct Attempt {
   std::optional<double> run_wall_time_s;  // result.json's wall_time_s: inside the run
   nlohmann::json metrics;   // result.json's metrics summary (null: none)
   nlohmann::json criteria;  // result.json's criteria (null: none)
+  std::string preventable;  // result.json's "preventable" (--reference-run), "" if none
 };
 
 Attempt judge_attempt(const ChildExit& exit, const std::string& start_error, const std::filesystem::path& result_file,

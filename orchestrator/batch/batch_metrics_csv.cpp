@@ -27,6 +27,7 @@ std::string csv_cell(const nlohmann::json& v) {
 // The row's values by column name, besides the fixed columns.
 std::map<std::string, nlohmann::json> values_of(const ExecutionSummary& s) {
   std::map<std::string, nlohmann::json> row;
+  if (!s.preventable.empty()) row["preventable"] = s.preventable;  // --reference-run
   if (s.sampled_values.is_object())
     for (const auto& [key, value] : flatten_values(s.sampled_values)) row[key] = value;
   if (s.criteria.is_array())

@@ -165,6 +165,7 @@ std::vector<std::string> run_command_line(const BatchOptions& o, const PlannedRu
   }
   for (auto& f : pass_through_flags(cfg, o.run_flags)) argv.push_back(std::move(f));
   if (o.ssm) argv.emplace_back("--ssm");
+  argv.insert(argv.end(), o.run_args.begin(), o.run_args.end());
   return argv;
 }
 

@@ -39,6 +39,8 @@ struct BatchOptions {
   // Flags `orchestrator run` offers; a sumo_config value (traffic, backend) is passed only
   // through a flag the binary has, and is an error otherwise.
   std::set<std::string> run_flags;
+  // Flags every run gets as they are (batch --ego-model, --reference-run).
+  std::vector<std::string> run_args;
   std::ostream* out_stream = nullptr;
   bool terminal = false;
 };

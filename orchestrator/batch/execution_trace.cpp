@@ -86,6 +86,7 @@ std::string execution_trace_text(const PlannedRun& run, const PlannedLogical& lo
   impl["reason"] = last.reason;
   impl["metrics"] = last.metrics;
   impl["criteria"] = last.criteria;
+  if (!last.preventable.empty()) impl["preventable"] = last.preventable;
   impl["attempts"] = ordered_json::array();
   for (const auto& a : record.attempts) impl["attempts"].push_back(attempt_json(a));
   trace["implementation"] = impl;
@@ -132,6 +133,7 @@ ExecutionSummary read_execution_summary(const std::filesystem::path& file) {
       }
       if (impl->contains("metrics")) s.metrics = impl->at("metrics");
       if (impl->contains("criteria")) s.criteria = impl->at("criteria");
+      s.preventable = i.string("preventable", Need::Optional).value_or("");
       i.allow({"template_file", "scenario_file", "command", "exit_code", "metrics", "criteria"});
       i.finish();
     }

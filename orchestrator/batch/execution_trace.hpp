@@ -45,6 +45,7 @@ struct ExecutionSummary {
   std::string run_dir;     // relative to the batch folder
   nlohmann::json metrics;   // the run's metrics summary (result.json "metrics"; null: none)
   nlohmann::json criteria;  // the run's criteria (result.json "criteria"; null: none)
+  std::string preventable;  // result.json "preventable" (--reference-run); "" if none
   std::filesystem::path file;
 };
 

@@ -45,6 +45,8 @@ struct BatchCliOptions {
   std::string wrapper;
   bool video = false;  // --video: video.mp4 of every failing run
   bool ssm = false;    // --ssm: passed to every run
+  std::string ego_model;       // --ego-model: passed to every run
+  bool reference_run = false;  // --reference-run: passed to every run
   CommonOptions common;
 };
 
@@ -119,6 +121,8 @@ int batch_command(const BatchCliOptions& o, const CLI::App& app) {
   }
   b.orchestrator = fs::read_symlink("/proc/self/exe");
   b.run_flags = run_flags_of(b.orchestrator);
+  if (!o.ego_model.empty()) b.run_args = {"--ego-model", o.ego_model};
+  if (o.reference_run) b.run_args.emplace_back("--reference-run");
   b.out_stream = &std::cout;
   b.terminal = ::isatty(STDOUT_FILENO) == 1;
   try {
@@ -173,6 +177,11 @@ Handler setup_batch(CLI::App& cmd) {
   cmd.add_option("--wrapper", o->wrapper, "Start each run through this program (e.g. nice)");
   cmd.add_flag("--video", o->video, "Write video.mp4 of every failing run (sumo-gui, ffmpeg)");
   cmd.add_flag("--ssm", o->ssm, "Pass --ssm to every run: SUMO's SSM device on the ego (ssm.xml)");
+  cmd.add_option("--ego-model", o->ego_model, "What drives the ego in every run: sumo or r157 (run --ego-model)")
+      ->check(CLI::IsMember({"sumo", "r157"}));
+  cmd.add_flag("--reference-run", o->reference_run,
+               "Give every run a reference run with the R157 reference driver (run --reference-run): the "
+               "`preventable` column");
   cmd.add_option("--maps", o->common.map_dirs, "Folder holding map folders (repeatable), passed to every run")
       ->allow_extra_args(false);
   cmd.add_option("--catalog", o->common.catalog, "Model catalog JSON, passed to every run");

@@ -16,6 +16,7 @@
 #include "openscenario/xosc_reader.hpp"
 #include "run/result_jsonl.hpp"
 #include "run/paced_simulator.hpp"
+#include "run/reference_run.hpp"
 #include "run/runner.hpp"
 #include "sumo/sumo_ego_control.hpp"
 #include "sumo/sumo_simulator.hpp"
@@ -60,6 +61,11 @@ std::optional<int> prepare_evaluation(RunOptions& o, RunRequest& req) {
   if (f.backend && !given(o, "--backend")) o.backend = *f.backend;
   if (!f.local_map_path.empty()) req.map_dirs.insert(req.map_dirs.begin(), f.local_map_path);
   req.evaluation = EvaluationRequest{o.file, f.criteria, f.conditions, f.vehicle_model, o.jsonl_every};
+  if (f.ego_model && !given(o, "--ego-model")) req.ego_model = *f.ego_model;
+  if (f.reference_run && !given(o, "--reference-run")) req.reference_run = *f.reference_run;
+  // no_preventable_collision is judged against the reference run: it asks for one.
+  for (const auto& c : f.criteria)
+    if (c.type == "no_preventable_collision") req.reference_run = true;
   return std::nullopt;
 }
 
@@ -98,6 +104,8 @@ int run_command(const RunOptions& o) {
   if (!o.parameters.empty() && detect_scenario_format(o.file) != ScenarioFormat::OpenScenario)
     throw OrchError("--param sets OpenSCENARIO parameters: " + o.file + " is not an OpenSCENARIO file");
   req.ssm = o.ssm;
+  if (!o.ego_model.empty()) req.ego_model.name = o.ego_model;
+  req.reference_run = o.reference_run;
 
   RunOptions options = o;
   if (is_evaluation_file(o.file)) {
@@ -124,11 +132,17 @@ int run_command(const RunOptions& o) {
     ego = traci::make_traci_ego_link(eo, backend == "traci" ? make_ego_control_libtraci() : make_ego_control_libsumo());
     req.ego_link = ego.get();
   }
-  const RunResult result = run_scenario(req, sim);
+  const RunResult result = req.reference_run ? run_with_reference(req, sim, [&] {
+    return make_sumo_simulator(backend, sumo_options);
+  }) : run_scenario(req, sim);
   std::cout << "verdict: " << to_string(result.verdict) << " (" << valid_utf8(result.reason) << ")\n"
             << "results: " << (req.out_dir / "result.json").string() << "\n";
   if (o.video) announce_video(req.out_dir);
-  if (!o.no_report) announce_run_report(req.out_dir);
+  if (!o.no_report) {
+    announce_run_report(req.out_dir);
+    if (req.reference_run && std::filesystem::exists(req.out_dir / "reference" / "result.json"))
+      announce_run_report(req.out_dir / "reference");
+  }
   return exit_code_for(result);
 }
 

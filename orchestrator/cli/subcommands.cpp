@@ -48,6 +48,13 @@ Handler setup_run(CLI::App& cmd) {
   r->add_option("--ego", run->ego_entity, "OpenSCENARIO runs: the entity that is the ego (default: the ALKSController's)");
   r->add_option("--param", run->parameters, "NAME=VALUE: set an OpenSCENARIO parameter (repeatable)")
       ->allow_extra_args(false);
+  r->add_option("--ego-model", run->ego_model,
+                "What drives the ego when no plug-in does: sumo (SUMO's car-following model, default) or r157 (the UN "
+                "R157 reference driver, docs/reference-driver.md)")
+      ->check(CLI::IsMember({"sumo", "r157"}));
+  r->add_flag("--reference-run", run->reference_run,
+              "Run the scenario again with the R157 reference driver (into reference/) and judge whether a collision "
+              "was preventable");
   r->add_option("--ego-address", run->ego_address, "Address the ego TraCI server listens on")->capture_default_str();
   r->add_option("--ego-wait", run->ego_wait, "Seconds to wait for the ego plug-in to connect")
       ->capture_default_str()->check(CLI::PositiveNumber);
@@ -74,7 +81,7 @@ Handler setup_run(CLI::App& cmd) {
   r->add_flag("--ssm", run->ssm, "Equip the ego (when SUMO drives it) with SUMO's SSM device: ssm.xml in the run folder");
   add_common(r, run->common);
   return [run, r] {
-    for (const char* name : {"--step", "--seed", "--max-time", "--traffic", "--backend"})
+    for (const char* name : {"--step", "--seed", "--max-time", "--traffic", "--backend", "--ego-model", "--reference-run"})
       if (r->count(name) > 0) run->given.emplace_back(name);
     return run_command(*run);
   };

@@ -84,6 +84,17 @@ std::string no_collision_expected(const CriterionSpec& s) {
   return "no collision with " + who;
 }
 
+// The ego's collisions are counted while the run goes on; whether one was preventable is
+// judged after the reference run (run/reference_run.cpp), which sets the result.
+Frame no_preventable_collision_frame(const CriterionSpec& s, const StepInput& in) {
+  Frame f = no_collision_frame(s, in);
+  f.ok = true;
+  return f;
+}
+std::string no_preventable_collision_expected(const CriterionSpec&) {
+  return "no collision the R157 reference driver avoids (--reference-run)";
+}
+
 // 1 once the scene (or an ending scene) has been reached.
 Frame reach_scene_frame(const CriterionSpec& s, const StepInput& in) {
   Frame f;
@@ -112,6 +123,8 @@ const std::vector<CriterionType>& criterion_types() {
       {"max_speed", "speed", Mode::AllOf, speed_frame, speed_expected},
       {"standstill", "standstill", Mode::AllOf, standstill_frame, standstill_expected},
       {"keep_lane", "lane_departure", Mode::AllOf, keep_lane_frame, keep_lane_expected},
+      {"no_preventable_collision", "preventable_collision", Mode::AllOf, no_preventable_collision_frame,
+       no_preventable_collision_expected},
   };
   return types;
 }

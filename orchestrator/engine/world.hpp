@@ -148,7 +148,14 @@ struct ReleaseActor {  // a scripted vehicle is driven by SUMO from now on, at m
   double max_speed = 0;
 };
 
+// The speed a built-in ego model (reference_driver/) drives in the next step: SUMO drives
+// exactly this speed (speed mode 0 from the first one on: no checks of SUMO's own).
+struct DriveSpeed {
+  std::string sumo_id;
+  double speed = 0;
+};
+
 using Command = std::variant<SpawnVehicle, SpawnPerson, SetPose, SetSignals, SetMaxSpeed, SetStop, SetParameter,
-                             RemoveActor, ReleaseActor>;
+                             RemoveActor, ReleaseActor, DriveSpeed>;
 
 }  // namespace orch::engine

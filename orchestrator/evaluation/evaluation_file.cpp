@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <regex>
 
+#include "reference_driver/ego_model_reader.hpp"
 #include "core/errors.hpp"
 #include "core/suggest.hpp"
 #include "evaluation/yaml_tree.hpp"
@@ -131,6 +132,8 @@ LoadedEvaluation read_evaluation(const JsonDocument& doc) {
   f.description = top.string("ScenarioDescription", Need::Optional).value_or("");
   f.vehicle_model = top.string("VehicleModel", Need::Optional).value_or("");
   if (const auto p = top.string("LocalMapPath", Need::Optional)) f.local_map_path = expand_variables(*p);
+  f.ego_model = read_ego_model(top, doc.root(), "EgoModel");
+  f.reference_run = top.boolean("ReferenceRun", Need::Optional);
   top.allow({"SensorModel", "VehicleId"});  // driving_log_replayer's keys that do not apply here
   const nlohmann::json* evaluation = top.object("Evaluation", Need::Required);
   top.finish();

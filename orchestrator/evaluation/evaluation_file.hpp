@@ -8,6 +8,7 @@
 //   ScenarioDescription: ...
 //   VehicleModel: car.sedan               # the ego's model (optional)
 //   LocalMapPath: $HOME/maps              # a folder of map folders (optional)
+//   EgoModel: r157 | {Name: r157, Parameters: {...}}   ReferenceRun: true   (optional)
 //   Evaluation:
 //     UseCaseName: scenario_executor
 //     UseCaseFormatVersion: 0.1.0
@@ -26,6 +27,7 @@
 #include "core/diagnostics.hpp"
 #include "criteria/criterion.hpp"
 #include "json/json_document.hpp"
+#include "reference_driver/ego_model.hpp"
 
 namespace orch {
 
@@ -49,6 +51,8 @@ struct EvaluationFile {
   std::optional<std::string> backend;
   std::vector<criteria::CriterionSpec> criteria;
   nlohmann::json conditions;  // Conditions as written (result.jsonl's first line)
+  std::optional<EgoModelChoice> ego_model;  // EgoModel (docs/reference-driver.md)
+  std::optional<bool> reference_run;        // ReferenceRun
 };
 
 struct LoadedEvaluation {

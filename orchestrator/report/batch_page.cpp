@@ -103,6 +103,9 @@ json batch_report_data(const batch::BatchReport& report, const fs::path& out_dir
         for (const auto& s : result["scenes"]) run["scenes"].push_back(s.value("scene_id", -1));
       run["ending_scene"] = result.value("ending_scene", json(nullptr));
       if (result.contains("metrics")) flatten(result["metrics"], "", run["metrics"]);
+      run["preventable"] = result.value("preventable", json(nullptr));  // --reference-run
+      // ... and as a value the parameter space can be coloured by: 1 = preventable.
+      if (run["preventable"].is_string()) run["metrics"]["preventable"] = run["preventable"] == "preventable" ? 1 : 0;
     }
     run["report"] = fs::exists(dir / "report.html") ? json(relative_to_dir(dir / "report.html", out_dir)) : json(nullptr);
     if (!graphs.count(r["logical_uuid"])) {

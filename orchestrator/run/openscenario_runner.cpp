@@ -14,7 +14,9 @@
 #include "openscenario/storyboard_runtime.hpp"
 #include "openscenario/xosc_reader.hpp"
 #include "run/ego_link.hpp"
+#include "run/collision_fact.hpp"
 #include "run/openscenario_world.hpp"
+#include "run/reference_ego_setup.hpp"
 #include "run/run_outcome.hpp"
 #include "run/run_log.hpp"
 #include "run/ssm_device.hpp"
@@ -88,14 +90,17 @@ const engine::ActorState* find_actor(const engine::WorldSnapshot& snap, const Op
   return nullptr;
 }
 
-// The ego's first collision SUMO reported, if any (`sumo_id`: the ego's SUMO vehicle).
-std::optional<std::string> ego_collision(const engine::WorldSnapshot& snap, const std::string& ego,
-                                         const std::string& sumo_id, double time) {
+// The ego's first collision SUMO reported, if any (its SUMO vehicle: the ego's name, or
+// "ego" with an external ego).
+std::optional<CollisionFact> ego_collision(const engine::WorldSnapshot& snap, const OpenScenarioActors& actors,
+                                           const std::string& ego, double time) {
   if (ego.empty()) return std::nullopt;
+  const std::string sumo_id = actors.ego_drive().sumo_id();
   for (const auto& c : snap.collisions)
-    if (c.collider == sumo_id || c.victim == sumo_id)
-      return fmt::format("the ego {} collided with {} at t={:.2f} s", ego,
-                         c.collider == sumo_id ? c.victim : c.collider, time);
+    if (c.collider == sumo_id || c.victim == sumo_id) {
+      const std::string& other = c.collider == sumo_id ? c.victim : c.collider;
+      return CollisionFact{other, time, relative_speed(snap, actors.tracked(), sumo_id, other)};
+    }
   return std::nullopt;
 }
 
@@ -110,6 +115,14 @@ void check_external_ego(const openscenario::Scenario& scenario, const std::strin
     throw ScenarioError(SourceLocation{scenario.file, "/OpenSCENARIO/Entities", 0},
                         fmt::format("--ego-port: the external ego drives the SUMO vehicle \"{}\", but another entity "
                                     "has that name", kEgoSumoId));
+}
+
+// The ego's model: --ego-model, or the reference driver when the ego's controller is named so.
+EgoModelChoice ego_model_of(const RunRequest& req, const openscenario::Scenario& scenario, const std::string& ego) {
+  EgoModelChoice model = req.ego_model;
+  const openscenario::Entity* e = ego.empty() ? nullptr : scenario.entity(ego);
+  if (e && e->controller && e->controller->name == kR157ControllerName) model.name = "r157";
+  return model;
 }
 
 }  // namespace
@@ -129,6 +142,9 @@ RunResult run_openscenario(const RunRequest& req, Simulator& sim) {
   std::optional<OpenScenarioActors> actors;
   std::optional<EntityTrace> trace;
   std::optional<std::string> collision;
+  std::optional<reference_driver::ReferenceEgo> reference_ego;  // --ego-model r157
+  std::optional<reference_driver::EgoWatch> ego_watch;          // the ego's minimum gap and TTC
+  EgoModelChoice ego_model;
   std::string ego;
   int background = 0;  // SUMO vehicles that are not entities, at the last step
   try {
@@ -148,10 +164,17 @@ RunResult run_openscenario(const RunRequest& req, Simulator& sim) {
     lanes.emplace(*roads, net.net_file.string());
     ego = choose_ego_entity(*scenario, req.ego_entity);
     check_external_ego(*scenario, ego, req.ego_link != nullptr);
+    ego_model = ego_model_of(req, *scenario, ego);
+    if (req.ego_link && ego_model.r157())
+      throw OrchError("--ego-port: an external ego drives the ego; the R157 reference driver (--ego-model r157 or "
+                      "an R157ReferenceDriver controller) cannot drive it too");
+    result.ego_model = ego_model.name;
     log.note(ego.empty() ? std::string("no ego (no entity with the ALKSController controller, no --ego)")
              : req.ego_link ? fmt::format("ego {} (SUMO vehicle \"ego\"; driven by SUMO's car-following model until "
                                           "an ActivateControllerAction hands it to the external ego)", ego)
-                            : fmt::format("ego {} (driven by SUMO's car-following model)", ego));
+                            : fmt::format("ego {} (driven by {})", ego,
+                                          ego_model.r157() ? "the UN R157 reference driver"
+                                                           : "SUMO's car-following model"));
     runtime.emplace(*scenario, *roads);
     actors.emplace(*scenario, *lanes, ego, req.ego_link != nullptr);
 
@@ -173,7 +196,25 @@ RunResult run_openscenario(const RunRequest& req, Simulator& sim) {
     trace.emplace(req.out_dir / "trace.csv");
 
     std::size_t logged = 0;
-    sim.apply(actors->place(runtime->entities()));
+    // The reference driver takes the ego once the storyboard has placed it.
+    auto drive_ego = [&](std::vector<engine::Command> commands, const engine::WorldSnapshot* snap) {
+      if (!ego_watch && !ego.empty()) {
+        const auto it = runtime->entities().find(ego);
+        if (it != runtime->entities().end() && it->second.placed) {
+          reference_ego = reference_ego_for(ego_model, *scenario, *roads, ego, it->second, req.step);
+          ego_watch.emplace(lane_path(*roads, it->second), ego, object_kinds(*scenario), 150.0);
+        }
+      }
+      if (ego_watch && snap) ego_watch->step(*snap, actors->tracked());
+      if (!reference_ego) return commands;
+      reference_ego->observe(commands);
+      if (!snap) return commands;
+      std::vector<std::string> noticed;
+      for (auto& c : reference_ego->drive(*snap, actors->tracked(), noticed)) commands.push_back(std::move(c));
+      for (const auto& n : noticed) log.at(snap->time, n);
+      return commands;
+    };
+    sim.apply(drive_ego(actors->place(runtime->entities()), nullptr));
     while (true) {
       // The poses of storyboard time t reach SUMO in this step: the row's time is t.
       sim.advance();
@@ -197,8 +238,11 @@ RunResult run_openscenario(const RunRequest& req, Simulator& sim) {
       for (const auto& l = runtime->log(); logged < l.size(); ++logged)
         log.at(l[logged].time, fmt::format("{} {} {}", l[logged].type, l[logged].name, l[logged].transition));
       if (!collision) {
-        collision = ego_collision(snap, ego, actors->ego_drive().sumo_id(), t);
-        if (collision) log.at(t, *collision);
+        result.collision = ego_collision(snap, *actors, ego, t);
+        if (result.collision) {
+          collision = fmt::format("the ego {} collided with {} at t={:.2f} s", ego, result.collision->with, t);
+          log.at(t, *collision);
+        }
       }
       if (runtime->finished()) {
         result.verdict = Verdict::Success;
@@ -216,7 +260,7 @@ RunResult run_openscenario(const RunRequest& req, Simulator& sim) {
         break;
       }
       runtime->step(req.step);
-      sim.apply(actors->place(runtime->entities()));
+      sim.apply(drive_ego(actors->place(runtime->entities()), &snap));
       // The external ego sees this step (a hand-over included) and acts before the world advances.
       if (req.ego_link) req.ego_link->exchange(snap.time);
     }
@@ -230,6 +274,10 @@ RunResult run_openscenario(const RunRequest& req, Simulator& sim) {
     result.reason = result.verdict == Verdict::Success ? *collision + " (" + result.reason + " afterwards)"
                                                 : *collision + "; " + result.reason;
     result.verdict = Verdict::Failure;
+  }
+  if (ego_watch) {
+    result.ego_min_gap = ego_watch->exposure().min_gap;
+    result.ego_min_ttc = ego_watch->exposure().min_ttc;
   }
   if (trace) {
     trace->flush();

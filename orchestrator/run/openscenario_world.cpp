@@ -7,6 +7,7 @@
 
 #include "core/errors.hpp"
 #include "core/suggest.hpp"
+#include "reference_driver/ego_model.hpp"
 
 namespace orch {
 
@@ -53,8 +54,10 @@ std::string choose_ego_entity(const openscenario::Scenario& scenario, const std:
     throw ScenarioError(SourceLocation{scenario.file, "/OpenSCENARIO/Entities", 0},
                         fmt::format("--ego {}: no such entity{}", requested, did_you_mean(requested, names)));
   }
+  // The system under test's controller, or the R157 reference driver's (reference_driver/ego_model.hpp).
   for (const auto& e : scenario.entities)
-    if (e.controller && e.controller->name == kSystemUnderTestController) return e.name;
+    if (e.controller && (e.controller->name == kSystemUnderTestController || e.controller->name == kR157ControllerName))
+      return e.name;
   return "";
 }
 

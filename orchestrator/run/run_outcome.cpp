@@ -14,6 +14,7 @@ RunResult new_run_result(const RunRequest& req, Simulator& sim) {
   result.seed = req.seed;
   result.max_time = req.max_time;
   result.backend = sim.backend();
+  result.ego_model = req.ego_link ? "plugin" : req.ego_model.name;
   return result;
 }
 

@@ -155,6 +155,27 @@ std::string to_json(const RunResult& r) {
                              {"actual", optional_json(c.actual)},
                              {"at_time", optional_json(c.at_time)},
                              {"success", c.success}});
+  j["ego_model"] = r.ego_model;
+  auto collision_json = [](const std::optional<CollisionFact>& c) {
+    if (!c) return nlohmann::ordered_json(nullptr);
+    return nlohmann::ordered_json{{"with", c->with}, {"time", c->time}, {"relative_speed", optional_json(c->relative_speed)}};
+  };
+  j["collision"] = collision_json(r.collision);
+  if (r.ego_min_gap || r.ego_min_ttc)
+    j["ego_exposure"] = {{"min_gap", optional_json(r.ego_min_gap)}, {"min_ttc", optional_json(r.ego_min_ttc)}};
+  j["reference_run"] = nullptr;
+  if (r.reference_run) {
+    const ReferenceRunRecord& ref = *r.reference_run;
+    j["reference_collision"] = collision_json(ref.reference_collision);
+    j["preventable"] = ref.outcome;
+    j["reference_run"] = {{"dir", ref.dir},
+                          {"verdict", ref.verdict},
+                          {"outcome", ref.outcome},
+                          {"min_ttc", optional_json(ref.min_ttc)},
+                          {"reference_min_ttc", optional_json(ref.reference_min_ttc)},
+                          {"min_gap", optional_json(ref.min_gap)},
+                          {"reference_min_gap", optional_json(ref.reference_min_gap)}};
+  }
   j["trace_rows"] = r.trace_rows;
   j["wall_time_s"] = r.wall_time_s;
   j["timing"] = {{"start_s", r.timing.start_s},

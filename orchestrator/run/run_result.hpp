@@ -31,6 +31,23 @@ struct ActorRecord {
   bool ego = false;
 };
 
+// The ego's first collision (result.json "collision"; docs/reference-driver.md).
+struct CollisionFact {
+  std::string with;  // "actor 1", an OpenSCENARIO entity, "vehicle <SUMO id>"
+  double time = 0;
+  std::optional<double> relative_speed;  // m/s, |ego speed - other speed| at that step
+};
+
+// --reference-run: the same scenario with the R157 reference driver as the ego.
+struct ReferenceRunRecord {
+  std::string dir = "reference";
+  std::string verdict;
+  std::optional<CollisionFact> reference_collision;
+  std::string outcome;  // "preventable", "unavoidable", "no_collision"
+  std::optional<double> min_ttc, reference_min_ttc;  // the ego's, s
+  std::optional<double> min_gap, reference_min_gap;  // the ego's, m
+};
+
 struct RunResult {
   Verdict verdict = Verdict::Error;
   std::string reason;
@@ -77,6 +94,12 @@ struct RunResult {
     std::vector<std::pair<std::string, double>> observers_s;
   } timing;
   long long trace_rows = 0;
+  std::string ego_model = "sumo";              // what drove the ego (--ego-model)
+  std::optional<CollisionFact> collision;      // the ego's first collision
+  // OpenSCENARIO runs (no metrics there): the ego's minimum gap (m) and TTC (s) to what is
+  // ahead in its lane, through the reference driver's eyes.
+  std::optional<double> ego_min_gap, ego_min_ttc;
+  std::optional<ReferenceRunRecord> reference_run;
 };
 
 std::string to_json(const RunResult& r);

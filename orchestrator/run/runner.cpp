@@ -18,7 +18,9 @@
 #include "run/result_jsonl.hpp"
 #include "run/metrics_recorder.hpp"
 #include "run/ego_link.hpp"
+#include "run/collision_fact.hpp"
 #include "run/openscenario_runner.hpp"
+#include "run/reference_ego_setup.hpp"
 #include "run/run_outcome.hpp"
 #include "run/run_log.hpp"
 #include "run/run_observer.hpp"
@@ -208,6 +210,14 @@ RunResult run_scenario(const RunRequest& req, Simulator& sim) {
 
     auto out = engine->start();
     log_events(log, result, out.events);
+    // The R157 reference driver drives the ego unless a plug-in does (--ego-model r157); it
+    // follows the ego's route, known once the engine has placed it.
+    std::optional<reference_driver::ReferenceEgo> reference_ego;
+    if (!req.ego_link) reference_ego = reference_ego_for(req.ego_model, *engine, *lanes, req.step);
+    if (reference_ego) {
+      log.note("ego driven by the UN R157 reference driver (--ego-model r157)");
+      reference_ego->observe(out.commands);
+    }
     sim.apply(out.commands);
     const auto tracked = engine->tracked();
     loop_start = Clock::now();
@@ -219,6 +229,7 @@ RunResult run_scenario(const RunRequest& req, Simulator& sim) {
       const engine::WorldSnapshot snap = sim.read(tracked);
       out = engine->step(snap);
       result.sim_time = snap.time;
+      if (!result.collision) result.collision = ego_collision_fact(*engine, in->scenario.ego.id, snap);
       log_events(log, result, out.events);
       const StepView view{*engine, snap, plugin_driven_actor(req.ego_link, tracked)};
       for (std::size_t i = 0; i < observers.size(); ++i) {
@@ -238,6 +249,12 @@ RunResult run_scenario(const RunRequest& req, Simulator& sim) {
         result.reason = fmt::format("interrupted at t={:.3f} s", snap.time);
         log.at(snap.time, result.reason);
         break;
+      }
+      if (reference_ego) {
+        reference_ego->observe(out.commands);
+        std::vector<std::string> noticed;
+        for (auto& c : reference_ego->drive(snap, tracked, noticed)) out.commands.push_back(std::move(c));
+        for (const auto& n : noticed) log.at(snap.time, n);
       }
       sim.apply(out.commands);
       // The plug-in sees this step (a hand_over included) and acts before the world advances.

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "evaluation/evaluation_request.hpp"
+#include "reference_driver/ego_model.hpp"
 #include "run/ego_link.hpp"
 #include "run/run_result.hpp"
 #include "run/simulator.hpp"
@@ -41,6 +42,11 @@ struct RunRequest {
   std::map<std::string, std::string> parameter_overrides;
   // --ssm: SUMO's device.ssm on the ego while SUMO drives it, output ssm.xml (run/ssm_device.hpp).
   bool ssm = false;
+  // Which model drives the ego when no plug-in does (docs/reference-driver.md).
+  EgoModelChoice ego_model;
+  // Run the scenario again with the R157 reference driver as the ego (into reference/) and
+  // judge whether a collision was preventable (docs/reference-driver.md).
+  bool reference_run = false;
 };
 
 RunResult run_scenario(const RunRequest& request, Simulator& simulator);

@@ -180,8 +180,11 @@
     const names = new Map((B.logical_scenarios || []).map(s => [s.logical_uuid, s.name || s.logical_uuid]));
     const verdictSel = el('select', { id: 'verdict-filter' }, el('option', { value: '', text: 'all verdicts' }), VERDICTS.map(v => el('option', { value: v, text: v })));
     const search = el('input', { type: 'search', id: 'run-search', placeholder: 'filter by text (values, reason, seed)…' });
+    // Runs with a reference run (--reference-run) say whether their collision was preventable.
+    const withReference = runs.some(r => r.preventable);
     const table = sortableTable([
       { label: 'verdict', value: r => r.verdict, render: r => verdictBadge(r.verdict) },
+      ...(withReference ? [{ label: 'preventable', value: r => r.preventable || '', cls: 'preventable-cell' }] : []),
       { label: 'logical scenario', value: r => names.get(r.logical_uuid) || '' },
       { label: 'seed', value: r => r.seed, num: true },
       { label: 'values', value: r => r.values_text, cls: 'mono' },
