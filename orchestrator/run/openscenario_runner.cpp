@@ -83,6 +83,18 @@ const engine::ActorState* find_actor(const engine::WorldSnapshot& snap, const Op
   return nullptr;
 }
 
+// The entities SUMO had, for result.json's "actors": what the report draws them with. The
+// trace names entities in actor_id, so the report finds a record by its sumo_id (an
+// entity's first SUMO id is its name); actor_id here is the run's index of the entity.
+std::vector<ActorRecord> entity_records(const OpenScenarioActors& actors) {
+  std::vector<ActorRecord> out;
+  for (const engine::TrackedActor& t : actors.tracked()) {
+    const std::string& name = actors.name_of(t.id);
+    out.push_back({static_cast<int>(t.id), name, "", "", "", t.length, t.width, name == actors.ego()});
+  }
+  return out;
+}
+
 // The ego's first collision SUMO reported, if any.
 std::optional<std::string> ego_collision(const engine::WorldSnapshot& snap, const std::string& ego, double time) {
   if (ego.empty()) return std::nullopt;
@@ -199,6 +211,7 @@ RunResult run_openscenario(const RunRequest& req, Simulator& sim) {
                                                 : *collision + "; " + result.reason;
     result.verdict = Verdict::Failure;
   }
+  if (actors) result.actors = entity_records(*actors);
   if (trace) {
     trace->flush();
     result.trace_rows = trace->rows();
