@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <optional>
 
@@ -92,6 +93,7 @@ std::vector<ActorRecord> entity_records(const OpenScenarioActors& actors) {
     const std::string& name = actors.name_of(t.id);
     out.push_back({static_cast<int>(t.id), name, "", "", "", t.length, t.width, name == actors.ego()});
   }
+  std::sort(out.begin(), out.end(), [](const ActorRecord& l, const ActorRecord& r) { return l.id < r.id; });
   return out;
 }
 
