@@ -23,8 +23,12 @@ struct EventSlot {
 struct Record {
   ElementState state = ElementState::Standby;
   int executions = 0;
-  // (transition, step at which conditions see it)
-  std::vector<std::pair<std::string, long>> transitions;
+  struct Transition {
+    std::string what;  // startTransition, endTransition, ...
+    long step;         // the step it happened in
+    long number;       // counts all transitions of the run: which ones a condition has seen
+  };
+  std::vector<Transition> transitions;
 };
 
 struct ConditionMemory {
@@ -32,6 +36,7 @@ struct ConditionMemory {
   bool has_previous = false;
   bool previous = false;
   std::vector<std::pair<double, bool>> history;  // edged value per evaluation, for delays
+  long transitions_seen = 0;  // the number of the last transition this condition was true for
 };
 
 // CollisionCondition ByType names.
@@ -52,6 +57,7 @@ struct StoryboardRuntime::Impl {
   PositionResolver resolver;
   double t = 0;
   long step_index = 0;
+  long transitions_made = 0;
   bool finished = false;
   std::map<std::string, EntityState> entities;
   std::vector<TransitionLog> log;
@@ -73,7 +79,7 @@ struct StoryboardRuntime::Impl {
   void transition(const std::string& type, const std::string& name, const std::string& what, ElementState to) {
     Record& r = record(type, name);
     r.state = to;
-    r.transitions.emplace_back(what, step_index);
+    r.transitions.push_back({what, step_index, ++transitions_made});
     if (r.transitions.size() > 8) r.transitions.erase(r.transitions.begin());
     log.push_back({t, type, name, what});
   }
@@ -92,8 +98,14 @@ struct StoryboardRuntime::Impl {
             if (kind.state == "standbyState") return r.state == ElementState::Standby;
             if (kind.state == "runningState") return r.state == ElementState::Running;
             if (kind.state == "completeState") return r.state == ElementState::Complete;
-            return std::any_of(r.transitions.begin(), r.transitions.end(),
-                               [&](const auto& e) { return e.first == kind.state && e.second == step_index; });
+            // A transition is seen by a condition once: in its step when evaluated after it,
+            // else in the next step (a stop trigger evaluated before the events that end).
+            for (const Record::Transition& e : r.transitions)
+              if (e.what == kind.state && e.step >= step_index - 1 && e.number > m.transitions_seen) {
+                m.transitions_seen = e.number;
+                return true;
+              }
+            return false;
           } else if constexpr (std::is_same_v<T, ParameterCondition>) {
             const Parameter& p = parameters.at(kind.parameter);  // declared: checked at load
             if (p.type == "string" || p.type == "boolean" || p.type == "dateTime")

@@ -7,8 +7,10 @@
 // One step at time t: (A) entities advance from t - dt to t and actions whose motion is
 // done end; (B) the storyboard's stop trigger, then act stop and start triggers, then event
 // start triggers are evaluated on the states at t, and started actions take effect at t.
-// A StoryboardElementStateCondition on a transition is true in the step the transition
-// happened (for transitions of (B), in conditions evaluated after it).
+// A StoryboardElementStateCondition on a transition is true once for each transition: in
+// the step it happened when the condition is evaluated after it, else in the next step
+// (ASAM OpenSCENARIO: a transition is observed in the following evaluation), so a stop
+// trigger on an instant action's endTransition fires although it is evaluated first.
 #include <map>
 #include <memory>
 #include <string>

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <charconv>
 #include <map>
 
 #include "core/errors.hpp"
@@ -35,19 +36,31 @@ json columns_of(const CsvTable& table, const std::vector<std::size_t>& rows, con
   return out;
 }
 
+// An actor id of a trace row: a number for scenario runs, the entity's name for OpenSCENARIO
+// runs (docs/openscenario.md). As JSON, numbers sort before names and among themselves by value.
+json actor_key(const CsvTable& table, std::size_t row, std::size_t column) {
+  const std::string& cell = table.cell(row, column);
+  long long number = 0;
+  const auto [end, error] = std::from_chars(cell.data(), cell.data() + cell.size(), number);
+  if (error == std::errc() && end == cell.data() + cell.size()) return number;
+  return cell;
+}
+
 // Row indices per actor id, in file order (time order).
-std::map<long long, std::vector<std::size_t>> rows_by_actor(const CsvTable& table) {
-  std::map<long long, std::vector<std::size_t>> out;
+std::map<json, std::vector<std::size_t>> rows_by_actor(const CsvTable& table) {
+  std::map<json, std::vector<std::size_t>> out;
   const std::size_t id = *table.column("actor_id");
-  for (std::size_t r = 0; r < table.rows(); ++r)
-    out[static_cast<long long>(table.number(r, id).value_or(-1))].push_back(r);
+  for (std::size_t r = 0; r < table.rows(); ++r) out[actor_key(table, r, id)].push_back(r);
   return out;
 }
 
-json actor_info(const json& result, long long id) {
+// result.json's record of the actor: by actor_id for a numeric id, by sumo_id (the entity's
+// name) for a named one.
+json actor_info(const json& result, const json& id) {
+  const char* field = id.is_string() ? "sumo_id" : "actor_id";
   if (result.contains("actors") && result["actors"].is_array())
     for (const auto& a : result["actors"])
-      if (a.value("actor_id", -1LL) == id) return a;
+      if (a.is_object() && a.contains(field) && a[field] == id) return a;
   return json::object();
 }
 
@@ -123,7 +136,7 @@ json metrics_json(const CsvTable& table) {
     std::vector<std::string> names;
     for (const auto& c : table.columns())
       if (c != "actor_id" && c != "leader" && c != "min_dist_to") names.push_back(c);
-    out[std::to_string(id)] = columns_of(table, rows, names);
+    out[id.is_string() ? id.get<std::string>() : id.dump()] = columns_of(table, rows, names);
   }
   return out;
 }

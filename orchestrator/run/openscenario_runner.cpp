@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <optional>
 
@@ -88,6 +89,19 @@ const engine::ActorState* find_actor(const engine::WorldSnapshot& snap, const Op
   for (const auto& a : snap.actors)
     if (actors.name_of(a.id) == name) return &a;
   return nullptr;
+}
+
+// The entities SUMO had, for result.json's "actors": what the report draws them with. The
+// trace names entities in actor_id, so the report finds a record by its sumo_id (an
+// entity's first SUMO id is its name); actor_id here is the run's index of the entity.
+std::vector<ActorRecord> entity_records(const OpenScenarioActors& actors) {
+  std::vector<ActorRecord> out;
+  for (const engine::TrackedActor& t : actors.tracked()) {
+    const std::string& name = actors.name_of(t.id);
+    out.push_back({static_cast<int>(t.id), name, "", "", "", t.length, t.width, name == actors.ego()});
+  }
+  std::sort(out.begin(), out.end(), [](const ActorRecord& l, const ActorRecord& r) { return l.id < r.id; });
+  return out;
 }
 
 // The ego's first collision SUMO reported, if any (its SUMO vehicle: the ego's name, or
@@ -279,6 +293,7 @@ RunResult run_openscenario(const RunRequest& req, Simulator& sim) {
     result.ego_min_gap = ego_watch->exposure().min_gap;
     result.ego_min_ttc = ego_watch->exposure().min_ttc;
   }
+  if (actors) result.actors = entity_records(*actors);
   if (trace) {
     trace->flush();
     result.trace_rows = trace->rows();

@@ -221,6 +221,39 @@ TEST_F(RunReportInBrowser, TheReportOfARunThatCouldNotRunOpensAndShowsTheError) 
   EXPECT_NE(b.eval("return document.body.innerText;").get<std::string>().find("No trace"), std::string::npos);
 }
 
+TEST_F(RunReportInBrowser, AnOpenScenarioRunShowsItsEntitiesByNameWithTheEgoFirst) {
+  TempDir dir;
+  const fs::path out = dir / "osc";
+  const auto r = run_cli({"run", std::string(ORCH_SOURCE_DIR) + "/scenarios/openscenario/cut_in_traffic.xosc", "--out",
+                          out.string(), "-q"});
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  Browser& b = *browser_;
+  b.open(out / "report.html");
+  EXPECT_EQ(b.console_errors(), std::vector<std::string>{});
+  const auto drawn = b.eval(
+      "return [...document.querySelectorAll('#map-overview polyline.trajectory')].map(p => p.dataset.actor).sort();");
+  EXPECT_EQ(drawn, nlohmann::json({"CutIn", "Ego"}));
+  // The speed chart has a line per entity, the ego's (the ALKSController one) first.
+  const auto labels = b.eval(
+      "return Chart.getChart(document.getElementById('chart-speed')).data.datasets.map(d => d.label);");
+  EXPECT_EQ(labels, nlohmann::json({"ego Ego", "CutIn"}));
+  // The replay puts the ego's box where the trace has it.
+  const orch::RunFiles run = orch::read_run_files(out);
+  const auto& t = *run.trace;
+  const auto c = [&](const char* name) { return *t.column(name); };
+  std::size_t row = t.rows() / 2;
+  while (t.cell(row, c("actor_id")) != "Ego") ++row;
+  b.eval("window.orchReport.setTime(arguments[0]);", {*t.number(row, c("time"))});
+  const std::string points =
+      b.eval("return document.querySelector('#map-replay polygon.actor-box[data-actor=\"Ego\"]').getAttribute('points');");
+  const Box box = box_from_points(points);
+  EXPECT_NEAR(box.x, *t.number(row, c("x")), 2e-3);
+  EXPECT_NEAR(box.y, *t.number(row, c("y")), 2e-3);
+  b.resize(1400, 1900);
+  save_screenshot(b, "report_openscenario.png");
+  EXPECT_EQ(b.console_errors(), std::vector<std::string>{});
+}
+
 TEST(RunReport, NoReportSkipsIt) {
   TempDir dir;
   const auto r = run_cli({"run", std::string(ORCH_SOURCE_DIR) + "/scenarios/alks_obstacle_stop.json", "--out",

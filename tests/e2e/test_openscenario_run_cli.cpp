@@ -4,6 +4,7 @@
 
 #include <cctype>
 #include <fstream>
+#include <map>
 #include <unistd.h>
 
 #include "support/cli_runner.hpp"
@@ -31,6 +32,24 @@ TEST(OpenScenarioRunCli, OvertakingRunsToItsStopTriggerWithEveryEntityTraced) {
     EXPECT_FALSE(row.str("edge").empty()) << row.str("actor_id") << " @" << row.str("time");
   }
   EXPECT_TRUE(ego && overtaker);
+}
+
+TEST(OpenScenarioRunCli, ReportShowsTheEntitiesByNameWithTheEgo) {
+  TempDir out;
+  const auto r = run_cli({"run", std::string(ORCH_SOURCE_DIR) + "/scenarios/openscenario/cut_in_traffic.xosc", "--out",
+                          out.path().string(), "-q"});
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_EQ(r.output.find("no report.html"), std::string::npos) << r.output;
+  ASSERT_TRUE(std::filesystem::exists(out / "report.html")) << r.output;
+  // result.json names the entities and which one is the ego (the ALKSController one).
+  const auto result = read_json(out / "result.json");
+  std::map<std::string, bool> ego_of;
+  for (const auto& a : result["actors"]) ego_of[a["sumo_id"].get<std::string>()] = a["ego"].get<bool>();
+  EXPECT_EQ(ego_of, (std::map<std::string, bool>{{"CutIn", false}, {"Ego", true}}));
+  // The report's actors are the trace's entity names.
+  const std::string page = slurp(out / "report.html");
+  EXPECT_NE(page.find("\"actor_id\":\"CutIn\""), std::string::npos);
+  EXPECT_NE(page.find("\"actor_id\":\"Ego\""), std::string::npos);
 }
 
 TEST(OpenScenarioRunCli, UnknownEgoIsAnErrorWithASuggestion) {

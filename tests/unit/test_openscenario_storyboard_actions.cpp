@@ -51,9 +51,10 @@ std::string event(const std::string& name, const std::string& action_body, const
 
 class StoryboardActions : public ::testing::Test {
  protected:
-  // `entities` and `init` are XML; A's maneuver holds `events`.
+  // `entities` and `init` are XML; A's maneuver holds `events`; `stop` is the Storyboard's
+  // StopTrigger condition ("": at t = 100 s).
   void load(const std::string& entities, const std::string& init, const std::string& events,
-            const std::string& parameters = "") {
+            const std::string& parameters = "", const std::string& stop = "") {
     const std::string text = R"(<?xml version="1.0"?><OpenSCENARIO>
 <FileHeader revMajor="1" revMinor="2" date="2024-01-01T00:00:00" author="t" description="actions"/>
 <ParameterDeclarations>)" + parameters + R"(</ParameterDeclarations>
@@ -64,7 +65,7 @@ class StoryboardActions : public ::testing::Test {
 <Actors selectTriggeringEntities="false"><EntityRef entityRef="A"/></Actors><Maneuver name="M">)" + events +
                              R"(</Maneuver></ManeuverGroup><StartTrigger><ConditionGroup>)" + at_time(0) +
                              R"(</ConditionGroup></StartTrigger></Act></Story>
-<StopTrigger><ConditionGroup>)" + at_time(100) + R"(</ConditionGroup></StopTrigger></Storyboard></OpenSCENARIO>)";
+<StopTrigger><ConditionGroup>)" + (stop.empty() ? at_time(100) : stop) + R"(</ConditionGroup></StopTrigger></Storyboard></OpenSCENARIO>)";
     dir_.write("road.xodr", kStraightTwoLaneRoad);
     scenario_ = load_scenario(dir_.write("s.xosc", text).string());
     roads_ = opendrive::read_xodr_file((dir_ / "road.xodr").string());
@@ -402,6 +403,30 @@ TEST_F(StoryboardActions, ElementsNotRunAreErrorsNamingThem) {
   EXPECT_NE(load_error(event("Typo", R"(<RoutingAction><AcquirePositonAction/></RoutingAction>)", at_time(1)))
                 .find("did you mean \"AcquirePositionAction\""),
             std::string::npos);
+}
+
+}  // namespace
+}  // namespace orch::openscenario
+
+namespace orch::openscenario {
+namespace {
+
+TEST_F(StoryboardActions, StopTriggerSeesTheEndOfAnInstantActionInTheNextStep) {
+  // The teleport starts and ends at t = 1 after the stop trigger was evaluated in that step:
+  // the stop trigger sees the endTransition in the following evaluation, once.
+  const std::string ended = R"(<Condition name="ended" delay="0" conditionEdge="none"><ByValueCondition>
+<StoryboardElementStateCondition storyboardElementType="action" storyboardElementRef="JumpAction" state="endTransition"/>
+</ByValueCondition></Condition>)";
+  load(object("A"), place("A", 10, -1, 10),
+       event("Jump", "<TeleportAction>" + lane_position(50, -1) + "</TeleportAction>", at_time(1)), "", ended);
+  run_until(0.95);
+  EXPECT_FALSE(runtime_->finished());
+  run_until(2);
+  EXPECT_EQ(times("JumpAction", "endTransition"), std::vector<double>{1.0});
+  ASSERT_TRUE(runtime_->finished());
+  EXPECT_NEAR(runtime_->time(), 1.05, 1e-9);
+  EXPECT_EQ(runtime_->log().back().type, "storyboard");
+  EXPECT_EQ(runtime_->log().back().transition, "stopTransition");
 }
 
 }  // namespace

@@ -12,7 +12,9 @@
   const tEnd = actors.length ? Math.max(...actors.map(a => a.time.length ? a.time[a.time.length - 1] : 0)) : 0;
   const SCENE_COLORS = ['#4e79a7', '#f28e2b', '#59a14f', '#e15759', '#76b7b2', '#edc948', '#b07aa1', '#ff9da7', '#9c755f', '#bab0ac'];
   const sceneColor = (id) => SCENE_COLORS[((id % SCENE_COLORS.length) + SCENE_COLORS.length) % SCENE_COLORS.length];
-  const actorName = (a) => (a.ego ? 'ego' : 'actor ' + a.actor_id) + (a.description ? ' — ' + a.description : '');
+  // Scenario actors have numbers (the ego is 0), OpenSCENARIO entities their names.
+  const actorName = (a) => (typeof a.actor_id === 'string' ? (a.ego ? 'ego ' : '') + a.actor_id : a.ego ? 'ego' : 'actor ' + a.actor_id) +
+    (a.description ? ' — ' + a.description : '');
 
   // ------------------------------------------------------------------ state at a time
   // The trace's own row at time t (the last row not after t): no interpolation, so what the
