@@ -9,6 +9,7 @@
 
 #include "support/cli_runner.hpp"
 #include "support/trace_csv.hpp"
+#include "support/xosc_variation.hpp"
 
 using namespace orch::test;
 namespace fs = std::filesystem;
@@ -18,19 +19,7 @@ namespace {
 const std::string kLeadBrake = source_path("scenarios/openscenario/nightly/lead_brake.xosc");
 
 // A deterministic variation of the shipped lead_brake.xosc (by absolute path).
-std::string variation(const std::string& body) {
-  return R"(<?xml version="1.0"?>
-<OpenSCENARIO>
-  <FileHeader revMajor="1" revMinor="2" date="2026-01-01T00:00:00" author="t" description="v"/>
-  <ParameterValueDistribution>
-    <ScenarioFile filepath=")" + kLeadBrake + R"("/>
-    <Deterministic>
-)" + body + R"(
-    </Deterministic>
-  </ParameterValueDistribution>
-</OpenSCENARIO>
-)";
-}
+std::string variation(const std::string& body) { return orch::test::deterministic_variation(body, kLeadBrake); }
 
 std::string fmt_param(const std::string& name, double value) {
   return "--param " + name + "=" + nlohmann::json(value).dump();

@@ -7,6 +7,7 @@
 #include "core/errors.hpp"
 #include "openscenario/variation.hpp"
 #include "support/cli_runner.hpp"
+#include "support/xosc_variation.hpp"
 
 namespace orch::openscenario {
 namespace {
@@ -17,17 +18,7 @@ const std::string kNightly = std::string(ORCH_SOURCE_DIR) + "/scenarios/openscen
 
 // A deterministic variation over the shipped lead_brake.xosc with `body` inside Deterministic.
 std::string deterministic(const std::string& body, const std::string& scenario = kNightly + "lead_brake.xosc") {
-  return R"(<?xml version="1.0"?>
-<OpenSCENARIO>
-  <FileHeader revMajor="1" revMinor="2" date="2026-01-01T00:00:00" author="t" description="v"/>
-  <ParameterValueDistribution>
-    <ScenarioFile filepath=")" + scenario + R"("/>
-    <Deterministic>
-)" + body + R"(
-    </Deterministic>
-  </ParameterValueDistribution>
-</OpenSCENARIO>
-)";
+  return orch::test::deterministic_variation(body, scenario);
 }
 
 std::string stochastic(const std::string& body, const std::string& attributes = R"(numberOfTestRuns="10" randomSeed="7")") {
