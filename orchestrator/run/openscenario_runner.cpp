@@ -239,7 +239,8 @@ RunResult run_openscenario(const RunRequest& req, Simulator& sim) {
       background = snap.other_vehicles;
       const auto ego_driver = ego.empty() ? OpenScenarioEgo::Driver::Sumo
                                           : actors->ego_drive().driver(runtime->entities().at(ego));
-      trace->record(t, snap, *actors, ego, OpenScenarioEgo::label(ego_driver));
+      const bool model_drives = reference_ego && ego_driver == OpenScenarioEgo::Driver::Sumo;
+      trace->record(t, snap, *actors, ego, model_drives ? "r157" : OpenScenarioEgo::label(ego_driver));
       // Entities SUMO (or the external ego) drove are what the storyboard's conditions see of
       // them from now on; while the storyboard moves the ego laterally, its own state stands.
       for (const std::string& driven : actors->sumo_driven()) {

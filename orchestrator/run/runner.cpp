@@ -196,7 +196,9 @@ RunResult run_scenario(const RunRequest& req, Simulator& sim) {
     if (req.ego_link) log.note(req.ego_link->listen());
     sim.start(config);
     result.sumo_version = sim.version();
-    observers.push_back(std::make_unique<TraceWriter>(req.out_dir / "trace.csv", *lanes));
+    auto trace = std::make_unique<TraceWriter>(req.out_dir / "trace.csv", *lanes);
+    TraceWriter& trace_writer = *trace;
+    observers.push_back(std::move(trace));
     observers.push_back(std::make_unique<TrafficTrace>(req.out_dir, req.trace_background));
     auto metrics = std::make_unique<metrics::MetricsRecorder>(req.out_dir / "metrics.csv", *lanes);
     const metrics::MetricsRecorder& measured = *metrics;
@@ -216,6 +218,7 @@ RunResult run_scenario(const RunRequest& req, Simulator& sim) {
     if (!req.ego_link) reference_ego = reference_ego_for(req.ego_model, *engine, *lanes, req.step);
     if (reference_ego) {
       log.note("ego driven by the UN R157 reference driver (--ego-model r157)");
+      trace_writer.set_model_driven(in->scenario.ego.id, "r157");
       reference_ego->observe(out.commands);
     }
     sim.apply(out.commands);

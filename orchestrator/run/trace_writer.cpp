@@ -30,7 +30,10 @@ void TraceWriter::record(const engine::Engine& engine, std::optional<scenario::A
   const engine::WorldSnapshot& snap = engine.judged();
   for (const auto& a : snap.actors) {
     if (!a.present) continue;
-    const char* driver = plugin_driven == a.id ? "plugin" : engine.scripted(a.id) ? "script" : "sumo";
+    const char* driver = plugin_driven == a.id    ? "plugin"
+                         : engine.scripted(a.id)  ? "script"
+                         : model_driven_ == a.id ? model_label_
+                                                  : "sumo";
     fmt::print(file_, "{:.3f},{},{},{:.3f},{:.3f},{:.4f},{:.3f},{:.3f},{},{},{:.3f},{:.3f},{},{},{}\n", snap.time,
                engine.scene(), a.id, a.position.x(), a.position.y(), a.heading, a.speed, a.accel, a.edge, a.lane,
                a.lane_pos, lateral_offset(a), a.signals, a.siren ? 1 : 0, driver);

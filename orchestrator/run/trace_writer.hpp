@@ -26,6 +26,11 @@ class TraceWriter : public RunObserver {
   TraceWriter(const TraceWriter&) = delete;
   TraceWriter& operator=(const TraceWriter&) = delete;
 
+  // The actor a built-in ego model drives (driver `label`, e.g. "r157") instead of SUMO's.
+  void set_model_driven(scenario::ActorId id, const char* label) {
+    model_driven_ = id;
+    model_label_ = label;
+  }
   // `plugin_driven`: the actor an external ego plug-in drove in this step (driver "plugin").
   void record(const engine::Engine& engine, std::optional<scenario::ActorId> plugin_driven = std::nullopt);
   void flush();
@@ -43,6 +48,8 @@ class TraceWriter : public RunObserver {
   std::FILE* file_ = nullptr;
   const LaneMap& lanes_;
   std::unordered_map<std::string, int> lane_index_;  // SUMO lane id -> LaneMap index
+  std::optional<scenario::ActorId> model_driven_;
+  const char* model_label_ = "sumo";
   long long rows_ = 0;
   int steps_since_flush_ = 0;
 };

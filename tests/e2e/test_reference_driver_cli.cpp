@@ -65,6 +65,10 @@ TEST(ReferenceDriverCli, R157EgoStopsBehindTheBrakingLead) {
   EXPECT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(ego_speeds(sumo / "trace.csv"), ego_speeds(r157 / "trace.csv"));
   EXPECT_NE(slurp(r157 / "run.log").find("UN R157 reference driver"), std::string::npos);
+  // The trace says who drove the ego: the model, not SUMO's driver.
+  const Trace by_model(r157 / "trace.csv"), by_sumo(sumo / "trace.csv");
+  for (const auto& row : by_model.actor(0)) ASSERT_EQ(row.str("driver"), "r157");
+  for (const auto& row : by_sumo.actor(0)) ASSERT_EQ(row.str("driver"), "sumo");
 }
 
 TEST(ReferenceDriverCli, UnknownEgoModelParameterIsAnErrorWithDidYouMean) {

@@ -30,7 +30,10 @@ class Trace {
 
   [[nodiscard]] const std::string& header() const { return header_; }
   [[nodiscard]] const std::vector<Row>& rows() const { return rows_; }
-  [[nodiscard]] std::vector<Row> actor(int id) const {
+  // Rows point back to their trace: a temporary trace's rows would dangle in a range-for
+  // (`for (auto& r : Trace(p).actor(0))`), so name the trace.
+  std::vector<Row> actor(int id) const&& = delete;
+  [[nodiscard]] std::vector<Row> actor(int id) const& {
     std::vector<Row> out;
     for (const auto& r : rows_)
       if (r.integer("actor_id") == id) out.push_back(r);
