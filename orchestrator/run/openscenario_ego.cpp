@@ -4,6 +4,11 @@
 
 namespace orch {
 
+double storyboard_desired_speed(const openscenario::EntityState& state, double last) {
+  if (state.speed_profile) return state.speed_profile->to;
+  return last >= 0 ? last : state.speed;
+}
+
 std::string OpenScenarioEgo::sumo_id() const { return external_ ? kEgoSumoId : name_; }
 
 OpenScenarioEgo::Driver OpenScenarioEgo::driver(const openscenario::EntityState& state) const {
@@ -22,7 +27,7 @@ const char* OpenScenarioEgo::label(Driver d) {
 }
 
 double OpenScenarioEgo::spawn_speed(const openscenario::EntityState& state) {
-  desired_speed_ = state.speed_profile ? state.speed_profile->to : state.speed;
+  desired_speed_ = storyboard_desired_speed(state, -1);
   return desired_speed_;
 }
 
@@ -35,8 +40,7 @@ std::vector<engine::Command> OpenScenarioEgo::commands(const openscenario::Entit
     handed_over_ = hand_over;
   }
   if (d == Driver::Plugin) return out;  // the system under test alone
-  // The storyboard's speed target (the last SpeedAction's), else the speed it had.
-  const double desired = state.speed_profile ? state.speed_profile->to : desired_speed_;
+  const double desired = storyboard_desired_speed(state, desired_speed_);
   if (desired != desired_speed_) out.push_back(engine::SetMaxSpeed{sumo_id(), desired});
   desired_speed_ = desired;
   if (d == Driver::Storyboard) {

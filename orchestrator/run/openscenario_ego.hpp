@@ -17,6 +17,10 @@
 
 namespace orch {
 
+// The desired speed SUMO gets for an entity it drives: the storyboard's speed target (the
+// last SpeedAction's), else `last` (the one sent before), else (`last` < 0) its speed now.
+double storyboard_desired_speed(const openscenario::EntityState& state, double last);
+
 class OpenScenarioEgo {
  public:
   enum class Driver { Sumo, Storyboard, Plugin };

@@ -87,16 +87,6 @@ Vec2 OpenScenarioActors::reference_point(const engine::ActorState& state) const 
           state.position.y() - body.centre_x * s - body.centre_y * c};
 }
 
-namespace {
-
-// The desired speed of a SUMO-driven entity: the storyboard's speed target (the last
-// SpeedAction's), else the speed it has.
-double desired_speed(const openscenario::EntityState& state, double last) {
-  if (state.speed_profile) return state.speed_profile->to;
-  return last >= 0 ? last : state.speed;
-}
-
-}  // namespace
 
 void OpenScenarioActors::spawn(const std::string& name, Body& body, const openscenario::EntityState& state,
                                std::vector<engine::Command>& out) {
@@ -118,7 +108,7 @@ void OpenScenarioActors::spawn(const std::string& name, Body& body, const opensc
   command.speed = state.speed;
   if (body.driven) {
     command.scripted = false;
-    body.desired_speed = desired_speed(state, -1);
+    body.desired_speed = storyboard_desired_speed(state, -1);
     command.max_speed = name == ego_ ? ego_drive_.spawn_speed(state) : body.desired_speed;
   }
   out.push_back(std::move(command));
@@ -147,7 +137,7 @@ std::vector<engine::Command> OpenScenarioActors::place(const std::map<std::strin
     if (first) {
       spawn(name, body, state, out);
     } else if (body.driven && !is_ego) {
-      const double desired = desired_speed(state, body.desired_speed);
+      const double desired = storyboard_desired_speed(state, body.desired_speed);
       if (hand_over) out.push_back(engine::ReleaseActor{body.sumo_id, desired});
       else if (desired != body.desired_speed) out.push_back(engine::SetMaxSpeed{body.sumo_id, desired});
       body.desired_speed = desired;
