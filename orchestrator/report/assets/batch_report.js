@@ -39,8 +39,10 @@
       const vals = new Set(mine.map(r => r.values[p]).filter(numeric));
       return vals.size > 1;
     });
-    const metricNames = [...new Set(mine.flatMap(r => Object.keys(r.metrics || {}).filter(k => typeof r.metrics[k] === 'number')))].sort();
-    const preferred = metricNames.find(n => /min.*ttc/i.test(n)) || metricNames[0] || '';
+    // A summary's `partner` is an actor id, not a measure: nothing to colour by.
+    const metricNames = [...new Set(mine.flatMap(r => Object.keys(r.metrics || {})
+      .filter(k => typeof r.metrics[k] === 'number' && !k.endsWith('.partner'))))].sort();
+    const preferred = metricNames.find(n => /min_?ttc(\.value)?$/i.test(n)) || metricNames[0] || '';
     const select = el('select', { class: 'color-by' }, el('option', { value: '', text: 'verdict' }),
       metricNames.map(n => el('option', { value: n, text: n, selected: n === preferred ? '' : null })));
     const grid = el('div', { class: 'scatter-grid' });
