@@ -246,8 +246,9 @@ class WorldReader {
         engine::NearbyVehicle v;
         v.sumo_id = id;
         v.heading = from_sumo_angle(number(r, tc::VAR_ANGLE));
-        v.length = number(r, tc::VAR_LENGTH);
-        v.width = number(r, tc::VAR_WIDTH);
+        const Size& size = size_of(id);
+        v.length = size.length;
+        v.width = size.width;
         v.position = centre_of(position(r), v.heading, v.length);
         v.speed = number(r, tc::VAR_SPEED);
         found.emplace(id, std::move(v));
@@ -255,6 +256,27 @@ class WorldReader {
     }
     snap.nearby.reserve(found.size());
     for (auto& [id, v] : found) snap.nearby.push_back(std::move(v));
+    if (++reads_ % kSizeSweepEvery == 0) forget_sizes_unseen_since(reads_ - kSizeSweepEvery);
+  }
+
+  // A background vehicle's length and width do not change while it drives: asked once when
+  // it first comes near an actor, not every step in every context result (SUMO builds a
+  // result object per variable, vehicle and step; two of five variables were these).
+  struct Size {
+    double length = 0, width = 0;
+    long long seen = 0;  // the read that last needed it
+  };
+  const Size& size_of(const std::string& id) {
+    auto it = sizes_.find(id);
+    if (it == sizes_.end())
+      it = sizes_.emplace(id, Size{sumo::Vehicle::getLength(id), sumo::Vehicle::getWidth(id), 0}).first;
+    it->second.seen = reads_;
+    return it->second;
+  }
+  // Vehicles that left every actor's surroundings long ago (most have left SUMO): the cache
+  // stays as large as the traffic near the actors, not the run's whole traffic.
+  void forget_sizes_unseen_since(long long read) {
+    std::erase_if(sizes_, [read](const auto& entry) { return entry.second.seen < read; });
   }
 
   // The vehicles within kNearbyRange of an actor (a context subscription shared with the ego
@@ -262,8 +284,8 @@ class WorldReader {
   static sumo::SubscriptionResults nearby(const std::string& id, bool person) {
     return contexts::shared_contexts().within(id, person, tc::CMD_GET_VEHICLE_VARIABLE, kNearbyRange, kNeighbourVars);
   }
-  inline static const std::vector<int> kNeighbourVars = {tc::VAR_POSITION, tc::VAR_ANGLE, tc::VAR_SPEED,
-                                                         tc::VAR_LENGTH, tc::VAR_WIDTH};
+  inline static const std::vector<int> kNeighbourVars = {tc::VAR_POSITION, tc::VAR_ANGLE, tc::VAR_SPEED};
+  static constexpr long long kSizeSweepEvery = 2000;  // reads
 
   std::unordered_map<std::string, ActorKind> actor_kind_;  // scenario actors by SUMO id
   std::unordered_map<std::string, bool> followed_;         // subscribed actors: true = person
@@ -275,6 +297,8 @@ class WorldReader {
   int colliding_ = 0;                                      // vehicles in a collision in the last step
   double time_ = 0;
   bool contexts_off_ = false;  // ORCH_BENCH_NO_CONTEXTS (measurement only)
+  std::unordered_map<std::string, Size> sizes_;  // background vehicles near an actor
+  long long reads_ = 0;
 };
 
 }  // namespace

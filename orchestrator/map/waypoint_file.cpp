@@ -3,9 +3,11 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <optional>
 
 #include "core/errors.hpp"
 #include "json/object_reader.hpp"
+#include "map/waypoint_file_stream.hpp"
 
 namespace orch {
 
@@ -34,7 +36,25 @@ std::vector<std::string> WaypointFile::route_ids() const {
   return ids;
 }
 
-WaypointFile load_waypoint_file(const std::string& path) {
+// Ends a route read by either path: its polyline, or why it has none.
+std::optional<std::string> complete_route(WaypointRoute& route, std::vector<Vec2> xy) {
+  if (xy.size() < 2) return fmt::format("route \"{}\" needs at least two points", route.id);
+  try {
+    route.line = Polyline(std::move(xy));
+  } catch (const std::invalid_argument&) {
+    return fmt::format("route \"{}\" has all its points in one place", route.id);
+  }
+  return std::nullopt;
+}
+
+// The file's point (x, y up, z towards the viewer; v in km/h) in the map frame.
+WaypointPoint map_point(double x, std::optional<double> y, double z, std::optional<double> v) {
+  return {x, -z, y.value_or(0.0), v.value_or(0.0) / 3.6};
+}
+
+// The reader for every file: a value tree with line numbers, so that every problem is
+// reported with its place.
+WaypointFile read_waypoint_file_with_messages(const std::string& path) {
   const JsonDocument doc = JsonDocument::load(path);
   Diagnostics diags;
   WaypointFile file;
@@ -67,17 +87,11 @@ WaypointFile load_waypoint_file(const std::string& path) {
         const auto v = p.number("v", Need::Optional);
         p.finish();
         if (!x || !z) continue;
-        route.points.push_back({*x, -*z, y.value_or(0.0), v.value_or(0.0) / 3.6});
-        xy.emplace_back(*x, -*z);
+        route.points.push_back(map_point(*x, y, *z, v));
+        xy.emplace_back(route.points.back().x, route.points.back().y);
       }
-      if (xy.size() < 2) {
-        r.error("points", fmt::format("route \"{}\" needs at least two points", route.id));
-        continue;
-      }
-      try {
-        route.line = Polyline(std::move(xy));
-      } catch (const std::invalid_argument&) {
-        r.error("points", fmt::format("route \"{}\" has all its points in one place", route.id));
+      if (const auto problem = complete_route(route, std::move(xy))) {
+        r.error("points", *problem);
         continue;
       }
       file.routes.push_back(std::move(route));
@@ -98,6 +112,13 @@ WaypointFile load_waypoint_file(const std::string& path) {
   if (diags.has_errors()) throw ScenarioError(diags);
   if (file.routes.empty()) throw ScenarioError(doc.where("/waypoints"), "the waypoint file has no routes");
   return file;
+}
+
+WaypointFile load_waypoint_file(const std::string& path) {
+  // A waypoint file holds tens of thousands of points (2 MB for ALKS_Road): read in one pass
+  // when it is well formed, and again with the value tree only to say what is wrong.
+  if (auto file = read_well_formed_waypoint_file(path)) return std::move(*file);
+  return read_waypoint_file_with_messages(path);
 }
 
 }  // namespace orch
