@@ -60,11 +60,15 @@ void apply_manifest_defaults(BatchOptions& o, const Manifest& m) {
   if (o.catalog.empty() && opt.contains("catalog") && opt["catalog"].is_string()) o.catalog = opt["catalog"].get<std::string>();
   if (o.wrapper.empty() && opt.contains("wrapper") && opt["wrapper"].is_string()) o.wrapper = opt["wrapper"].get<std::string>();
   if (!o.ssm && opt.contains("ssm") && opt["ssm"].is_boolean()) o.ssm = opt["ssm"].get<bool>();
+  // --ego-model and --reference-run: every run of the batch drives its ego the same way.
+  if (o.run_args.empty() && opt.contains("run_args") && opt["run_args"].is_array())
+    for (const auto& a : opt["run_args"])
+      if (a.is_string()) o.run_args.push_back(a.get<std::string>());
 }
 
 ordered_json options_json(const BatchOptions& o) {
   return {{"jobs", *o.jobs}, {"timeout_s", *o.timeout_s}, {"retries", *o.retries}, {"maps", o.map_dirs},
-          {"catalog", o.catalog}, {"wrapper", o.wrapper}, {"ssm", o.ssm}};
+          {"catalog", o.catalog}, {"wrapper", o.wrapper}, {"ssm", o.ssm}, {"run_args", o.run_args}};
 }
 
 void verify_unchanged(const Manifest& m, const BatchPlan& plan) {

@@ -131,7 +131,9 @@ TEST(BatchResume, SigtermStopsTheBatchCleanlyAndResumeFinishesIt) {
   const auto sets = mixed_sets(6);
   const auto logical = write_quick_batch(in, sets);
   const fs::path out = in / "batch";
-  const pid_t pid = start_cli({"batch", logical.string(), "--out", out.string(), "--jobs", "1"}, in / "log");
+  // --ego-model is kept in batch.json: the resumed runs drive their ego as the first ones did.
+  const pid_t pid =
+      start_cli({"batch", logical.string(), "--out", out.string(), "--jobs", "1", "--ego-model", "sumo"}, in / "log");
   // Stop it once the first run is done.
   for (int i = 0; i < 600 && traces_in(out).empty(); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(50));
   ::kill(pid, SIGTERM);
@@ -150,4 +152,8 @@ TEST(BatchResume, SigtermStopsTheBatchCleanlyAndResumeFinishesIt) {
   EXPECT_NE(resumed.output.find(std::to_string(sets.size() - done) + " to run"), std::string::npos) << resumed.output;
   EXPECT_EQ(traces_in(out).size(), sets.size());
   EXPECT_EQ(read_json(out / "summary.json")["totals"]["missing"], 0);
+  for (const auto& [name, text] : traces_in(out)) {
+    const auto command = nlohmann::json::parse(text)["trace"]["implementation"]["command"].get<std::string>();
+    EXPECT_NE(command.find("--ego-model sumo"), std::string::npos) << name << ": " << command;
+  }
 }
