@@ -3,6 +3,8 @@
 // runs' own reports; after `batch merge` too.
 #include <gtest/gtest.h>
 
+#include <set>
+
 #include <fstream>
 #include <map>
 
@@ -161,4 +163,17 @@ TEST_F(BatchReportInBrowser, WithMetricsThePointsTakeTheColourOfAChosenMetricAnd
       "const c = Chart.getChart(document.querySelector('canvas.histogram'));"
       "return c.data.datasets.map(d => [d.label, d.data.reduce((a, b) => a + b, 0)]);");
   EXPECT_EQ(histogram, nlohmann::json::parse(R"([["success", 3], ["failure", 2], ["error", 1]])"));
+
+  // A metric spanning only 0.005 s still gets one label per bin, not sixteen "1.98".
+  for (const auto& [seed, run] : runs) {
+    const fs::path file = out / run["run_dir"].get<std::string>() / "result.json";
+    nlohmann::json result = read_json(file);
+    result["metrics"]["0"]["min_ttc"] = 1.98 + 0.001 * static_cast<double>(seed - 100);
+    std::ofstream(file) << result.dump(2);
+  }
+  ASSERT_EQ(run_cli({"report", out.string()}).exit_code, 0);
+  b.open(out / "report.html");
+  const auto labels = b.eval("return Chart.getChart(document.querySelector('canvas.histogram')).data.labels;");
+  ASSERT_EQ(labels.size(), 16u) << labels.dump();
+  EXPECT_EQ(std::set<std::string>(labels.begin(), labels.end()).size(), 16u) << labels.dump();
 }

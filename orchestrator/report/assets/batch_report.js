@@ -92,7 +92,9 @@
     }
     function histogram(list, metric, lo, hi) {
       const bins = 16, width = hi > lo ? (hi - lo) / bins : 1;
-      const labels = [...Array(bins).keys()].map(i => fmtNum(lo + (i + 0.5) * width, 2));
+      // As many decimals as the bin width needs: a metric spanning 0.005 gets distinct labels.
+      const digits = Math.min(6, Math.max(2, Math.ceil(-Math.log10(width)) + 1));
+      const labels = [...Array(bins).keys()].map(i => fmtNum(lo + (i + 0.5) * width, digits));
       const datasets = VERDICTS.map(v => {
         const counts = new Array(bins).fill(0);
         for (const r of list) {
