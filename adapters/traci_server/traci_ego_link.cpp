@@ -155,6 +155,7 @@ class TraciEgoLink final : public EgoLink {
                                  options_.wait_s));
     if (ec) throw EgoError(fmt::format("accepting the ego plug-in on {} failed: {}", report_.listen, ec.message()));
     socket.set_option(tcp::no_delay(true), ec);  // lockstep: every reply is awaited
+    socket.non_blocking(true, ec);                // reads try first, then wait (fill_inbox)
     socket_.emplace(std::move(socket));
     report_.peer = endpoint_text(peer);
     report_.connected_at = now_;
@@ -164,26 +165,40 @@ class TraciEgoLink final : public EgoLink {
     world_->take_over_ego();
   }
 
-  // Reads exactly buffer.size() bytes; the error names what went wrong, "" on success.
-  std::string read_exact(asio::mutable_buffer buffer, Clock::time_point deadline) {
-    bool done = false;
-    boost::system::error_code ec;
-    asio::async_read(*socket_, buffer, [&](const boost::system::error_code& e, std::size_t) {
-      ec = e;
-      done = true;
-    });
-    const Wait w = run_until(done, deadline, [&] { socket_->cancel(); });
-    if (w == Wait::Interrupted) return "interrupted";
-    if (w == Wait::TimedOut) return "timeout";
-    if (ec) return ec == asio::error::eof ? "connection closed by the plug-in" : ec.message();
+  // Until `inbox_` holds at least `count` bytes; the error names what went wrong, "" on
+  // success. Reads whatever the socket has (a whole message, or several, in one recv):
+  // lockstep costs a few system calls per message, so one wait and one recv, not a wait
+  // and a recv for the header and again for the body.
+  std::string fill_inbox(std::size_t count, Clock::time_point deadline) {
+    std::array<char, 16384> chunk{};
+    while (inbox_.size() < count) {
+      boost::system::error_code ec;
+      const std::size_t got = socket_->read_some(asio::buffer(chunk), ec);  // non-blocking (connect)
+      if (!ec) {
+        inbox_.append(chunk.data(), got);
+        continue;
+      }
+      if (ec != asio::error::would_block && ec != asio::error::try_again)
+        return ec == asio::error::eof ? "connection closed by the plug-in" : ec.message();
+      bool done = false;
+      socket_->async_wait(tcp::socket::wait_read, [&](const boost::system::error_code& e) {
+        ec = e;
+        done = true;
+      });
+      const Wait w = run_until(done, deadline, [&] { socket_->cancel(); });
+      if (w == Wait::Interrupted) return "interrupted";
+      if (w == Wait::TimedOut) return "timeout";
+      if (ec) return ec.message();
+    }
     return {};
   }
 
   // One message body, or nullopt at end of connection (`problem_` says why).
   std::optional<std::string> read_message(Clock::time_point deadline) {
-    std::array<std::uint8_t, 4> header{};
-    problem_ = read_exact(asio::buffer(header), deadline);
+    problem_ = fill_inbox(4, deadline);
     if (!problem_.empty()) return std::nullopt;
+    std::array<std::uint8_t, 4> header{};
+    std::copy_n(inbox_.begin(), 4, header.begin());
     std::size_t length = 0;
     try {
       length = message_body_length(header);
@@ -192,9 +207,10 @@ class TraciEgoLink final : public EgoLink {
       append_status(reply, 0, 0xFF, std::string("malformed message: ") + e.what());
       protocol_error(frame_message(reply), e.what());
     }
-    std::string body(length, '\0');
-    problem_ = read_exact(asio::buffer(body), deadline);
+    problem_ = fill_inbox(4 + length, deadline);
     if (!problem_.empty()) return std::nullopt;
+    std::string body = inbox_.substr(4, length);
+    inbox_.erase(0, 4 + length);
     return body;
   }
 
@@ -209,9 +225,19 @@ class TraciEgoLink final : public EgoLink {
   }
 
   void write_all(const std::string& bytes, Clock::time_point deadline) {
-    bool done = false;
+    // A reply fits the socket's send buffer almost always: sent at once, without a wait.
+    std::size_t sent = 0;
     boost::system::error_code ec;
-    asio::async_write(*socket_, asio::buffer(bytes), [&](const boost::system::error_code& e, std::size_t) {
+    while (sent < bytes.size() && !ec) sent += socket_->write_some(asio::buffer(bytes.data() + sent, bytes.size() - sent), ec);
+    if (sent == bytes.size()) return;
+    if (ec != asio::error::would_block && ec != asio::error::try_again) {
+      problem_ = ec.message();
+      throw EgoError(problem_);
+    }
+    bool done = false;
+    ec.clear();
+    asio::async_write(*socket_, asio::buffer(bytes.data() + sent, bytes.size() - sent),
+                      [&](const boost::system::error_code& e, std::size_t) {
       ec = e;
       done = true;
     });
@@ -260,6 +286,7 @@ class TraciEgoLink final : public EgoLink {
     socket_->shutdown(tcp::socket::shutdown_both, ignored);
     socket_->close(ignored);
     socket_.reset();
+    inbox_.clear();
   }
 
   EgoServerOptions options_;
@@ -268,6 +295,7 @@ class TraciEgoLink final : public EgoLink {
   asio::io_context io_;
   tcp::acceptor acceptor_{io_};
   std::optional<tcp::socket> socket_;
+  std::string inbox_;  // bytes the plug-in sent that are not handled yet
   EgoLinkReport report_;
   std::string problem_;
   double now_ = 0;

@@ -46,15 +46,27 @@ def free_port():
         return s.getsockname()[1]
 
 
-def loop(conn, steps):
-    """The plug-in's step: advance, read the ego's speed from its subscription, command."""
+def cpu_seconds(pid):
+    """User + system CPU time of a process so far (/proc/PID/stat, fields 14 and 15)."""
+    with open("/proc/%d/stat" % pid) as f:
+        fields = f.read().rsplit(")", 1)[1].split()
+    return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
+
+
+def loop(conn, steps, pid):
+    """The plug-in's step: advance, read the ego's speed from its subscription, command.
+    Returns steps/s and the server's CPU microseconds per step during the loop: on a shared
+    machine the rate follows how soon each process gets a core again, the CPU time what the
+    server computes."""
     conn.vehicle.subscribe("ego", [tc.VAR_SPEED])
     start = time.perf_counter()
+    cpu_start = cpu_seconds(pid)
     for _ in range(steps):
         conn.simulationStep()
         conn.vehicle.getSubscriptionResults("ego")[tc.VAR_SPEED]
         conn.vehicle.setSpeed("ego", 20.0)
-    return steps / (time.perf_counter() - start)
+    cpu_us = (cpu_seconds(pid) - cpu_start) / steps * 1e6
+    return steps / (time.perf_counter() - start), cpu_us
 
 
 def bench_orchestrator(binary, steps, tmp):
@@ -74,10 +86,10 @@ def drive(proc, port, steps, warm_up):
         conn = traci.connect(port, numRetries=60)
         if warm_up:
             conn.simulationStep()
-        rate = loop(conn, steps)
+        result = loop(conn, steps, proc.pid)
         conn.close()
         proc.wait(timeout=60)
-        return rate
+        return result
     finally:
         if proc.poll() is None:
             proc.kill()
@@ -110,11 +122,15 @@ def main():
     p.add_argument("--repeat", type=int, default=5, help="interleaved pairs")
     a = p.parse_args()
     # Interleaved pairs: a slow spell of the shared machine hits both sides of a pair.
-    orch, plain = [], []
+    orch, plain, orch_cpu, plain_cpu = [], [], [], []
     with tempfile.TemporaryDirectory() as tmp:
         for _ in range(a.repeat):
-            orch.append(bench_orchestrator(a.orchestrator, a.steps, tmp))
-            plain.append(bench_plain_sumo(a.steps, tmp))
+            rate, cpu = bench_orchestrator(a.orchestrator, a.steps, tmp)
+            orch.append(rate)
+            orch_cpu.append(cpu)
+            rate, cpu = bench_plain_sumo(a.steps, tmp)
+            plain.append(rate)
+            plain_cpu.append(cpu)
     pairs = sorted(o / p for o, p in zip(orch, plain))
     print("lockstep, %d steps, Python traci, 1 subscription + 1 command per step (%d interleaved pairs; "
           "load average %.1f)" % (a.steps, a.repeat, os.getloadavg()[0]))
@@ -122,6 +138,10 @@ def main():
     print("  plain sumo --remote-port: %8.0f steps/s (best)" % max(plain))
     print("  ratio                   : %8.2f (median of the pairs; %.2f-%.2f)" % (
         pairs[len(pairs) // 2], pairs[0], pairs[-1]))
+    cpu_pairs = sorted(o / p for o, p in zip(orch_cpu, plain_cpu))
+    print("  server CPU per step     : orchestrator %.0f us, plain sumo %.0f us (medians); ratio %.2f (%.2f-%.2f)" % (
+        sorted(orch_cpu)[len(orch_cpu) // 2], sorted(plain_cpu)[len(plain_cpu) // 2],
+        cpu_pairs[len(cpu_pairs) // 2], cpu_pairs[0], cpu_pairs[-1]))
 
 
 if __name__ == "__main__":
