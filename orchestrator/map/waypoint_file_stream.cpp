@@ -21,19 +21,8 @@ enum class Level { Outside, Top, Routes, Route, Points, Point, Properties, Prope
 
 // The fields a level may hold; each may appear once.
 enum Field : unsigned {
-  kNone = 0,
-  kId = 1u << 0,
-  kMapId = 1u << 1,
-  kWaypoints = 1u << 2,
-  kProperties = 1u << 3,
-  kPoints = 1u << 4,
-  kX = 1u << 5,
-  kY = 1u << 6,
-  kZ = 1u << 7,
-  kV = 1u << 8,
-  kName = 1u << 9,
-  kIndex = 1u << 10,
-  kWaypointId = 1u << 11,
+  kNone = 0, kId = 1, kMapId = 2, kWaypoints = 4, kProperties = 8, kPoints = 16, kX = 32, kY = 64, kZ = 128,
+  kV = 256, kName = 512, kIndex = 1024, kWaypointId = 2048
 };
 
 Field field_of(Level level, const std::string& key) {
