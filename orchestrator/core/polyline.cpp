@@ -138,6 +138,14 @@ std::optional<Polyline::Projection> Polyline::project_within(const Vec2& p, doub
     for (long long dx = -ring; dx <= ring; ++dx)
       for (long long dy = -ring; dy <= ring; ++dy) {
         if (std::max(std::llabs(dx), std::llabs(dy)) != ring) continue;
+        // A cell farther than the radius (or the best so far) holds no segment that counts:
+        // a segment is listed in every cell its bounding box touches.
+        const double reach = std::min(radius, best.distance);
+        const double gap_x = std::max({0.0, static_cast<double>(cx + dx) * cell_ - p.x(),
+                                       p.x() - static_cast<double>(cx + dx + 1) * cell_});
+        const double gap_y = std::max({0.0, static_cast<double>(cy + dy) * cell_ - p.y(),
+                                       p.y() - static_cast<double>(cy + dy + 1) * cell_});
+        if (gap_x * gap_x + gap_y * gap_y > reach * reach) continue;
         auto it = grid_.find(cell_key(cx + dx, cy + dy));
         if (it == grid_.end()) continue;
         for (std::size_t seg : it->second) {

@@ -47,16 +47,28 @@ Interval occupancy(const std::vector<TrajectorySample>& tr, const Vec2& p) {
 
 }  // namespace
 
+PathCells::PathCells(const std::vector<TrajectorySample>& path) : path_(path) {
+  // Segments are short (a step), so a segment is listed under the cells of its two ends.
+  for (std::size_t i = 0; i + 1 < path.size(); ++i) {
+    if (path[i + 1].resumed) continue;
+    cells_[cell_key(path[i].box.centre)].push_back(i);
+    if (cell_key(path[i + 1].box.centre) != cell_key(path[i].box.centre)) cells_[cell_key(path[i + 1].box.centre)].push_back(i);
+  }
+}
+
+const std::vector<std::size_t>* PathCells::at(const Vec2& p) const {
+  const auto it = cells_.find(cell_key(p));
+  return it == cells_.end() ? nullptr : &it->second;
+}
+
 std::optional<PetResult> post_encroachment_time(const std::vector<TrajectorySample>& a,
                                                 const std::vector<TrajectorySample>& b) {
+  return post_encroachment_time(PathCells(a), b);
+}
+
+std::optional<PetResult> post_encroachment_time(const PathCells& cells, const std::vector<TrajectorySample>& b) {
+  const std::vector<TrajectorySample>& a = cells.path();
   if (a.size() < 2 || b.size() < 2) return std::nullopt;
-  // a's path segments by the grid cells their ends fall in (segments are short: a step).
-  std::unordered_map<long long, std::vector<std::size_t>> cells;
-  for (std::size_t i = 0; i + 1 < a.size(); ++i) {
-    if (a[i + 1].resumed) continue;
-    cells[cell_key(a[i].box.centre)].push_back(i);
-    if (cell_key(a[i + 1].box.centre) != cell_key(a[i].box.centre)) cells[cell_key(a[i + 1].box.centre)].push_back(i);
-  }
   std::vector<Vec2> points;
   for (std::size_t j = 0; j + 1 < b.size(); ++j) {
     if (b[j + 1].resumed) continue;
@@ -64,9 +76,9 @@ std::optional<PetResult> post_encroachment_time(const std::vector<TrajectorySamp
     const Vec2& q1 = b[j + 1].box.centre;
     for (int dx = -1; dx <= 1; ++dx)
       for (int dy = -1; dy <= 1; ++dy) {
-        const auto it = cells.find(cell_key(q0 + Vec2(dx * kCell, dy * kCell)));
-        if (it == cells.end()) continue;
-        for (std::size_t i : it->second)
+        const auto* segments = cells.at(q0 + Vec2(dx * kCell, dy * kCell));
+        if (!segments) continue;
+        for (std::size_t i : *segments)
           if (auto p = crossing(a[i].box.centre, a[i + 1].box.centre, q0, q1)) points.push_back(*p);
       }
   }
@@ -120,9 +132,10 @@ std::optional<PetWith> TrajectoryBook::min_pet(const std::string& id) const {
   const auto own = trajectories_.find(id);
   if (own == trajectories_.end()) return std::nullopt;
   std::optional<PetWith> best;
+  const PathCells cells(own->second.samples);
   for (const auto& [other, track] : trajectories_) {
     if (other == id) continue;
-    const auto pet = post_encroachment_time(own->second.samples, track.samples);
+    const auto pet = post_encroachment_time(cells, track.samples);
     if (pet && (!best || pet->pet < best->pet.pet)) best = PetWith{*pet, other};
   }
   return best;

@@ -15,6 +15,7 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 #include "engine/collision.hpp"
@@ -37,6 +38,20 @@ struct PetResult {
   Vec2 point{0, 0};
 };
 
+// One trajectory's path segments by grid cell, built once to be crossed with many others.
+class PathCells {
+ public:
+  explicit PathCells(const std::vector<TrajectorySample>& path);
+  [[nodiscard]] const std::vector<TrajectorySample>& path() const { return path_; }
+  // Segments (index of their first sample) with an end in the cell of `p`.
+  [[nodiscard]] const std::vector<std::size_t>* at(const Vec2& p) const;
+
+ private:
+  const std::vector<TrajectorySample>& path_;
+  std::unordered_map<long long, std::vector<std::size_t>> cells_;
+};
+
+std::optional<PetResult> post_encroachment_time(const PathCells& a, const std::vector<TrajectorySample>& b);
 std::optional<PetResult> post_encroachment_time(const std::vector<TrajectorySample>& a,
                                                 const std::vector<TrajectorySample>& b);
 
