@@ -17,8 +17,12 @@ back to back, in a rotating order), with the range in brackets, of wall times an
 times (user + system of the process and its children): on a shared machine a process
 waits for a core for a varying while, so CPU time is the steadier figure.
 
+With --instructions each process runs once under valgrind's callgrind instead, and the
+table gives instruction counts: the same on a busy machine as on an idle one, so shares of a
+few per cent can be read off where timed rounds scatter by more than that.
+
 Usage: split.py --binary build-bench/bin/orchestrator --actors build-bench/bin/actors_baseline
-                [--rounds 7] [--size 1000|200|3000]
+                [--rounds 7] [--size 1000|200|3000] [--instructions]
 """
 import argparse
 import json
@@ -35,11 +39,11 @@ import bench  # noqa: E402
 SIZES = {s[0].strip("~").replace(",", ""): s for s in bench.SIZES}
 
 
-def measure(cmd, log):
+def measure(cmd, log, env=None):
     """(wall s, CPU s) of one process."""
     start = time.monotonic()
     with open(log, "w") as out:
-        proc = subprocess.Popen(cmd, stdout=out, stderr=subprocess.STDOUT)
+        proc = subprocess.Popen(cmd, stdout=out, stderr=subprocess.STDOUT, env=env)
     _, status, usage = os.wait4(proc.pid, 0)
     wall = time.monotonic() - start
     code = os.waitstatus_to_exitcode(status)
@@ -55,6 +59,9 @@ def main():
     ap.add_argument("--rounds", type=int, default=7)
     ap.add_argument("--size", default="1000", choices=sorted(SIZES))
     ap.add_argument("--keep", help="keep outputs in this folder")
+    ap.add_argument("--instructions", action="store_true",
+                    help="instead of timing rounds, count each process's instructions once under valgrind's "
+                         "callgrind: the same on a busy machine as on an idle one (about 50 times slower)")
     a = ap.parse_args()
     work = a.keep or tempfile.mkdtemp(prefix="orch_split_")
     os.makedirs(work, exist_ok=True)
@@ -78,6 +85,8 @@ def main():
         "orch": bench.orchestrator(a.binary, d + "_orch", traffic, steps, "libsumo"),
     }
     keys = list(commands)
+    if a.instructions:
+        return count_instructions(commands, keys, d, header, name, steps)
     walls = {k: [] for k in keys}
     cpus = {k: [] for k in keys}
     own = []
@@ -117,6 +126,39 @@ def main():
     print("| orchestrator's own time / SUMO's step time (result.json timing, same process) | %.1f %% (%.1f-%.1f) | |"
           % (100 * statistics.median(own), 100 * min(own), 100 * max(own)))
     print("\noutputs in " + work, file=sys.stderr)
+
+
+def count_instructions(commands, keys, d, header, name, steps):
+    """Instructions each process executes (valgrind's callgrind): independent of what else
+    runs on the machine, so shares below the noise of timed rounds can be read off."""
+    counts = {}
+    for key in keys:
+        log = d + "_%s.callgrind.log" % key
+        command, env = commands[key], dict(os.environ)
+        if command[0] == "env":  # the variable goes to the process itself, not to a traced `env`
+            name_value = command[1].split("=", 1)
+            env[name_value[0]] = name_value[1]
+            command = command[2:]
+        cmd = ["valgrind", "--tool=callgrind", "--callgrind-out-file=" + d + "_%s.callgrind" % key] + command
+        measure(cmd, log, env)
+        with open(log) as f:
+            counts[key] = int(next(line.split(":")[1] for line in f if "Collected :" in line).replace(",", ""))
+        print("  %s: %d instructions" % (key, counts[key]), file=sys.stderr)
+    print("Machine: " + header)
+    print("ALKS_Road, bench_scenario.json, %s vehicles, %d steps of %g s; instructions of each whole process "
+          "(valgrind --tool=callgrind, one run each).\n" % (name, steps, bench.STEP))
+    print("| | bare SUMO | same actors (libsumo loop) | orchestrator, contexts off | orchestrator |")
+    print("|---|---|---|---|---|")
+    print("| instructions | %s |" % " | ".join("%.3f G" % (counts[k] / 1e9) for k in keys))
+    print()
+    print("| share | instruction ratio |")
+    print("|---|---|")
+    for label, num, den in (("SUMO simulating the scenario's vehicles: same actors / bare", "actors", "bare"),
+                            ("the orchestrator's step and start: contexts off / same actors", "no_ctx", "actors"),
+                            ("the context subscriptions: orchestrator / contexts off", "orch", "no_ctx"),
+                            ("**orchestrator / same actors**", "orch", "actors"),
+                            ("**orchestrator / bare SUMO**", "orch", "bare")):
+        print("| %s | **%.4f** |" % (label, counts[num] / counts[den]))
 
 
 if __name__ == "__main__":
