@@ -16,6 +16,7 @@
 #include "openscenario/xosc_reader.hpp"
 #include "run/ego_link.hpp"
 #include "run/collision_fact.hpp"
+#include "run/openscenario_ego_choice.hpp"
 #include "run/openscenario_world.hpp"
 #include "run/reference_ego_setup.hpp"
 #include "run/run_outcome.hpp"
@@ -123,7 +124,7 @@ void check_external_ego(const openscenario::Scenario& scenario, const std::strin
   if (!external) return;
   if (ego.empty())
     throw ScenarioError(SourceLocation{scenario.file, "/OpenSCENARIO/Entities", 0},
-                        "--ego-port: the scenario has no ego (no entity with the ALKSController controller): "
+                        "--ego-port: the scenario has no ego (docs/openscenario.md \"The ego\"): "
                         "name it with --ego NAME");
   if (ego != kEgoSumoId && scenario.entity(kEgoSumoId))
     throw ScenarioError(SourceLocation{scenario.file, "/OpenSCENARIO/Entities", 0},
@@ -176,19 +177,22 @@ RunResult run_openscenario(const RunRequest& req, Simulator& sim) {
     log.note(fmt::format("road {} -> SUMO net {} ({})", scenario->road_file, net.net_file.string(),
                          net.from_cache ? "cached" : "converted now"));
     lanes.emplace(*roads, net.net_file.string());
-    ego = choose_ego_entity(*scenario, req.ego_entity);
+    const EgoChoice chosen = choose_ego(*scenario, req.ego_entity);
+    ego = chosen.entity;
     check_external_ego(*scenario, ego, req.ego_link != nullptr);
     ego_model = ego_model_of(req, *scenario, ego);
     if (req.ego_link && ego_model.r157())
       throw OrchError("--ego-port: an external ego drives the ego; the R157 reference driver (--ego-model r157 or "
                       "an R157ReferenceDriver controller) cannot drive it too");
     result.ego_model = ego_model.name;
-    log.note(ego.empty() ? std::string("no ego (no entity with the ALKSController controller, no --ego)")
+    log.note(ego.empty() ? fmt::format("no ego: {}", chosen.rule)
              : req.ego_link ? fmt::format("ego {} (SUMO vehicle \"ego\"; driven by SUMO's car-following model until "
-                                          "an ActivateControllerAction hands it to the external ego)", ego)
-                            : fmt::format("ego {} (driven by {})", ego,
+                                          "an ActivateControllerAction hands it to the external ego); chosen: {}",
+                                          ego, chosen.rule)
+                            : fmt::format("ego {} (driven by {}); chosen: {}", ego,
                                           ego_model.r157() ? "the UN R157 reference driver"
-                                                           : "SUMO's car-following model"));
+                                                           : "SUMO's car-following model",
+                                          chosen.rule));
     runtime.emplace(*scenario, *roads);
     actors.emplace(*scenario, *lanes, ego, req.ego_link != nullptr);
 
