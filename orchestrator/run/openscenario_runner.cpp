@@ -25,6 +25,7 @@
 #include "run/run_log.hpp"
 #include "run/run_observers.hpp"
 #include "run/ssm_device.hpp"
+#include "run/storyboard_events.hpp"
 #include "run/trace_writer.hpp"
 
 namespace orch {
@@ -290,8 +291,10 @@ RunResult run_openscenario(const RunRequest& req, Simulator& sim) {
           runtime->observe(driven, {ref.x(), ref.y(), e->heading}, e->speed, e->accel);
         }
       }
-      for (const auto& l = runtime->log(); logged < l.size(); ++logged)
-        log.at(l[logged].time, fmt::format("{} {} {}", l[logged].type, l[logged].name, l[logged].transition));
+      for (const auto& l = runtime->log(); logged < l.size(); ++logged) {
+        result.events.push_back(storyboard_event(l[logged]));
+        log.at(l[logged].time, result.events.back().text);
+      }
       if (!collision) {
         result.collision = ego_collision(snap, *actors, ego, t);
         if (result.collision) {

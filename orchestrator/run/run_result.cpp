@@ -16,6 +16,7 @@ const char* kind_name(engine::EventKind k) {
     case engine::EventKind::Action: return "action";
     case engine::EventKind::Warning: return "warning";
     case engine::EventKind::Info: return "info";
+    case engine::EventKind::Storyboard: return "storyboard";
   }
   return "info";
 }

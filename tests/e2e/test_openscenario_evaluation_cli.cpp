@@ -86,6 +86,33 @@ TEST(OpenScenarioEvaluationCli, CutInMeasuresItsEntitiesByNameLikeTheEgosExposur
   EXPECT_TRUE(result["metrics"].contains("CutIn"));
 }
 
+TEST(OpenScenarioEvaluationCli, StoryboardTransitionsAreEventsInTimeOrderAsRunLogHasThem) {
+  TempDir out;
+  const auto r = run_scenario(kCutIn, out);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto result = read_json(out / "result.json");
+  const auto& events = result["events"];
+  ASSERT_GT(events.size(), 10u);
+  const std::string log = slurp(out / "run.log");
+  double last = 0;
+  std::map<std::string, double> started;
+  for (const auto& e : events) {
+    const double t = e["time"];
+    EXPECT_GE(t, last) << e.dump();
+    last = t;
+    const std::string text = e["text"];
+    EXPECT_EQ(e["kind"], text.rfind("action ", 0) == 0 ? "action" : "storyboard") << text;
+    EXPECT_NE(log.find(text + "\n"), std::string::npos) << "run.log has the same line: " << text;
+    if (text.ends_with(" startTransition")) started.emplace(text, t);
+  }
+  ASSERT_TRUE(started.count("act CutInAct startTransition"));
+  EXPECT_DOUBLE_EQ(started["act CutInAct startTransition"], 0.0);
+  ASSERT_TRUE(started.count("event CutInEvent startTransition"));
+  EXPECT_GT(started["event CutInEvent startTransition"], 1.0) << "the cut-in waits for its trigger";
+  EXPECT_EQ(events.back()["text"], "storyboard  stopTransition");
+  EXPECT_DOUBLE_EQ(events.back()["time"].get<double>(), result["sim_time"].get<double>());
+}
+
 TEST(OpenScenarioEvaluationCli, ShippedEvaluationOfTheXoscPassesEveryCriterion) {
   TempDir out;
   const auto r = run_scenario(kEvaluation, out, {"--jsonl-every", "20"});

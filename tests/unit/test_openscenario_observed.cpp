@@ -1,9 +1,11 @@
-// An OpenSCENARIO run as metrics and criteria see it (run/openscenario_observed.hpp): no
-// simulator, the snapshot built by hand.
+// An OpenSCENARIO run as metrics and criteria see it (run/openscenario_observed.hpp) and the
+// storyboard's transitions as result.json events (run/storyboard_events.hpp): no simulator,
+// the snapshot built by hand.
 #include <gtest/gtest.h>
 
 #include "opendrive/xodr_reader.hpp"
 #include "run/openscenario_observed.hpp"
+#include "run/storyboard_events.hpp"
 #include "support/cli_runner.hpp"
 
 namespace orch {
@@ -114,6 +116,18 @@ TEST_F(OpenScenarioRunOnRoad3, SumosCollisionReportsBecomeContactsOncePerPair) {
   EXPECT_EQ(run.contacts()[1].a, "bg.7");
   EXPECT_EQ(run.contacts()[1].b, "1");
   EXPECT_DOUBLE_EQ(run.contacts()[1].time, 3.05);
+}
+
+TEST(StoryboardEvents, ElementsAreStoryboardEventsActionsAreActionsWithTheRunLogText) {
+  const engine::Event act = storyboard_event({2.5, "act", "CutInAct", "startTransition"});
+  EXPECT_EQ(act.kind, engine::EventKind::Storyboard);
+  EXPECT_DOUBLE_EQ(act.time, 2.5);
+  EXPECT_EQ(act.text, "act CutInAct startTransition");
+  EXPECT_EQ(storyboard_event({3, "event", "E", "endTransition"}).kind, engine::EventKind::Storyboard);
+  const engine::Event action = storyboard_event({4, "action", "CutInLaneChange", "endTransition"});
+  EXPECT_EQ(action.kind, engine::EventKind::Action);
+  EXPECT_EQ(action.text, "action CutInLaneChange endTransition");
+  EXPECT_EQ(storyboard_event({9, "storyboard", "", "stopTransition"}).text, "storyboard  stopTransition");
 }
 
 }  // namespace
