@@ -2,6 +2,7 @@
 
 #include "batch/template_binder.hpp"
 #include "core/errors.hpp"
+#include "core/scenario_format.hpp"
 #include "evaluation/evaluation_file.hpp"
 #include "evaluation/yaml_tree.hpp"
 #include "json/json_text.hpp"
@@ -94,6 +95,9 @@ std::string map_of_bound(const std::vector<BoundFile>& files, const std::string&
   }
   const LoadedEvaluation e = read_evaluation(parse_yaml_document(json_text(tree, 2), label));
   if (!e.file) throw ScenarioError(e.diagnostics);
+  // An OpenSCENARIO scenario (never a template: its own parameters vary by *_variation.xosc)
+  // is read and checked, with its road, by the run; the set records no map for it.
+  if (!beside && detect_scenario_format(e.file->scenario_file) == ScenarioFormat::OpenScenario) return "";
   const LoadedScenario loaded = beside ? load_scenario(JsonDocument::parse(files[1].text, label + " (" + files[1].name + ")"))
                                        : load_scenario(e.file->scenario_file);
   if (!loaded.scenario) throw ScenarioError(loaded.diagnostics);

@@ -42,7 +42,9 @@ struct EngineOptions {
   bool external_ego = false;
 };
 
-enum class EventKind { Scene, Action, Info, Warning };
+// Storyboard: an OpenSCENARIO storyboard element's transition (Storyboard, Story, Act,
+// ManeuverGroup, Maneuver, Event; their actions are Action).
+enum class EventKind { Scene, Action, Info, Warning, Storyboard };
 
 // One entry of the run's account. Besides its text, the structured fields say what it is
 // about, so that tools need not parse the text: the actor an action or warning concerns,

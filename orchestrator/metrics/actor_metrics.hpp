@@ -41,6 +41,7 @@ struct Extreme {
 
 struct ActorSummary {
   scenario::ActorId actor = 0;
+  std::string label;  // how outputs name the actor ("" : its id): an OpenSCENARIO entity's name
   std::optional<Extreme> min_ttc, min_thw, min_gap, min_dist, max_drac;
   std::optional<Extreme> min_follower_ttc, min_follower_thw;
   std::optional<Extreme> max_decel, max_abs_jerk, max_lat_accel, max_speed;

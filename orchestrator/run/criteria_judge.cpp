@@ -9,19 +9,17 @@ namespace orch::criteria {
 CriteriaJudge::CriteriaJudge(std::vector<CriterionSpec> specs, const metrics::MetricsRecorder& metrics, FrameSink sink)
     : specs_(std::move(specs)), metrics_(metrics), sink_(std::move(sink)) {}
 
-void CriteriaJudge::begin(const engine::Engine& engine) {
-  scenario::ActorId ego = 0;
-  for (const auto& slot : engine.actors().slots())
-    if (slot.is_ego()) ego = slot.spec.id;
+void CriteriaJudge::begin(const ObservedRun& run) {
+  const scenario::ActorId ego = run.ego().value_or(0);
   states_.clear();
   for (const auto& s : specs_) states_.emplace_back(s, ego);
 }
 
 void CriteriaJudge::step(const StepView& view) {
   FrameReport report;
-  report.time = view.engine.judged().time;
-  const RunFacts facts{report.time, view.engine.scene(), view.engine.state() == engine::RunState::EndingReached,
-                       view.engine.visits(), view.engine.contacts()};
+  report.time = view.run.judged().time;
+  const RunFacts facts{report.time, view.run.scene(), view.run.ending_reached(), view.run.visits(),
+                       view.run.contacts()};
   for (auto& state : states_) {
     const Frame f = state.step(facts, metrics_.current(state.actor()));
     if (sink_) report.frames.emplace_back(&state, f);

@@ -24,7 +24,7 @@ class CriteriaJudge : public RunObserver {
   using FrameSink = std::function<void(const FrameReport&)>;
   CriteriaJudge(std::vector<CriterionSpec> specs, const metrics::MetricsRecorder& metrics, FrameSink sink = {});
 
-  void begin(const engine::Engine& engine) override;
+  void begin(const ObservedRun& run) override;
   void step(const StepView& view) override;
   void finish(RunResult& result) noexcept override;
 

@@ -51,15 +51,15 @@ std::optional<double> MetricsRecorder::departure(const engine::ActorState& a, do
 }
 
 void MetricsRecorder::step(const StepView& view) {
-  const engine::WorldSnapshot& snap = view.engine.judged();
+  const engine::WorldSnapshot& snap = view.run.judged();
   const double dt = last_time_ ? snap.time - *last_time_ : 0.0;
   last_time_ = snap.time;
   std::vector<Measured> bodies;
   for (const auto& a : snap.actors) {
     if (!a.present) continue;
-    const engine::ActorSlot* slot = view.engine.actors().find(a.id);
-    if (!slot) continue;
-    Body b{std::to_string(a.id), a.position, a.heading, a.speed, slot->model.length, slot->model.width};
+    const auto known = view.run.body(a.id);
+    if (!known) continue;
+    Body b{known->label, a.position, a.heading, a.speed, known->length, known->width};
     const engine::Box box{a.position, a.heading, b.length, b.width};
     bodies.push_back({std::move(b), box, true});
   }
@@ -79,15 +79,15 @@ void MetricsRecorder::step(const StepView& view) {
   current_.clear();
   for (const auto& a : snap.actors) {
     if (!a.present) continue;
-    const engine::ActorSlot* slot = view.engine.actors().find(a.id);
-    if (!slot || slot->tracked.kind != ActorKind::Vehicle) continue;
+    const auto known = view.run.body(a.id);
+    if (!known || known->kind != ActorKind::Vehicle) continue;
     ActorMetrics m;
     m.time = snap.time;
     m.actor = a.id;
     m.speed = a.speed;
-    const Body self{std::to_string(a.id), a.position, a.heading, a.speed, slot->model.length, slot->model.width};
-    if (const WaypointRoute* route = view.engine.route_of(a.id)) {
-      const Neighbours n = find_neighbours(route->line, self, others);
+    const Body self{known->label, a.position, a.heading, a.speed, known->length, known->width};
+    if (const Polyline* path = view.run.path_of(a.id)) {
+      const Neighbours n = find_neighbours(*path, self, others);
       m.leader = n.leader;
       m.follower = n.follower;
     }
@@ -116,13 +116,14 @@ void MetricsRecorder::step(const StepView& view) {
     }
     if (std::isfinite(best)) m.min_dist = best;
 
-    fmt::print(file_, "{:.3f},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", snap.time, a.id,
+    fmt::print(file_, "{:.3f},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", snap.time, self.id,
                m.leader ? m.leader->other : "", cell(metric_value(m, "gap")), cell(metric_value(m, "rel_speed")),
                cell(metric_value(m, "ttc")), cell(metric_value(m, "thw")), cell(metric_value(m, "drac")),
                cell(m.kinematics.accel), cell(m.kinematics.jerk), cell(m.kinematics.lat_accel), cell(m.lane_departure),
                cell(m.min_dist), m.min_dist_to);
     auto& summary = summaries_[a.id];
     summary.actor = a.id;
+    summary.label = self.id;
     summary.add(m, dt);
     current_.push_back(std::move(m));
   }
@@ -138,7 +139,7 @@ std::vector<ActorSummary> MetricsRecorder::summaries() const {
   for (const auto& [id, s] : summaries_) {
     ActorSummary with_pet = s;
     // PET against every other body (actors and background vehicles) whose path crossed this one's.
-    if (const auto pet = trajectories_.min_pet(std::to_string(id)))
+    if (const auto pet = trajectories_.min_pet(s.label))
       with_pet.min_pet = Extreme{pet->pet.pet, pet->pet.time, pet->partner};
     out.push_back(std::move(with_pet));
   }

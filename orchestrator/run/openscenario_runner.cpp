@@ -9,6 +9,7 @@
 #include "core/errors.hpp"
 #include "core/files.hpp"
 #include "map/background_traffic.hpp"
+#include "map/lane_map.hpp"
 #include "opendrive/sumo_lanes.hpp"
 #include "opendrive/sumo_net.hpp"
 #include "opendrive/xodr_reader.hpp"
@@ -16,11 +17,15 @@
 #include "openscenario/xosc_reader.hpp"
 #include "run/ego_link.hpp"
 #include "run/collision_fact.hpp"
+#include "run/openscenario_ego_choice.hpp"
+#include "run/openscenario_observed.hpp"
 #include "run/openscenario_world.hpp"
 #include "run/reference_ego_setup.hpp"
 #include "run/run_outcome.hpp"
 #include "run/run_log.hpp"
+#include "run/run_observers.hpp"
 #include "run/ssm_device.hpp"
+#include "run/storyboard_events.hpp"
 #include "run/trace_writer.hpp"
 
 namespace orch {
@@ -123,7 +128,7 @@ void check_external_ego(const openscenario::Scenario& scenario, const std::strin
   if (!external) return;
   if (ego.empty())
     throw ScenarioError(SourceLocation{scenario.file, "/OpenSCENARIO/Entities", 0},
-                        "--ego-port: the scenario has no ego (no entity with the ALKSController controller): "
+                        "--ego-port: the scenario has no ego (docs/openscenario.md \"The ego\"): "
                         "name it with --ego NAME");
   if (ego != kEgoSumoId && scenario.entity(kEgoSumoId))
     throw ScenarioError(SourceLocation{scenario.file, "/OpenSCENARIO/Entities", 0},
@@ -137,6 +142,28 @@ EgoModelChoice ego_model_of(const RunRequest& req, const openscenario::Scenario&
   const openscenario::Entity* e = ego.empty() ? nullptr : scenario.entity(ego);
   if (e && e->controller && e->controller->name == kR157ControllerName) model.name = "r157";
   return model;
+}
+
+// An evaluation file's criteria name entities by their run index (result.json actors[].actor_id)
+// or default to the ego; scenes are ScenarioExecutor's. Checked before SUMO starts.
+void check_criteria(const EvaluationRequest& ev, const openscenario::Scenario& scenario, const std::string& ego,
+                    RunLog& log) {
+  const SourceLocation where{ev.file, "/Evaluation/Conditions/Criteria", 0};
+  for (const auto& c : ev.criteria) {
+    if (c.actor && (*c.actor < 0 || static_cast<std::size_t>(*c.actor) >= scenario.entities.size()))
+      throw ScenarioError(where, fmt::format("criterion \"{}\" names actor {}; the OpenSCENARIO file has {} entities "
+                                             "(actors 0 to {}, in the order of its Entities)",
+                                             c.name, *c.actor, scenario.entities.size(), scenario.entities.size() - 1));
+    if (!c.actor && ego.empty() && c.type != "reach_scene")
+      throw ScenarioError(where, fmt::format("criterion \"{}\" has no Actor and the scenario has no ego "
+                                             "(docs/openscenario.md \"The ego\"): give Actor or --ego", c.name));
+    if (c.from_scene || c.to_scene || c.scene)
+      throw ScenarioError(where, fmt::format("criterion \"{}\": FromScene, ToScene and Scene are ScenarioExecutor "
+                                             "scenes; an OpenSCENARIO run has none (use FromTime/ToTime; reach_scene "
+                                             "without Scene holds once the Storyboard's StopTrigger fires)", c.name));
+  }
+  if (!ev.vehicle_model.empty())
+    log.note(fmt::format("VehicleModel {} is not used: OpenSCENARIO entities bring their own vehicles", ev.vehicle_model));
 }
 
 }  // namespace
@@ -155,6 +182,9 @@ RunResult run_openscenario(const RunRequest& req, Simulator& sim) {
   std::optional<openscenario::StoryboardRuntime> runtime;
   std::optional<OpenScenarioActors> actors;
   std::optional<EntityTrace> trace;
+  std::optional<LaneMap> sumo_lanes;          // the converted net's lanes, for lane keeping
+  std::optional<OpenScenarioRun> observed;    // the run as metrics and criteria see it
+  RunObservers observers;                      // metrics.csv, criteria, result.jsonl
   std::optional<std::string> collision;
   std::optional<reference_driver::ReferenceEgo> reference_ego;  // --ego-model r157
   std::optional<reference_driver::EgoWatch> ego_watch;          // the ego's minimum gap and TTC
@@ -162,6 +192,7 @@ RunResult run_openscenario(const RunRequest& req, Simulator& sim) {
   std::string ego;
   int background = 0;  // SUMO vehicles that are not entities, at the last step
   try {
+    if (req.evaluation) result.evaluation = {req.evaluation->file, sha256_of_file(req.evaluation->file)};
     result.scenario = {req.scenario_file, sha256_of_file(req.scenario_file)};
     scenario.emplace(openscenario::load_scenario(req.scenario_file, {req.parameter_overrides}));
     result.title = std::filesystem::path(req.scenario_file).stem().string();
@@ -176,21 +207,26 @@ RunResult run_openscenario(const RunRequest& req, Simulator& sim) {
     log.note(fmt::format("road {} -> SUMO net {} ({})", scenario->road_file, net.net_file.string(),
                          net.from_cache ? "cached" : "converted now"));
     lanes.emplace(*roads, net.net_file.string());
-    ego = choose_ego_entity(*scenario, req.ego_entity);
+    const EgoChoice chosen = choose_ego(*scenario, req.ego_entity);
+    ego = chosen.entity;
     check_external_ego(*scenario, ego, req.ego_link != nullptr);
     ego_model = ego_model_of(req, *scenario, ego);
     if (req.ego_link && ego_model.r157())
       throw OrchError("--ego-port: an external ego drives the ego; the R157 reference driver (--ego-model r157 or "
                       "an R157ReferenceDriver controller) cannot drive it too");
     result.ego_model = ego_model.name;
-    log.note(ego.empty() ? std::string("no ego (no entity with the ALKSController controller, no --ego)")
+    log.note(ego.empty() ? fmt::format("no ego: {}", chosen.rule)
              : req.ego_link ? fmt::format("ego {} (SUMO vehicle \"ego\"; driven by SUMO's car-following model until "
-                                          "an ActivateControllerAction hands it to the external ego)", ego)
-                            : fmt::format("ego {} (driven by {})", ego,
+                                          "an ActivateControllerAction hands it to the external ego); chosen: {}",
+                                          ego, chosen.rule)
+                            : fmt::format("ego {} (driven by {}); chosen: {}", ego,
                                           ego_model.r157() ? "the UN R157 reference driver"
-                                                           : "SUMO's car-following model"));
+                                                           : "SUMO's car-following model",
+                                          chosen.rule));
+    if (req.evaluation) check_criteria(*req.evaluation, *scenario, ego, log);
     runtime.emplace(*scenario, *roads);
     actors.emplace(*scenario, *lanes, ego, req.ego_link != nullptr);
+    sumo_lanes.emplace(LaneMap::build(net.net_file.string(), WaypointFile{}));
 
     SimulatorConfig config;
     config.net_file = std::filesystem::absolute(net.net_file).string();
@@ -208,6 +244,9 @@ RunResult run_openscenario(const RunRequest& req, Simulator& sim) {
     sim.start(config);
     result.sumo_version = sim.version();
     trace.emplace(req.out_dir / "trace.csv");
+    observers.add_measurement(req, *sumo_lanes);
+    observed.emplace(*scenario, *roads, *actors);
+    observers.begin(*observed);
 
     std::size_t logged = 0;
     // The reference driver takes the ego once the storyboard has placed it.
@@ -241,6 +280,8 @@ RunResult run_openscenario(const RunRequest& req, Simulator& sim) {
                                           : actors->ego_drive().driver(runtime->entities().at(ego));
       const bool model_drives = reference_ego && ego_driver == OpenScenarioEgo::Driver::Sumo;
       trace->record(t, snap, *actors, ego, model_drives ? "r157" : OpenScenarioEgo::label(ego_driver));
+      observed->update(snap, t, runtime->entities(), runtime->finished());
+      observers.step(StepView{*observed, snap, plugin_driven_actor(req.ego_link, actors->tracked())});
       // Entities SUMO (or the external ego) drove are what the storyboard's conditions see of
       // them from now on; while the storyboard moves the ego laterally, its own state stands.
       for (const std::string& driven : actors->sumo_driven()) {
@@ -250,8 +291,10 @@ RunResult run_openscenario(const RunRequest& req, Simulator& sim) {
           runtime->observe(driven, {ref.x(), ref.y(), e->heading}, e->speed, e->accel);
         }
       }
-      for (const auto& l = runtime->log(); logged < l.size(); ++logged)
-        log.at(l[logged].time, fmt::format("{} {} {}", l[logged].type, l[logged].name, l[logged].transition));
+      for (const auto& l = runtime->log(); logged < l.size(); ++logged) {
+        result.events.push_back(storyboard_event(l[logged]));
+        log.at(l[logged].time, result.events.back().text);
+      }
       if (!collision) {
         result.collision = ego_collision(snap, *actors, ego, t);
         if (result.collision) {
@@ -282,6 +325,9 @@ RunResult run_openscenario(const RunRequest& req, Simulator& sim) {
     log.at(result.sim_time, result.reason);
     if (!result.traffic.empty() && result.traffic != "none")
       log.note(fmt::format("{} background vehicles in SUMO at the end", background));
+  } catch (const ScenarioError& e) {
+    observers.format_error(req, e.diagnostics());
+    record_run_error(result, log);
   } catch (...) {
     record_run_error(result, log);
   }
@@ -295,6 +341,8 @@ RunResult run_openscenario(const RunRequest& req, Simulator& sim) {
     result.ego_min_ttc = ego_watch->exposure().min_ttc;
   }
   if (actors) result.actors = entity_records(*actors);
+  if (observed) result.collisions = observed->contacts();
+  observers.finish(req, result);  // metrics; criteria fold into the verdict
   if (trace) {
     trace->flush();
     result.trace_rows = trace->rows();

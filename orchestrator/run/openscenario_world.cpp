@@ -7,14 +7,11 @@
 
 #include "core/errors.hpp"
 #include "core/suggest.hpp"
-#include "reference_driver/ego_model.hpp"
+#include "run/openscenario_ego_choice.hpp"
 
 namespace orch {
 
 namespace {
-
-// The controller the OSC-ALKS files give the system under test.
-constexpr const char* kSystemUnderTestController = "ALKSController";
 
 // SUMO vehicle shapes for OpenSCENARIO vehicle categories (sumo-gui only).
 std::string gui_shape_for(const std::string& category) {
@@ -47,18 +44,7 @@ ModelInfo model_of(const openscenario::Entity& e) {
 }  // namespace
 
 std::string choose_ego_entity(const openscenario::Scenario& scenario, const std::string& requested) {
-  std::vector<std::string> names;
-  for (const auto& e : scenario.entities) names.push_back(e.name);
-  if (!requested.empty()) {
-    if (scenario.entity(requested)) return requested;
-    throw ScenarioError(SourceLocation{scenario.file, "/OpenSCENARIO/Entities", 0},
-                        fmt::format("--ego {}: no such entity{}", requested, did_you_mean(requested, names)));
-  }
-  // The system under test's controller, or the R157 reference driver's (reference_driver/ego_model.hpp).
-  for (const auto& e : scenario.entities)
-    if (e.controller && (e.controller->name == kSystemUnderTestController || e.controller->name == kR157ControllerName))
-      return e.name;
-  return "";
+  return choose_ego(scenario, requested).entity;
 }
 
 OpenScenarioActors::OpenScenarioActors(const openscenario::Scenario& scenario, const opendrive::SumoLaneIndex& lanes,

@@ -15,9 +15,7 @@
 
 namespace orch {
 
-// The ego: `requested` (--ego NAME) when given (an unknown name is a ScenarioError with
-// "did you mean"), else the entity whose controller is named like the system under test
-// (ALKSController in the OSC-ALKS files), else "" (no ego).
+// The ego's entity by the rule of openscenario_ego_choice.hpp ("" for none).
 std::string choose_ego_entity(const openscenario::Scenario& scenario, const std::string& requested);
 
 class OpenScenarioActors {

@@ -16,6 +16,7 @@ const char* kind_name(engine::EventKind k) {
     case engine::EventKind::Action: return "action";
     case engine::EventKind::Warning: return "warning";
     case engine::EventKind::Info: return "info";
+    case engine::EventKind::Storyboard: return "storyboard";
   }
   return "info";
 }
@@ -44,7 +45,7 @@ nlohmann::ordered_json extreme_json(const std::optional<metrics::Extreme>& e, bo
 nlohmann::ordered_json metrics_json(const std::vector<metrics::ActorSummary>& all) {
   nlohmann::ordered_json j = nlohmann::ordered_json::object();
   for (const auto& s : all) {
-    j[std::to_string(s.actor)] = {{"min_ttc", extreme_json(s.min_ttc, true)},
+    j[s.label.empty() ? std::to_string(s.actor) : s.label] = {{"min_ttc", extreme_json(s.min_ttc, true)},
                                   {"min_thw", extreme_json(s.min_thw, true)},
                                   {"min_gap", extreme_json(s.min_gap, true)},
                                   {"max_drac", extreme_json(s.max_drac, true)},

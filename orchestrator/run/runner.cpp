@@ -14,16 +14,14 @@
 #include "map/lane_map.hpp"
 #include "map/map_registry.hpp"
 #include "map/waypoint_file.hpp"
-#include "run/criteria_judge.hpp"
-#include "run/result_jsonl.hpp"
-#include "run/metrics_recorder.hpp"
 #include "run/ego_link.hpp"
+#include "run/engine_run.hpp"
 #include "run/collision_fact.hpp"
 #include "run/openscenario_runner.hpp"
 #include "run/reference_ego_setup.hpp"
 #include "run/run_outcome.hpp"
 #include "run/run_log.hpp"
-#include "run/run_observer.hpp"
+#include "run/run_observers.hpp"
 #include "run/ssm_device.hpp"
 #include "run/trace_writer.hpp"
 #include "run/traffic_trace.hpp"
@@ -126,17 +124,6 @@ void check_criteria_actors(const EvaluationRequest& ev, const engine::Engine& en
                           fmt::format("criterion \"{}\" names actor {}, which the scenario does not have", c.name, *c.actor));
 }
 
-// The criteria judge and result.jsonl, after the metrics they read.
-void add_evaluation_observers(const RunRequest& req, const metrics::MetricsRecorder& measured,
-                              std::vector<std::unique_ptr<RunObserver>>& observers) {
-  const EvaluationRequest& ev = *req.evaluation;
-  auto jsonl = std::make_unique<ResultJsonl>(req.out_dir / "result.jsonl", ev.conditions, ev.jsonl_every);
-  ResultJsonl* sink = jsonl.get();
-  observers.push_back(std::make_unique<criteria::CriteriaJudge>(
-      ev.criteria, measured, [sink](const criteria::FrameReport& r) { sink->frame(r); }));
-  observers.push_back(std::move(jsonl));
-}
-
 // --ssm: SUMO's own SSM device on the ego, when SUMO drives it.
 void equip_ssm_device(const RunRequest& req, const engine::Engine& engine, SimulatorConfig& config, RunLog& log) {
   if (req.ego_link) {
@@ -169,10 +156,9 @@ RunResult run_scenario(const RunRequest& req, Simulator& sim) {
   std::optional<Inputs> in;
   std::optional<LaneMap> lanes;
   std::optional<engine::Engine> engine;
+  std::optional<EngineRun> observed;  // the engine as the observers see it
   // The step loop's observers (run_observer.hpp), in the order they see each step.
-  std::vector<std::unique_ptr<RunObserver>> observers;
-  std::vector<double> observer_s;  // time in each observer's step
-  bool jsonl_written = false;  // result.jsonl (evaluation runs) has its observer or its error line
+  RunObservers observers;
   try {
     if (req.evaluation) result.evaluation = {req.evaluation->file, sha256_of_file(req.evaluation->file)};
     in.emplace(load_inputs(req, result, log));
@@ -196,19 +182,13 @@ RunResult run_scenario(const RunRequest& req, Simulator& sim) {
     if (req.ego_link) log.note(req.ego_link->listen());
     sim.start(config);
     result.sumo_version = sim.version();
-    auto trace = std::make_unique<TraceWriter>(req.out_dir / "trace.csv", *lanes);
+    auto trace = std::make_unique<TraceWriter>(req.out_dir / "trace.csv", *lanes, *engine);
     TraceWriter& trace_writer = *trace;
-    observers.push_back(std::move(trace));
-    observers.push_back(std::make_unique<TrafficTrace>(req.out_dir, req.trace_background));
-    auto metrics = std::make_unique<metrics::MetricsRecorder>(req.out_dir / "metrics.csv", *lanes);
-    const metrics::MetricsRecorder& measured = *metrics;
-    observers.push_back(std::move(metrics));
-    if (req.evaluation) {
-      add_evaluation_observers(req, measured, observers);
-      jsonl_written = true;
-    }
-    for (const auto& o : observers) o->begin(*engine);
-    observer_s.assign(observers.size(), 0.0);
+    observers.add(std::move(trace));
+    observers.add(std::make_unique<TrafficTrace>(req.out_dir, req.trace_background));
+    observers.add_measurement(req, *lanes);
+    observed.emplace(*engine);
+    observers.begin(*observed);
 
     auto out = engine->start();
     log_events(log, result, out.events);
@@ -234,12 +214,7 @@ RunResult run_scenario(const RunRequest& req, Simulator& sim) {
       result.sim_time = snap.time;
       if (!result.collision) result.collision = ego_collision_fact(*engine, in->scenario.ego.id, snap);
       log_events(log, result, out.events);
-      const StepView view{*engine, snap, plugin_driven_actor(req.ego_link, tracked)};
-      for (std::size_t i = 0; i < observers.size(); ++i) {
-        const auto before_observer = Clock::now();
-        observers[i]->step(view);
-        observer_s[i] += seconds_since(before_observer);
-      }
+      observers.step(StepView{*observed, snap, plugin_driven_actor(req.ego_link, tracked)});
       if (engine->state() != engine::RunState::Running) break;
       if (req.max_time && snap.time >= *req.max_time - 1e-9) {
         result.verdict = Verdict::Failure;
@@ -286,10 +261,7 @@ RunResult run_scenario(const RunRequest& req, Simulator& sim) {
         break;  // max time or interrupted: already set
     }
   } catch (const ScenarioError& e) {
-    if (req.evaluation && !jsonl_written) {
-      write_format_error_jsonl(req.out_dir / "result.jsonl", e.diagnostics());
-      jsonl_written = true;
-    }
+    observers.format_error(req, e.diagnostics());
     record_run_error(result, log);
   } catch (...) {
     record_run_error(result, log);
@@ -305,11 +277,7 @@ RunResult run_scenario(const RunRequest& req, Simulator& sim) {
                                slot.spec.color, slot.model.length, slot.model.width, slot.is_ego()});
     judge_collisions(*engine, in->scenario.ego.id, result);
   }
-  for (const auto& o : observers) o->finish(result);
-  for (std::size_t i = 0; i < observer_s.size(); ++i) result.timing.observers_s.emplace_back(observers[i]->name(), observer_s[i]);
-  // An evaluation run that ended before its observers existed still gets its result.jsonl.
-  if (req.evaluation && !jsonl_written)
-    write_unstarted_jsonl(req.out_dir / "result.jsonl", req.evaluation->conditions, result);
+  observers.finish(req, result);
   if (req.ego_link) {
     req.ego_link->finish(to_string(result.verdict), result.reason);
     result.ego_plugin = req.ego_link->report();

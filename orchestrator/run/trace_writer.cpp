@@ -6,7 +6,8 @@
 
 namespace orch {
 
-TraceWriter::TraceWriter(const std::filesystem::path& path, const LaneMap& lanes) : lanes_(lanes) {
+TraceWriter::TraceWriter(const std::filesystem::path& path, const LaneMap& lanes, const engine::Engine& engine)
+    : lanes_(lanes), engine_(engine) {
   for (int i = 0; i < static_cast<int>(lanes.lanes().size()); ++i) lane_index_[lanes.lane(i).id] = i;
   file_ = std::fopen(path.c_str(), "w");
   if (!file_) throw OrchError("cannot write " + path.string());

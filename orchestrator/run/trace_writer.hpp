@@ -21,7 +21,8 @@ class TraceWriter : public RunObserver {
   static constexpr const char* kHeader =
       "time,scene_id,actor_id,x,y,heading,speed,accel,edge,lane,lane_pos,lat_offset,signals,siren,driver";
 
-  TraceWriter(const std::filesystem::path& path, const LaneMap& lanes);
+  // `engine`: the run's scene graph (the scene and who drives each actor).
+  TraceWriter(const std::filesystem::path& path, const LaneMap& lanes, const engine::Engine& engine);
   ~TraceWriter() override;
   TraceWriter(const TraceWriter&) = delete;
   TraceWriter& operator=(const TraceWriter&) = delete;
@@ -36,7 +37,7 @@ class TraceWriter : public RunObserver {
   void flush();
   [[nodiscard]] long long rows() const { return rows_; }
 
-  void step(const StepView& view) override { record(view.engine, view.plugin_driven); }
+  void step(const StepView& view) override { record(engine_, view.plugin_driven); }
   void finish(RunResult& result) noexcept override {
     flush();
     result.trace_rows = rows_;
@@ -47,6 +48,7 @@ class TraceWriter : public RunObserver {
 
   std::FILE* file_ = nullptr;
   const LaneMap& lanes_;
+  const engine::Engine& engine_;
   std::unordered_map<std::string, int> lane_index_;  // SUMO lane id -> LaneMap index
   std::optional<scenario::ActorId> model_driven_;
   const char* model_label_ = "sumo";

@@ -249,7 +249,28 @@ TEST_F(RunReportInBrowser, AnOpenScenarioRunShowsItsEntitiesByNameWithTheEgoFirs
   const Box box = box_from_points(points);
   EXPECT_NEAR(box.x, *t.number(row, c("x")), 2e-3);
   EXPECT_NEAR(box.y, *t.number(row, c("y")), 2e-3);
-  b.resize(1400, 1900);
+  // The storyboard timeline: Acts and Events at their times, each with its run-log line.
+  const auto marks = b.eval(
+      "const c = Chart.getChart(document.getElementById('chart-timeline'));"
+      "return Object.fromEntries(c.data.datasets.map(d => [d.label, d.data.map(p => [p.x, p.text])]));");
+  const std::string log = slurp(out / "run.log");
+  for (const char* row_name : {"act", "event", "action"}) {
+    ASSERT_TRUE(marks.contains(row_name)) << marks.dump();
+    EXPECT_FALSE(marks[row_name].empty()) << row_name;
+    for (const auto& m : marks[row_name]) EXPECT_NE(log.find(m[1].get<std::string>() + "\n"), std::string::npos) << m;
+  }
+  bool act_start = false, cut_in_event = false;
+  for (const auto& m : marks["act"]) act_start |= m[1].get<std::string>().ends_with("act CutInAct startTransition");
+  for (const auto& m : marks["event"])
+    cut_in_event |= m[1].get<std::string>().ends_with("event CutInEvent startTransition") && m[0].get<double>() > 1;
+  EXPECT_TRUE(act_start && cut_in_event) << marks.dump();
+  // The header says how the storyboard ended, not "ending scene".
+  const std::string text = b.eval("return document.querySelector('.meta').innerText;");
+  EXPECT_EQ(text.find("ending scene"), std::string::npos) << text;
+  EXPECT_NE(text.find("StopTrigger at 27.60 s; last: "), std::string::npos) << text;
+  // The ego's gap and TTC from metrics.csv.
+  EXPECT_EQ(b.eval("return !!document.getElementById('chart-ttc');"), true);
+  b.resize(1400, 2300);  // down to the storyboard timeline
   save_screenshot(b, "report_openscenario.png");
   EXPECT_EQ(b.console_errors(), std::vector<std::string>{});
 }

@@ -88,8 +88,9 @@ TEST(OpenScenarioEgo, ActivateControllerActionHandsTheEgoToAnExternalEgo) {
 
 TEST(OpenScenarioEgo, ExternalEgoNeedsAnEgo) {
   TempDir out;
-  // overtaking.xosc's ego has no ALKSController: with --ego-port it must be named.
-  const auto r = run_scenario(source_path("scenarios/openscenario/overtaking.xosc"), out,
+  // every_condition.xosc has no ego by any rule (docs/openscenario.md "The ego"): with
+  // --ego-port it must be named.
+  const auto r = run_scenario(source_path("scenarios/openscenario/every_condition.xosc"), out,
                               {"--ego-port", "0", "--ego-wait", "1"});
   EXPECT_EQ(r.exit_code, 2) << r.output;
   EXPECT_NE(read_json(out / "result.json")["reason"].get<std::string>().find("name it with --ego NAME"),

@@ -6,6 +6,9 @@
   const ego = actors.find(a => a.ego) || actors[0];
   const scenes = R.scenes || [];
   const events = R.events || [];
+  // An OpenSCENARIO run: its storyboard's transitions instead of scenes (docs/openscenario.md "Report").
+  const storyboard = events.some(e => e.kind === 'storyboard');
+  const elementType = (e) => e.text.split(' ')[0];
   const app = document.getElementById('app');
   const step = R.step || 0.05;
   const tStart = actors.length ? Math.min(...actors.map(a => a.time.length ? a.time[0] : Infinity)) : 0;
@@ -57,9 +60,10 @@
       c.append(el('h3', { text: 'Failing criteria' }));
       c.append(criteriaTable(failing));
     }
-    const ending = R.ending_scene === null || R.ending_scene === undefined ? 'none' : 'scene ' + R.ending_scene;
+    const ending = storyboard ? ['storyboard end', storyboardEnd()]
+      : ['ending scene', R.ending_scene === null || R.ending_scene === undefined ? 'none' : 'scene ' + R.ending_scene];
     const meta = [['seed', R.seed], ['backend', R.backend], ['map', R.map_id], ['simulated', fmtNum(R.sim_time, 2) + ' s'],
-      ['steps', R.steps + ' × ' + step + ' s'], ['ending scene', ending], ['traffic', R.traffic],
+      ['steps', R.steps + ' × ' + step + ' s'], ending, ['traffic', R.traffic],
       ['wall time', fmtNum(R.wall_time_s, 2) + ' s'], ['SUMO', R.sumo_version], ['orchestrator', R.orchestrator_version]];
     c.append(el('div', { class: 'meta' }, meta.map(([k, v]) => el('div', {}, el('span', { text: k }), v === undefined ? '–' : String(v)))));
     const inputs = Object.entries(R.inputs || {}).filter(([, f]) => f && f.path);
@@ -72,6 +76,15 @@
     for (const p of REPORT.problems || []) c.append(el('div', { class: 'problem', text: p }));
     for (const w of R.warnings || []) c.append(el('div', { class: 'problem', text: 'validation warning: ' + w }));
     return c;
+  }
+
+  // How the storyboard ended: its StopTrigger (or not), and the last element that ran.
+  function storyboardEnd() {
+    const stop = events.find(e => e.kind === 'storyboard' && elementType(e) === 'storyboard');
+    const elements = events.filter(e => e.kind === 'storyboard' && elementType(e) !== 'storyboard');
+    const last = elements.length ? elements[elements.length - 1] : null;
+    return (stop ? 'StopTrigger at ' + fmtNum(stop.time, 2) + ' s' : 'no StopTrigger') +
+      (last ? '; last: ' + last.text + ' at ' + fmtNum(last.time, 2) + ' s' : '');
   }
 
   function criteriaTable(list) {
@@ -287,20 +300,25 @@
   function timeline() {
     const logLines = (REPORT.log || '').split('\n');
     const lineFor = (e) => logLines.find(l => l.includes(e.text) && l.includes(fmtNum(e.time, 3))) || ('t=' + fmtNum(e.time, 3) + '  ' + e.text);
-    const rows = { scene: 3, action: 2, warning: 1, info: 0 };
-    const colors = { scene: '#1f6fd1', action: '#2e9d46', warning: '#e0a800', info: '#98a1ab' };
+    // A storyboard's transitions in two rows: Storyboard / Story / Act, and ManeuverGroup / Maneuver / Event.
+    const rows = storyboard ? { act: 4, event: 3, action: 2, warning: 1, info: 0 } : { scene: 3, action: 2, warning: 1, info: 0 };
+    const colors = { scene: '#1f6fd1', act: '#1f6fd1', event: '#9467bd', action: '#2e9d46', warning: '#e0a800', info: '#98a1ab' };
+    const rowOf = (e) => e.kind !== 'storyboard' ? e.kind : (['storyboard', 'story', 'act'].includes(elementType(e)) ? 'act' : 'event');
     const datasets = Object.keys(rows).map(k => ({ label: k, backgroundColor: colors[k], borderColor: colors[k], pointRadius: 5, pointHoverRadius: 7,
-      pointStyle: k === 'scene' ? 'rectRot' : 'circle',
-      data: events.filter(e => e.kind === k).map(e => ({ x: e.time, y: rows[k], text: lineFor(e) })) }));
+      pointStyle: k === 'scene' || k === 'act' ? 'rectRot' : k === 'event' ? 'triangle' : 'circle',
+      data: events.filter(e => rowOf(e) === k).map(e => ({ x: e.time, y: rows[k], text: lineFor(e) })) }));
     const canvas = el('canvas', { id: 'chart-timeline' });
     charts.push(new Chart(canvas, {
       type: 'scatter', data: { datasets },
       options: {
-        scales: { x: { type: 'linear', min: Math.floor(tStart), max: tEnd }, y: { min: -0.5, max: 3.5, ticks: { stepSize: 1, callback: (v) => Object.keys(rows).find(k => rows[k] === v) || '' } } },
+        scales: { x: { type: 'linear', min: Math.floor(tStart), max: tEnd }, y: { min: -0.5, max: Object.keys(rows).length - 0.5, afterBuildTicks: (axis) => { axis.ticks = Object.values(rows).map(v => ({ value: v })); },
+              ticks: { callback: (v) => Object.keys(rows).find(k => rows[k] === v) || '' } } },
         plugins: { legend: { display: false }, tooltip: { callbacks: { label: (item) => item.raw.text } } },
         onClick: (e, items, chart) => setTime(chart.scales.x.getValueForPixel(e.x)) },
       plugins: [sceneBands] }));
-    return el('div', {}, el('h3', { text: 'Scene timeline: transitions, actions, warnings (hover for the run-log line)' }), el('div', { class: 'chart-box small' }, canvas));
+    const title = storyboard ? 'Storyboard timeline: Acts, Events, actions starting and ending (hover for the run-log line)'
+      : 'Scene timeline: transitions, actions, warnings (hover for the run-log line)';
+    return el('div', {}, el('h3', { text: title }), el('div', { class: 'chart-box small' }, canvas));
   }
 
   // ------------------------------------------------------------------ replay

@@ -1,0 +1,102 @@
+// The ego of an OpenSCENARIO file (run/openscenario_ego_choice.hpp): one test per rule, in
+// rank order, the ambiguity at a rank, and no ego at all.
+#include <gtest/gtest.h>
+
+#include "core/errors.hpp"
+#include "run/openscenario_ego_choice.hpp"
+
+namespace orch {
+namespace {
+
+openscenario::Entity entity(const std::string& name, const std::string& controller = "",
+                            std::map<std::string, std::string> controller_properties = {}) {
+  openscenario::Entity e;
+  e.name = name;
+  if (!controller.empty()) e.controller = openscenario::Controller{controller, std::move(controller_properties)};
+  return e;
+}
+
+openscenario::Scenario scenario_of(std::vector<openscenario::Entity> entities) {
+  openscenario::Scenario s;
+  s.file = "s.xosc";
+  s.entities = std::move(entities);
+  return s;
+}
+
+std::string error_of(const openscenario::Scenario& s, const std::string& requested = "") {
+  try {
+    (void)choose_ego(s, requested);
+  } catch (const ScenarioError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(OpenScenarioEgoChoice, EgoOptionWinsOverEveryOtherRule) {
+  const auto s = scenario_of({entity("Ego"), entity("Subject", "ALKSController"), entity("Lead")});
+  const EgoChoice c = choose_ego(s, "Lead");
+  EXPECT_EQ(c.entity, "Lead");
+  EXPECT_EQ(c.rule, "--ego Lead");
+  EXPECT_NE(error_of(s, "Laed").find("did you mean \"Lead\""), std::string::npos);
+}
+
+TEST(OpenScenarioEgoChoice, SystemUnderTestControllersBeforeProperties) {
+  for (const std::string name : {"ALKSController", "R157ReferenceDriver", "SystemUnderTest", "systemundertest", "SUT",
+                                 "ExternalController"}) {
+    auto carla = entity("Hero");
+    carla.properties["type"] = "ego_vehicle";
+    const auto s = scenario_of({carla, entity("Car", name), entity("Other", "DefaultDriver")});
+    const EgoChoice c = choose_ego(s, "");
+    EXPECT_EQ(c.entity, "Car") << name;
+    EXPECT_EQ(c.rule, "its controller is named " + name);
+  }
+}
+
+TEST(OpenScenarioEgoChoice, EsminiExternalControllerProperty) {
+  const auto s = scenario_of({entity("Ego"), entity("Car", "MyStack", {{"esminiController", "ExternalController"}}),
+                              entity("Ghost", "G", {{"esminiController", "FollowGhostController"}})});
+  const EgoChoice c = choose_ego(s, "");
+  EXPECT_EQ(c.entity, "Car");
+  EXPECT_NE(c.rule.find("esminiController=ExternalController"), std::string::npos) << c.rule;
+}
+
+TEST(OpenScenarioEgoChoice, CarlaEgoVehiclePropertyBeforeNames) {
+  auto marked = entity("Vehicle1");
+  marked.properties["type"] = "ego_vehicle";
+  auto simulation = entity("Vehicle2");
+  simulation.properties["type"] = "simulation";
+  const auto s = scenario_of({entity("Ego"), simulation, marked});
+  const EgoChoice c = choose_ego(s, "");
+  EXPECT_EQ(c.entity, "Vehicle1");
+  EXPECT_EQ(c.rule, "it has the Property type=ego_vehicle");
+}
+
+TEST(OpenScenarioEgoChoice, EgoNamesAnyCase) {
+  for (const std::string name : {"Ego", "ego", "EGO", "hero", "ego_vehicle"}) {
+    const EgoChoice c = choose_ego(scenario_of({entity("Lead"), entity(name), entity("Egon")}), "");
+    EXPECT_EQ(c.entity, name);
+    EXPECT_EQ(c.rule, "its name is " + name);
+  }
+}
+
+TEST(OpenScenarioEgoChoice, TwoCandidatesAtOneRankAskForTheEgoOption) {
+  const std::string controllers =
+      error_of(scenario_of({entity("A", "ALKSController"), entity("B", "SystemUnderTest"), entity("Ego")}));
+  EXPECT_NE(controllers.find("2 entities could be the ego: A (its controller is named ALKSController), B (its "
+                             "controller is named SystemUnderTest); name one with --ego NAME"),
+            std::string::npos)
+      << controllers;
+  EXPECT_NE(controllers.find("s.xosc"), std::string::npos) << controllers;
+  EXPECT_NE(error_of(scenario_of({entity("ego"), entity("hero")})).find("--ego NAME"), std::string::npos);
+  // A candidate at a higher rank settles it, however many there are below.
+  EXPECT_EQ(choose_ego(scenario_of({entity("ego"), entity("hero"), entity("X", "SUT")}), "").entity, "X");
+}
+
+TEST(OpenScenarioEgoChoice, NoCandidateNoEgo) {
+  const EgoChoice c = choose_ego(scenario_of({entity("Lead", "DefaultDriver"), entity("Follower")}), "");
+  EXPECT_EQ(c.entity, "");
+  EXPECT_NE(c.rule.find("no --ego"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace orch
