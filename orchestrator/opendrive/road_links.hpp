@@ -26,7 +26,7 @@ struct LaneLinkPair {
 struct JunctionConnection {
   std::string id;
   std::string incoming_road;
-  std::string connecting_road;
+  std::string connecting_road;  // or, in a direct junction, the linkedRoad
   ContactPoint contact = ContactPoint::Start;  // the end of the connecting road at the incoming road
   std::vector<LaneLinkPair> lane_links;
 };

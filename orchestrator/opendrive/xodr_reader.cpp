@@ -133,8 +133,10 @@ class Reader {
       connection.id = c.attribute("id").as_string();
       connection.incoming_road = c.attribute("incomingRoad").as_string();
       connection.connecting_road = c.attribute("connectingRoad").as_string();
+      // A direct junction (OpenDRIVE 1.7) links the incoming road straight to `linkedRoad`.
+      if (connection.connecting_road.empty()) connection.connecting_road = c.attribute("linkedRoad").as_string();
       if (connection.incoming_road.empty() || connection.connecting_road.empty())
-        src_.fail(c, "connection without incomingRoad or connectingRoad");
+        src_.fail(c, "connection without incomingRoad, or without connectingRoad or linkedRoad");
       const ContactPoint contact = contact_point(c);
       connection.contact = contact == ContactPoint::None ? ContactPoint::Start : contact;
       for (const pugi::xml_node l : c.children("laneLink"))
@@ -163,7 +165,7 @@ class Reader {
     for (const pugi::xml_node junction : root.children("junction"))
       for (const pugi::xml_node c : junction.children("connection")) {
         check(c, c.attribute("incomingRoad").as_string());
-        check(c, c.attribute("connectingRoad").as_string());
+        check(c, c.attribute(c.attribute("connectingRoad") ? "connectingRoad" : "linkedRoad").as_string());
       }
   }
 

@@ -118,6 +118,19 @@ TEST(OpenDriveLaneGraph, JunctionConnectionsOfTheIncomingRoadAndTheStraightestDe
   EXPECT_TRUE(next_lanes(roads, "1", 1).empty());
 }
 
+TEST(OpenDriveLaneGraph, ADirectJunctionLinksTheIncomingRoadToItsLinkedRoad) {
+  // OpenDRIVE 1.7: road 1 splits into roads 2 and 3 with no connecting roads between.
+  const std::string body = xodr_road({"1", 0, 0, 0, 100, "", "junction D"}) +
+                           xodr_road({"2", 100, 0, 0, 100, "junction D", ""}) +
+                           xodr_road({"3", 100, 0, 0.2, 100, "junction D", ""}) +
+                           R"(<junction id="D" type="direct"><connection id="0" incomingRoad="1" linkedRoad="3" contactPoint="start"><laneLink from="-1" to="-1"/></connection>)"
+                           R"(<connection id="1" incomingRoad="1" linkedRoad="2" contactPoint="start"><laneLink from="-1" to="-1"/></connection></junction>)";
+  const RoadNetwork roads = read_xodr_text(xodr_file(body), "direct.xodr");
+  const auto next = next_lanes(roads, "1", -1);
+  EXPECT_EQ(roads_of(next), (std::vector<std::string>{"3", "2"}));
+  EXPECT_EQ(straightest_next(roads, "1", -1)->road_id, "2");
+}
+
 TEST(OpenDriveLaneGraph, LaneLinksRenumberLanesBetweenSections) {
   // Section 2 adds an inner right lane: lane -1 of section 1 becomes lane -2.
   const std::string road = R"(<road id="1" length="100" junction="-1">
