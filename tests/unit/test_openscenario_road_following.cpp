@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
 #include <numbers>
 
 #include "core/errors.hpp"
@@ -173,7 +174,7 @@ TEST(RoutePlan, AClosedRouteRepeatsItsLoop) {
 // on; C acquires a position on road 3.
 class JunctionScenario : public ::testing::Test {
  protected:
-  void load(const std::string& a_events, const std::string& init_extra = "") {
+  void load(const std::string& a_events, const std::string& init_extra = "", const std::string& route_catalog = "") {
     const auto teleport = [](const std::string& name, double s, double speed) {
       return R"(<Private entityRef=")" + name + R"("><PrivateAction><TeleportAction><Position><LanePosition roadId="1" laneId="-1" s=")" +
              std::to_string(s) + R"(" offset="0"/></Position></TeleportAction></PrivateAction>
@@ -182,6 +183,7 @@ class JunctionScenario : public ::testing::Test {
     };
     const std::string text = R"(<?xml version="1.0"?><OpenSCENARIO>
 <FileHeader revMajor="1" revMinor="2" date="2024-01-01T00:00:00" author="t" description="junction"/>
+<CatalogLocations><RouteCatalog><Directory path="./catalogs"/></RouteCatalog></CatalogLocations>
 <RoadNetwork><LogicFile filepath="road.xodr"/></RoadNetwork>
 <Entities>)" + test::vehicle("A") + test::vehicle("B") + R"(</Entities>
 <Storyboard><Init><Actions>)" + teleport("A", 50, 10) + teleport("B", 30, 10) + init_extra + R"(</Actions></Init>
@@ -191,6 +193,10 @@ class JunctionScenario : public ::testing::Test {
 </ConditionGroup></StartTrigger></Act></Story>
 <StopTrigger><ConditionGroup><Condition name="stop" delay="0" conditionEdge="none"><ByValueCondition><SimulationTimeCondition value="100" rule="greaterOrEqual"/></ByValueCondition></Condition></ConditionGroup></StopTrigger></Storyboard></OpenSCENARIO>)";
     dir_.write("road.xodr", test::xodr_three_way());
+    std::filesystem::create_directories(dir_ / "catalogs");
+    dir_.write("catalogs/routes.xosc", R"(<?xml version="1.0"?><OpenSCENARIO>
+<FileHeader revMajor="1" revMinor="2" date="2024-01-01T00:00:00" author="t" description="routes"/>
+<Catalog name="routes">)" + route_catalog + "</Catalog></OpenSCENARIO>");
     scenario_ = load_scenario(dir_.write("s.xosc", text).string());
     roads_ = opendrive::read_xodr_file((dir_ / "road.xodr").string());
     runtime_ = std::make_unique<StoryboardRuntime>(scenario_, roads_);
@@ -227,6 +233,16 @@ TEST_F(JunctionScenario, TheRoutedEntityTurnsAndTheOtherGoesStraightOn) {
   EXPECT_NEAR(entity("B").pose.y, -1.75, 1e-6);
 }
 
+TEST_F(JunctionScenario, ARouteFromTheRouteCatalogTurnsToo) {
+  load(event("Route", R"(<RoutingAction><AssignRouteAction><CatalogReference catalogName="routes" entryName="Left"/></AssignRouteAction></RoutingAction>)", 1),
+       "",
+       R"(<Route name="Left" closed="false"><Waypoint routeStrategy="leastIntersections">)" + lane_position("1", 60, -1) +
+           R"(</Waypoint><Waypoint routeStrategy="leastIntersections">)" + lane_position("3", 60, -1) + "</Waypoint></Route>");
+  test::run_until(*runtime_, 15);
+  EXPECT_EQ(entity("A").road_id, "3");
+  EXPECT_EQ(entity("B").road_id, "2");
+}
+
 TEST_F(JunctionScenario, AcquirePositionPlansThroughTheJunctionAndEndsThere) {
   load(event("Acquire", "<RoutingAction><AcquirePositionAction>" + lane_position("3", 20, -1) +
                             "</AcquirePositionAction></RoutingAction>",
@@ -252,7 +268,7 @@ TEST_F(JunctionScenario, AnUnreachableWaypointIsAnErrorNamingItsElement) {
   } catch (const MapError& e) {
     const std::string what = e.what();
     EXPECT_NE(what.find("waypoint 2 of route \"Back\" of \"A\" (/OpenSCENARIO/Storyboard/"), std::string::npos) << what;
-    EXPECT_NE(what.find("/Waypoint[2], line 21)"), std::string::npos) << what;
+    EXPECT_NE(what.find("/Waypoint[2], line 22)"), std::string::npos) << what;
     EXPECT_NE(what.find("cannot be reached"), std::string::npos) << what;
   }
 }
