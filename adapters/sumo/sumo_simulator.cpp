@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 #include <signal.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <numbers>
@@ -393,6 +394,17 @@ class SumoSimulator final : public Simulator {
       sumo::Vehicle::setSpeed(c.sumo_id, -1);      // its own speed from now on
       if (c.max_speed > 0) sumo::Vehicle::setMaxSpeed(c.sumo_id, c.max_speed);
       sent_.erase(c.sumo_id);
+    });
+  }
+
+  void execute(const engine::SetRoute& c) {
+    guard("giving a vehicle its route", [&] {
+      // SUMO wants the new route to start at the vehicle's current route edge.
+      const auto route = sumo::Vehicle::getRoute(c.sumo_id);
+      const int at = sumo::Vehicle::getRouteIndex(c.sumo_id);
+      if (at < 0 || at >= static_cast<int>(route.size())) return;
+      const auto from = std::find(c.edges.begin(), c.edges.end(), route[static_cast<std::size_t>(at)]);
+      if (from != c.edges.end()) sumo::Vehicle::setRoute(c.sumo_id, std::vector<std::string>(from, c.edges.end()));
     });
   }
 

@@ -148,6 +148,13 @@ struct ReleaseActor {  // a scripted vehicle is driven by SUMO from now on, at m
   double max_speed = 0;
 };
 
+// A SUMO-driven vehicle's route from now on (OpenSCENARIO routes and road links): the
+// simulator keeps the part from the vehicle's current route edge on.
+struct SetRoute {
+  std::string sumo_id;
+  std::vector<std::string> edges;
+};
+
 // The speed a built-in ego model (reference_driver/) drives in the next step: SUMO drives
 // exactly this speed (speed mode 0 from the first one on: no checks of SUMO's own).
 struct DriveSpeed {
@@ -156,6 +163,6 @@ struct DriveSpeed {
 };
 
 using Command = std::variant<SpawnVehicle, SpawnPerson, SetPose, SetSignals, SetMaxSpeed, SetStop, SetParameter,
-                             RemoveActor, ReleaseActor, DriveSpeed>;
+                             RemoveActor, ReleaseActor, DriveSpeed, SetRoute>;
 
 }  // namespace orch::engine

@@ -89,8 +89,15 @@ Pose2 Road::world(double s, double t) const {
   return {ref.x - t * std::sin(ref.heading), ref.y + t * std::cos(ref.heading), ref.heading};
 }
 
-RoadNetwork::RoadNetwork(std::vector<Road> roads) : roads_(std::move(roads)) {
+RoadNetwork::RoadNetwork(std::vector<Road> roads, std::vector<Junction> junctions)
+    : roads_(std::move(roads)), junctions_(std::move(junctions)) {
   for (std::size_t i = 0; i < roads_.size(); ++i) index_.emplace(roads_[i].id, i);
+}
+
+const Junction* RoadNetwork::junction(const std::string& junction_id) const {
+  for (const Junction& j : junctions_)
+    if (j.id == junction_id) return &j;
+  return nullptr;
 }
 
 const Road* RoadNetwork::find(const std::string& road_id) const {

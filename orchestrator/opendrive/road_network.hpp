@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "opendrive/plan_view.hpp"
+#include "opendrive/road_links.hpp"
 
 namespace orch::opendrive {
 
@@ -31,6 +32,7 @@ struct Lane {
   std::string type;                 // "driving", "stop", "border", "shoulder", "sidewalk", ...
   std::vector<CubicRecord> widths;  // s = sOffset from the section start
   std::vector<SpeedRecord> speeds;
+  std::optional<int> predecessor, successor;  // lane <link>: the lane before / after this section
   [[nodiscard]] double width(double ds_in_section) const;
 };
 
@@ -48,9 +50,11 @@ struct Road {
   std::string junction = "-1";
   bool left_hand_traffic = false;
   std::optional<double> type_speed_mps;  // road <type><speed max>, when given
+  std::string type;                      // road <type type>: "motorway", "town", ... ("" when none)
   PlanView plan_view;
   std::vector<CubicRecord> lane_offsets;  // s = road s
   std::vector<LaneSection> sections;      // sorted by s
+  RoadLink predecessor, successor;        // road <link>: what touches s = 0 / s = length
 
   [[nodiscard]] const LaneSection& section_at(double s) const;
   [[nodiscard]] double lane_offset(double s) const;
@@ -75,11 +79,13 @@ struct RoadCoordinate {
 class RoadNetwork {
  public:
   RoadNetwork() = default;
-  explicit RoadNetwork(std::vector<Road> roads);
+  explicit RoadNetwork(std::vector<Road> roads, std::vector<Junction> junctions = {});
   [[nodiscard]] const std::vector<Road>& roads() const { return roads_; }
   [[nodiscard]] const Road* find(const std::string& road_id) const;
   // Throws MapError naming the road when it is missing.
   [[nodiscard]] const Road& road(const std::string& road_id) const;
+  [[nodiscard]] const std::vector<Junction>& junctions() const { return junctions_; }
+  [[nodiscard]] const Junction* junction(const std::string& junction_id) const;
 
   // Inertial pose of the centre of `lane_id` at s, moved `offset` metres to the left of it.
   [[nodiscard]] Pose2 lane_pose(const std::string& road_id, int lane_id, double s, double offset) const;
@@ -90,6 +96,7 @@ class RoadNetwork {
  private:
   std::vector<Road> roads_;
   std::map<std::string, std::size_t> index_;
+  std::vector<Junction> junctions_;
 };
 
 // Projection of (x, y) onto one road's reference line: nearest s in [0, length] and signed t.

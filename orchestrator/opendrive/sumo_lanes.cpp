@@ -6,6 +6,7 @@
 #include <set>
 
 #include "core/errors.hpp"
+#include "opendrive/lane_graph.hpp"
 #include "opendrive/sumo_net.hpp"
 
 namespace orch::opendrive {
@@ -38,6 +39,12 @@ SumoLaneIndex::SumoLaneIndex(const RoadNetwork& roads, const std::string& net_fi
     for ([[maybe_unused]] const pugi::xml_node lane : edge.children("lane")) ++lanes;
     lane_counts_[edge.attribute("id").value()] = lanes;
   }
+  for (const pugi::xml_node c : doc.child("net").children("connection"))
+    connections_.emplace(c.attribute("from").value(), c.attribute("to").value());
+}
+
+bool SumoLaneIndex::connected(const std::string& from, const std::string& to) const {
+  return connections_.count({from, to}) > 0;
 }
 
 std::optional<SumoLane> SumoLaneIndex::find(const std::string& road_id, int lane_id, double s) const {
@@ -49,8 +56,7 @@ std::optional<SumoLane> SumoLaneIndex::find(const std::string& road_id, int lane
   // netconvert splits the road's edges at its lane sections and numbers the pieces along s
   // on both sides (checked against netconvert 1.15 in test_opendrive_sumo_lanes.cpp).
   std::string edge;
-  std::size_t section_index = 0;
-  while (section_index + 1 < road->sections.size() && road->sections[section_index + 1].s <= s + 1e-9) ++section_index;
+  const std::size_t section_index = opendrive::section_index(*road, s);
   if (lane_counts_.count(base)) {
     edge = base;
   } else {

@@ -6,6 +6,7 @@
 // (lane_type_map_xml) are dropped and SUMO lane 0 is the outermost of those kept.
 #include <map>
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -26,10 +27,14 @@ class SumoLaneIndex {
   // The SUMO lane of OpenDRIVE lane `lane_id` of `road_id` at `s`; nullopt when netconvert
   // made none of it (a discarded lane type, the centre lane, an unknown road).
   [[nodiscard]] std::optional<SumoLane> find(const std::string& road_id, int lane_id, double s) const;
+  [[nodiscard]] const RoadNetwork& roads() const { return roads_; }
+  // Whether the net lets a vehicle drive from edge `from` onto edge `to` (a <connection>).
+  [[nodiscard]] bool connected(const std::string& from, const std::string& to) const;
 
  private:
   const RoadNetwork& roads_;
   std::map<std::string, int> lane_counts_;  // edge id -> number of lanes
+  std::set<std::pair<std::string, std::string>> connections_;  // (from edge, to edge)
 };
 
 }  // namespace orch::opendrive

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <optional>
+#include <set>
 #include <string_view>
 
 #include <fmt/format.h>
@@ -31,7 +32,10 @@ class Reader {
     std::vector<Road> roads;
     for (const pugi::xml_node road : root.children("road")) roads.push_back(read_road(road));
     if (roads.empty()) src_.fail(root, "the OpenDRIVE file holds no road");
-    return RoadNetwork(std::move(roads));
+    std::vector<Junction> junctions;
+    for (const pugi::xml_node junction : root.children("junction")) junctions.push_back(read_junction(junction));
+    check_links(root, roads);
+    return RoadNetwork(std::move(roads), std::move(junctions));
   }
 
  private:
@@ -88,6 +92,83 @@ class Reader {
                         fmt::format("expected a speed unit m/s, km/h or mph, found \"{}\"", unit));
   }
 
+  ContactPoint contact_point(const pugi::xml_node& node) const {
+    const pugi::xml_attribute a = node.attribute("contactPoint");
+    if (!a) return ContactPoint::None;
+    const std::string_view value = a.value();
+    if (value == "start") return ContactPoint::Start;
+    if (value == "end") return ContactPoint::End;
+    throw ScenarioError(src_.where(node, "contactPoint"),
+                        fmt::format("expected contactPoint \"start\" or \"end\", found \"{}\"", value));
+  }
+
+  // <predecessor>/<successor> of a road's <link>.
+  RoadLink road_link(const pugi::xml_node& node) const {
+    RoadLink link;
+    if (!node) return link;
+    const std::string type = node.attribute("elementType").as_string("road");
+    if (type == "road") link.kind = RoadLink::Kind::Road;
+    else if (type == "junction") link.kind = RoadLink::Kind::Junction;
+    else
+      throw ScenarioError(src_.where(node, "elementType"),
+                          fmt::format("expected elementType \"road\" or \"junction\", found \"{}\"{}", type,
+                                      did_you_mean(type, {"road", "junction"})));
+    link.id = node.attribute("elementId").as_string();
+    if (link.id.empty()) throw ScenarioError(src_.where(node, "elementId"), "link without an elementId");
+    link.contact = contact_point(node);
+    return link;
+  }
+
+  std::optional<int> lane_link(const pugi::xml_node& node) const {
+    if (!node) return std::nullopt;
+    return static_cast<int>(number(node, "id"));
+  }
+
+  Junction read_junction(const pugi::xml_node& node) const {
+    Junction junction;
+    junction.id = node.attribute("id").as_string();
+    if (junction.id.empty()) throw ScenarioError(src_.where(node, "id"), "junction without an id");
+    for (const pugi::xml_node c : node.children("connection")) {
+      JunctionConnection connection;
+      connection.id = c.attribute("id").as_string();
+      connection.incoming_road = c.attribute("incomingRoad").as_string();
+      connection.connecting_road = c.attribute("connectingRoad").as_string();
+      // A direct junction (OpenDRIVE 1.7) links the incoming road straight to `linkedRoad`.
+      if (connection.connecting_road.empty()) connection.connecting_road = c.attribute("linkedRoad").as_string();
+      if (connection.incoming_road.empty() || connection.connecting_road.empty())
+        src_.fail(c, "connection without incomingRoad, or without connectingRoad or linkedRoad");
+      const ContactPoint contact = contact_point(c);
+      connection.contact = contact == ContactPoint::None ? ContactPoint::Start : contact;
+      for (const pugi::xml_node l : c.children("laneLink"))
+        connection.lane_links.push_back({static_cast<int>(number(l, "from")), static_cast<int>(number(l, "to"))});
+      junction.connections.push_back(std::move(connection));
+    }
+    return junction;
+  }
+
+  // Every road a link or connection names exists (a dangling road link is a broken file).
+  // A link to a junction the file does not define is a dead end: netconvert's OpenDRIVE
+  // output links the roads at dead-end nodes to junctions it does not write.
+  void check_links(const pugi::xml_node& root, const std::vector<Road>& roads) const {
+    std::vector<std::string> road_ids;
+    for (const Road& r : roads) road_ids.push_back(r.id);
+    const std::set<std::string> known(road_ids.begin(), road_ids.end());
+    const auto check = [&](const pugi::xml_node& at, const std::string& id) {
+      if (!known.count(id))
+        src_.fail(at, fmt::format("link to the unknown road \"{}\"{}", id, did_you_mean(id, road_ids)));
+    };
+    for (const pugi::xml_node road : root.children("road"))
+      for (const char* end : {"predecessor", "successor"})
+        if (const pugi::xml_node l = road.child("link").child(end))
+          if (std::string_view(l.attribute("elementType").as_string("road")) == "road")
+            check(l, l.attribute("elementId").as_string());
+    for (const pugi::xml_node junction : root.children("junction"))
+      for (const pugi::xml_node c : junction.children("connection")) {
+        check(c, c.attribute("incomingRoad").as_string());
+        check(c, c.attribute(c.attribute("connectingRoad") ? "connectingRoad" : "linkedRoad").as_string());
+      }
+  }
+
   Lane read_lane(const pugi::xml_node& node) const {
     Lane lane;
     lane.id = node.attribute("id").as_int();
@@ -99,6 +180,8 @@ class Reader {
                      [](const CubicRecord& a, const CubicRecord& b) { return a.s < b.s; });
     for (const pugi::xml_node sp : node.children("speed"))
       lane.speeds.push_back({number(sp, "sOffset", 0.0), speed_mps(sp)});
+    lane.predecessor = lane_link(node.child("link").child("predecessor"));
+    lane.successor = lane_link(node.child("link").child("successor"));
     return lane;
   }
 
@@ -127,8 +210,12 @@ class Reader {
     road.length = number(node, "length");
     road.junction = node.attribute("junction").as_string("-1");
     road.left_hand_traffic = std::string_view(node.attribute("rule").as_string("RHT")) == "LHT";
-    for (const pugi::xml_node type : node.children("type"))
+    road.predecessor = road_link(node.child("link").child("predecessor"));
+    road.successor = road_link(node.child("link").child("successor"));
+    for (const pugi::xml_node type : node.children("type")) {
       if (const pugi::xml_node speed = type.child("speed")) road.type_speed_mps = speed_mps(speed);
+      if (road.type.empty()) road.type = type.attribute("type").as_string();
+    }
     std::vector<Geometry> geometries;
     for (const pugi::xml_node g : node.child("planView").children("geometry"))
       geometries.push_back(Geometry{number(g, "s"), {number(g, "x"), number(g, "y"), number(g, "hdg")},

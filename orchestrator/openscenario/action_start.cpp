@@ -8,6 +8,7 @@
 
 #include "core/errors.hpp"
 #include "openscenario/expression.hpp"
+#include "openscenario/route_plan.hpp"
 #include "openscenario/text_number.hpp"
 #include "openscenario/transition_shape.hpp"
 
@@ -141,6 +142,18 @@ bool reached(const EntityState& state, const EntityState::Waypoint& w, const ope
 void count_passed_waypoints(EntityState& state, const opendrive::RoadNetwork& roads) {
   while (state.route_passed < state.route.size() && reached(state, state.route[state.route_passed], roads))
     ++state.route_passed;
+}
+
+// The route's waypoints as planning targets, each named with its element for messages.
+std::vector<RouteTarget> route_targets(const AssignRouteAction& a, const EntityState& state, const std::string& entity) {
+  std::vector<RouteTarget> targets;
+  for (std::size_t i = 0; i < state.route.size(); ++i) {
+    const Place place = i < a.waypoint_places.size() ? a.waypoint_places[i] : Place{};
+    targets.push_back({state.route[i], route_strategy(i < a.strategies.size() ? a.strategies[i] : "shortest"),
+                       fmt::format("waypoint {} of route \"{}\" of \"{}\" ({}, line {})", i + 1, a.name, entity,
+                                   place.path, place.line)});
+  }
+  return targets;
 }
 
 PathMotion trajectory_path(const FollowTrajectoryAction& a, ActionContext& ctx, const std::string& entity) {
@@ -281,9 +294,14 @@ std::vector<std::string> start_action(const PrivateAction& action, const std::st
                                               fmt::format("waypoint {} of route \"{}\" of \"{}\"", i + 1, a.name, entity)));
           state.route_passed = 0;
           if (state.placed) count_passed_waypoints(state, ctx.roads);
+          plan_entity_route(state, ctx.roads, route_targets(a, state, entity), a.closed);
         } else if constexpr (std::is_same_v<T, AcquirePositionAction>) {
           state.route = {waypoint_at(a.position, ctx, fmt::format("the position \"{}\" is to acquire", entity))};
           state.route_passed = 0;
+          plan_entity_route(state, ctx.roads,
+                            {{state.route[0], opendrive::RouteStrategy::Shortest,
+                              fmt::format("the position \"{}\" is to acquire", entity)}},
+                            false);
           take_over(MotionDomain::Route, true, false);
         } else if constexpr (std::is_same_v<T, AddEntityAction>) {
           EntityState& added = state_of(ctx, a.entity);

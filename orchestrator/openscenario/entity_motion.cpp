@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "openscenario/road_following.hpp"
 #include "openscenario/transition_shape.hpp"
 
 namespace orch::openscenario {
@@ -22,10 +23,7 @@ double LateralProfile::rate(double t) const {
   return (to - from) * shape_slope(shape, (t - start) / duration) / duration;
 }
 
-int travel_direction(const opendrive::Road& road, int lane) {
-  const bool right = lane < 0;
-  return (right != road.left_hand_traffic) ? 1 : -1;
-}
+int travel_direction(const opendrive::Road& road, int lane) { return opendrive::lane_direction(road, lane); }
 
 void update_pose(EntityState& state, const opendrive::RoadNetwork& roads) {
   const opendrive::Road& road = roads.road(state.road_id);
@@ -102,7 +100,9 @@ void advance(EntityState& state, const opendrive::RoadNetwork& roads, double t, 
   // The speed is along the entity's own path, at lateral position t: on a curve of
   // curvature k that path is (1 - k t) times as long as the reference line.
   const double stretch = 1.0 - road.plan_view.curvature(state.s) * state.t;
+  const std::size_t section = opendrive::section_index(road, std::clamp(state.s, 0.0, road.length));
   state.s += travel_direction(road, state.lane) * along * dt / (stretch > 0.1 ? stretch : 0.1);
+  follow_links(state, roads, section);  // lane sections, and on past the road's end
   state.odometer += std::abs(state.speed) * dt;
   update_pose(state, roads);
 }

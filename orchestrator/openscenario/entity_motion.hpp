@@ -6,6 +6,7 @@
 #include <optional>
 #include <string>
 
+#include "opendrive/lane_graph.hpp"
 #include "opendrive/road_network.hpp"
 #include "openscenario/model.hpp"
 #include "openscenario/trajectory_motion.hpp"
@@ -56,6 +57,13 @@ struct EntityState {
   };
   std::vector<Waypoint> route;
   std::size_t route_passed = 0;
+  // The lanes the route planned (openscenario/route_plan.hpp), taken in order where a lane
+  // continues on several (road_following.hpp); route_plan_next is the next one to take. A
+  // closed route's plan goes on from route_plan_loop after its last lane.
+  std::vector<opendrive::LaneEntry> route_plan;
+  std::size_t route_plan_next = 0;
+  std::optional<std::size_t> route_plan_loop;
+  std::size_t route_version = 0;  // counts the plans made (a simulator re-routes on a change)
 };
 
 // Direction of travel along s: +1 on right lanes, -1 on left lanes (right-hand traffic;

@@ -162,6 +162,8 @@ struct AssignRouteAction {
   std::string name;
   bool closed = false;
   std::vector<Position> waypoints;
+  std::vector<std::string> strategies;  // each Waypoint's routeStrategy (the leg leading to it)
+  std::vector<Place> waypoint_places;   // each Waypoint's element, for runtime messages
 };
 struct AcquirePositionAction { Position position; };
 // Global actions (no actors).

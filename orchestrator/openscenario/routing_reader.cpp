@@ -14,10 +14,11 @@ AssignRouteAction read_route(Element& route) {
   a.closed = route.optional_boolean("closed").value_or(false);
   route.ignore_children({"ParameterDeclarations"});  // catalog entries: read by Context::resolve
   for (Element waypoint : route.children("Waypoint")) {
-    waypoint.choice<std::string>("routeStrategy", {{"fastest", "fastest"},
-                                                   {"shortest", "shortest"},
-                                                   {"leastIntersections", "leastIntersections"},
-                                                   {"random", "random"}});
+    a.strategies.push_back(waypoint.choice<std::string>("routeStrategy", {{"fastest", "fastest"},
+                                                                          {"shortest", "shortest"},
+                                                                          {"leastIntersections", "leastIntersections"},
+                                                                          {"random", "random"}}));
+    a.waypoint_places.push_back(waypoint.place());
     Element position = waypoint.child("Position");
     a.waypoints.push_back(read_position(position));
     waypoint.finish();

@@ -8,6 +8,7 @@
 #include "core/errors.hpp"
 #include "openscenario/action_start.hpp"
 #include "openscenario/entity_measures.hpp"
+#include "openscenario/road_following.hpp"
 #include "openscenario/rule.hpp"
 #include "openscenario/text_number.hpp"
 
@@ -157,8 +158,7 @@ struct StoryboardRuntime::Impl {
           if constexpr (std::is_same_v<T, StandStillCondition>)
             return held_for(m, name, std::abs(self.speed) < 1e-6, k.duration);
           if constexpr (std::is_same_v<T, EndOfRoadCondition>) {
-            const double length = roads.road(self.road_id).length;
-            return held_for(m, name, self.s <= 1e-6 || self.s >= length - 1e-6, k.duration);
+            return held_for(m, name, at_dead_end(self, roads), k.duration);
           }
           if constexpr (std::is_same_v<T, OffroadCondition>)
             return held_for(m, name, !resolver.locate(self.pose).lane.has_value(), k.duration);

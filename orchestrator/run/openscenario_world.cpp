@@ -7,6 +7,8 @@
 
 #include "core/errors.hpp"
 #include "core/suggest.hpp"
+#include "opendrive/sumo_route.hpp"
+#include "openscenario/route_plan.hpp"
 #include "run/openscenario_ego_choice.hpp"
 
 namespace orch {
@@ -74,6 +76,11 @@ Vec2 OpenScenarioActors::reference_point(const engine::ActorState& state) const 
 }
 
 
+std::vector<std::string> OpenScenarioActors::sumo_route_of(const openscenario::EntityState& state) const {
+  return opendrive::sumo_route(lanes_, lanes_.roads(), state.road_id, state.lane, state.s,
+                               openscenario::lanes_ahead(state, lanes_.roads()));
+}
+
 void OpenScenarioActors::spawn(const std::string& name, Body& body, const openscenario::EntityState& state,
                                std::vector<engine::Command>& out) {
   const auto hint = lanes_.find(state.road_id, state.lane, state.s);
@@ -94,6 +101,9 @@ void OpenScenarioActors::spawn(const std::string& name, Body& body, const opensc
   command.speed = state.speed;
   if (body.driven) {
     command.scripted = false;
+    // SUMO drives it: along its route plan and on through the net, not one edge and gone.
+    if (auto route = sumo_route_of(state); !route.empty() && route.front() == hint->edge) command.route = std::move(route);
+    body.route_version = state.route_version;
     body.desired_speed = storyboard_desired_speed(state, -1);
     command.max_speed = name == ego_ ? ego_drive_.spawn_speed(state) : body.desired_speed;
   }
@@ -127,6 +137,7 @@ std::vector<engine::Command> OpenScenarioActors::place(const std::map<std::strin
       if (hand_over) out.push_back(engine::ReleaseActor{body.sumo_id, desired});
       else if (desired != body.desired_speed) out.push_back(engine::SetMaxSpeed{body.sumo_id, desired});
       body.desired_speed = desired;
+      if (hand_over || body.route_version != state.route_version) set_route(body, state, out);
       continue;
     }
     const auto hint = lanes_.find(state.road_id, state.lane, state.s);
@@ -142,12 +153,21 @@ std::vector<engine::Command> OpenScenarioActors::place(const std::map<std::strin
     pose.centred = std::abs(state.offset) < 0.5;
     if (is_ego && !first) {  // who moves the ego this step: openscenario_ego.hpp
       for (auto& c : ego_drive_.commands(state, pose)) out.push_back(std::move(c));
+      // A route assigned later (the plug-in, once it drives, gets nothing from the orchestrator).
+      if (body.route_version != state.route_version && ego_drive_.driver(state) != OpenScenarioEgo::Driver::Plugin)
+        set_route(body, state, out);
       continue;
     }
     pose.scripted = !body.driven;  // SUMO-driven: one placement, then SUMO drives
     out.push_back(std::move(pose));
   }
   return out;
+}
+
+void OpenScenarioActors::set_route(Body& body, const openscenario::EntityState& state,
+                                   std::vector<engine::Command>& out) {
+  body.route_version = state.route_version;
+  if (auto route = sumo_route_of(state); !route.empty()) out.push_back(engine::SetRoute{body.sumo_id, std::move(route)});
 }
 
 std::vector<std::string> OpenScenarioActors::sumo_driven() const {

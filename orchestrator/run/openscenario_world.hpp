@@ -56,8 +56,12 @@ class OpenScenarioActors {
     std::string sumo_id;
     bool driven = false;      // by SUMO (the ego, an activated controller)
     double desired_speed = -1;  // last sent to a SUMO-driven one
+    std::size_t route_version = 0;  // of the entity's route plan its SUMO route was made from
   };
   [[nodiscard]] Vec2 centre_of(const Body& body, const opendrive::Pose2& pose) const;
+  // SUMO edges for a SUMO-driven entity: its road, its planned lanes, then straight on.
+  [[nodiscard]] std::vector<std::string> sumo_route_of(const openscenario::EntityState& state) const;
+  void set_route(Body& body, const openscenario::EntityState& state, std::vector<engine::Command>& out);
   void spawn(const std::string& name, Body& body, const openscenario::EntityState& state,
              std::vector<engine::Command>& out);
 

@@ -158,10 +158,12 @@ TEST_F(OpenScenarioActorsOnRoad3, DeletedOrInvisibleEntitiesLeaveSumoActivatedCo
 
   entities["Lead"].controller = "Driver";
   entities["Lead"].controller_active = true;
+  const std::string spawn_edge = std::get<engine::SpawnVehicle>(out[0]).edge;
   out = actors.place(entities);
-  ASSERT_EQ(out.size(), 1u);
+  ASSERT_EQ(out.size(), 2u);  // handed over, with the route on from its lane (this road's edge: no links)
   EXPECT_EQ(std::get<engine::ReleaseActor>(out[0]).sumo_id, "Lead~2");
   EXPECT_DOUBLE_EQ(std::get<engine::ReleaseActor>(out[0]).max_speed, 20);
+  EXPECT_EQ(std::get<engine::SetRoute>(out[1]).edges, std::vector<std::string>{spawn_edge});
   EXPECT_TRUE(actors.is_sumo_driven("Lead"));
   EXPECT_EQ(actors.sumo_driven(), std::vector<std::string>{"Lead"});
   EXPECT_TRUE(actors.place(entities).empty());  // SUMO drives it now
