@@ -52,6 +52,11 @@ const WaypointRoute& PositionResolver::route(const WaypointRef& ref) const {
   return *r;
 }
 
+RoutePlace PositionResolver::place(const WaypointRef& ref) const {
+  const WaypointRoute& r = route(ref);
+  return {&r, r.s_of(std::min(ref.wp_idx, r.last_index()))};
+}
+
 ResolvedPosition PositionResolver::resolve(const Position& position, const EntityPoseLookup& entity_pose) const {
   return resolve(position, PoseLookupEntities(entity_pose));
 }
@@ -88,8 +93,8 @@ ResolvedPosition PositionResolver::resolve(const Position& position, const Entit
       [&](const auto& kind) -> ResolvedPosition {
         using T = std::decay_t<decltype(kind)>;
         if constexpr (std::is_same_v<T, WaypointRef>) {
-          const WaypointRoute& r = route(kind);
-          return on_route(r, r.s_of(std::min(kind.wp_idx, r.last_index())));  // past the end: the last point
+          const RoutePlace at = place(kind);
+          return on_route(*at.route, at.s);
         } else if constexpr (std::is_same_v<T, RouteDistance>) {
           // Along the route from the point of it nearest the target (bumper to bumper:
           // half of both lengths further).

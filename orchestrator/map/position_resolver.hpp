@@ -61,8 +61,10 @@ class PositionResolver {
   [[nodiscard]] ResolvedPosition resolve(const Position& position, const EntityPoseLookup& entity_pose) const;
   // OpenDRIVE: the road point and lane of an inertial point (the nearest road).
   [[nodiscard]] ResolvedPosition locate(const opendrive::Pose2& pose) const;
-  // Waypoint maps: the route a WaypointRef names (ScenarioError at the reference if none).
+  // Waypoint maps: the route a WaypointRef names (ScenarioError at the reference if none),
+  // and its place on it (past the route's end: the last point).
   [[nodiscard]] const WaypointRoute& route(const WaypointRef& ref) const;
+  [[nodiscard]] RoutePlace place(const WaypointRef& ref) const;
 
  private:
   [[nodiscard]] const opendrive::RoadNetwork& roads() const;
