@@ -1,5 +1,7 @@
 #include "engine/conditions.hpp"
 
+#include "map/position_resolver.hpp"
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -27,10 +29,9 @@ double half_length(const ActorTable& actors, ActorId id) {
   return s ? s->model.length / 2 : 0.0;
 }
 
-Vec2 waypoint_point(const WaypointFile& wps, const WaypointRef& ref) {
-  const WaypointRoute* r = wps.find(ref.wp_id);
-  const double idx = std::min(ref.wp_idx, r->last_index());  // past the end = last point
-  return r->line.point_at(r->s_of(idx));
+Vec2 waypoint_point(const WaypointFile& wps, const WaypointRef& ref) {  // past the end: the last point
+  const position::RoutePlace place = position::PositionResolver(wps).place(ref);
+  return place.route->line.point_at(place.s);
 }
 
 double point_segment_distance(const Vec2& p, const Vec2& a, const Vec2& b) {

@@ -10,6 +10,7 @@
 
 #include "engine/conditions.hpp"
 #include "engine/engine.hpp"
+#include "map/position_resolver.hpp"
 
 namespace orch::engine {
 
@@ -80,8 +81,9 @@ void Engine::start_route_move(const RouteMoveAction& a, ScriptedMotion& m, doubl
   std::vector<std::pair<Vec2, double>> walk;
   std::vector<RouteLegTarget> drive;
   for (const auto& leg : a.legs) {
-    const WaypointRoute* r = map_.waypoints.find(leg.waypoint->wp_id);
-    const double s = r->s_of(std::min(leg.waypoint->wp_idx, r->last_index()));
+    const position::RoutePlace place = position::PositionResolver(map_.waypoints).place(*leg.waypoint);
+    const WaypointRoute* r = place.route;
+    const double s = place.s;
     walk.emplace_back(r->line.offset_point(s, leg.wp_offset.value_or(0.0)), leg.time);
     drive.push_back({r, s, leg.wp_offset.value_or(0.0), leg.time});
   }

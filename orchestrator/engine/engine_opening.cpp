@@ -5,6 +5,7 @@
 
 #include "core/errors.hpp"
 #include "engine/engine.hpp"
+#include "map/position_resolver.hpp"
 
 namespace orch::engine {
 
@@ -12,10 +13,32 @@ using namespace orch::scenario;
 
 namespace {
 
-const WaypointRoute& route_named(const WaypointFile& wps, const std::string& id, const SourceLocation& where) {
-  const WaypointRoute* r = wps.find(id);
-  if (!r) throw ScenarioError(where, "no route \"" + id + "\" in the map's waypoint file");
-  return *r;
+// The actors placed so far, for positions relative to them (by id in decimal).
+class PlacedActors final : public position::Entities {
+ public:
+  PlacedActors(const WorldSnapshot& snapshot, const ActorTable& actors,
+               std::function<const WaypointRoute*(ActorId)> route_of)
+      : snapshot_(snapshot), actors_(actors), route_of_(std::move(route_of)) {}
+  [[nodiscard]] std::optional<opendrive::Pose2> pose(const std::string& name) const override {
+    const ActorState* a = snapshot_.find(std::stoi(name));
+    if (!a) return std::nullopt;
+    return opendrive::Pose2{a->position.x(), a->position.y(), a->heading};
+  }
+  [[nodiscard]] const WaypointRoute* route(const std::string& name) const override { return route_of_(std::stoi(name)); }
+  [[nodiscard]] double length(const std::string& name) const override {
+    const ActorSlot* slot = actors_.find(std::stoi(name));
+    return slot ? slot->model.length : 0.0;
+  }
+
+ private:
+  const WorldSnapshot& snapshot_;
+  const ActorTable& actors_;
+  std::function<const WaypointRoute*(ActorId)> route_of_;
+};
+
+// A WaypointRef's route and arc length.
+position::RoutePlace route_place(const WaypointFile& wps, const WaypointRef& ref) {
+  return position::PositionResolver(wps).place(ref);
 }
 
 // Initial speed from a start_speed block, evaluated at t = 0 against speeds already known.
@@ -33,23 +56,20 @@ double initial_speed(const std::optional<SpeedAction>& start, const std::map<Act
 }  // namespace
 
 double Engine::ego_start_s() const {
-  const WaypointRef& w = *scenario_.opening.ego.start.waypoint;
-  return ego_route_->s_of(w.wp_idx);
+  return route_place(map_.waypoints, *scenario_.opening.ego.start.waypoint).s;
 }
 
 void Engine::spawn_ego(StepOutput& out) {
   const EgoOpening& o = scenario_.opening.ego;
-  const WaypointRef& start = *o.start.waypoint;
-  ego_route_ = &route_named(map_.waypoints, start.wp_id, start.where);
+  ego_route_ = route_place(map_.waypoints, *o.start.waypoint).route;
   ego_s_ = ego_start_s();
   double end_s = ego_route_->line.length();
   if (o.end) {
-    const WaypointRoute& end_route = route_named(map_.waypoints, o.end->wp_id, o.end->where);
-    const double idx = std::min(o.end->wp_idx, end_route.last_index());
-    const Vec2 end_point = end_route.line.point_at(end_route.s_of(idx));
+    const position::RoutePlace end = route_place(map_.waypoints, *o.end);
+    const Vec2 end_point = end.route->line.point_at(end.s);
     // The ego drives its own route; an end on another route means the point beside it (on
     // its own route the waypoint itself: a loop passes the point's place more than once).
-    end_s = &end_route == ego_route_ ? end_route.s_of(idx) : ego_route_->line.project(end_point).s;
+    end_s = end.route == ego_route_ ? end.s : ego_route_->line.project(end_point).s;
   }
   if (end_s <= ego_s_) {
     out.events.push_back({0, EventKind::Warning, "the ego's end_position is not ahead of its start: it stays where it starts"});
@@ -99,25 +119,15 @@ void Engine::spawn_ego(StepOutput& out) {
 void Engine::place_other(const OtherOpening& o) {
   const ActorSlot& slot = *actors_.find(o.actor);
   const StartPosition& p = o.start;
-  const WaypointRoute* route = nullptr;
-  double s = 0;
-  if (p.type == StartPositionType::Waypoint) {
-    route = &route_named(map_.waypoints, p.waypoint->wp_id, p.waypoint->where);
-    s = route->s_of(p.waypoint->wp_idx);
-  } else {
+  if (p.type == StartPositionType::Distance) {
     const ActorId target = p.target.value_or(scenario_.ego.id);
-    const WaypointRoute* target_route = route_of(target);
-    const ActorState* target_state = current_.find(target);
-    if (!target_route || !target_state) throw ScenarioError(p.where, "the start position's target actor is not placed");
-    route = p.waypoint ? &route_named(map_.waypoints, p.waypoint->wp_id, p.waypoint->where) : target_route;
-    const auto proj = route->line.project(target_state->position);
-    double offset = p.distance;
-    if (p.measure == MeasureType::Surface) {
-      const double halves = (slot.model.length + actors_.find(target)->model.length) / 2;
-      offset += offset >= 0 ? halves : -halves;
-    }
-    s = proj.s + offset;
+    if (!route_of(target) || !current_.find(target)) throw ScenarioError(p.where, "the start position's target actor is not placed");
   }
+  const PlacedActors placed(current_, actors_, [this](ActorId id) { return route_of(id); });
+  const position::RoutePlace place =
+      *position::PositionResolver(map_.waypoints).resolve(p.position(scenario_.ego.id), placed, slot.model.length).route;
+  const WaypointRoute* route = place.route;
+  const double s = place.s;
   std::map<ActorId, double> speeds;
   for (const auto& a : current_.actors) speeds[a.id] = a.speed;
   const double v0 = initial_speed(o.start_speed, speeds);

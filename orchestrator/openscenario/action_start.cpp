@@ -10,6 +10,7 @@
 #include "openscenario/expression.hpp"
 #include "openscenario/route_plan.hpp"
 #include "openscenario/text_number.hpp"
+#include "openscenario/trajectory_follow.hpp"
 #include "openscenario/transition_shape.hpp"
 
 namespace orch::openscenario {
@@ -279,7 +280,10 @@ std::vector<std::string> start_action(const PrivateAction& action, const std::st
           if (!state.placed) throw MapError(fmt::format("entity \"{}\" has no position yet", entity));
           state.path = trajectory_path(a, ctx, entity);
           state.lateral_profile.reset();
-          state.pose = state.path->pose_at(state.path->distance);
+          if (a.follow_mode)  // stays where it is; its controller steers onto the path
+            start_following(*state.path, state.pose, state.speed, follow_limits(*ctx.scenario.entity(entity)));
+          else
+            state.pose = state.path->pose_at(state.path->distance);
           relocate(state, ctx.roads);
           // Timed: the trajectory sets the speed too; untimed: the speed actions keep it.
           if (a.timing) {

@@ -5,11 +5,17 @@
 #include <string>
 #include <vector>
 
+#include "map/position_resolver.hpp"
 #include "openscenario/entity_motion.hpp"
 #include "openscenario/model.hpp"
-#include "openscenario/position_resolver.hpp"
 
 namespace orch::openscenario {
+
+// Positions are resolved in map/ (one resolver for both scenario languages).
+using position::EntityPoseLookup;
+using position::PositionResolver;
+using position::ResolvedPosition;
+using position::shifted_lane;
 
 struct ActionContext {
   const Scenario& scenario;

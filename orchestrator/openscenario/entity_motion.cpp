@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "openscenario/road_following.hpp"
+#include "openscenario/trajectory_follow.hpp"
 #include "openscenario/transition_shape.hpp"
 
 namespace orch::openscenario {
@@ -65,17 +66,23 @@ void advance_on_path(EntityState& state, const opendrive::RoadNetwork& roads, do
   PathMotion& path = *state.path;
   const double previous_speed = state.speed;
   const double before = path.distance;
-  if (path.timed) {
-    path.distance = path.distance_at(t);
-    state.speed = dt > 0 ? (path.distance - before) / dt : 0.0;
+  if (path.follower) {  // followingMode "follow": tracked under the entity's own limits
+    const std::optional<double> profile =
+        state.speed_profile ? std::optional<double>(state.speed_profile->at(t)) : std::nullopt;
+    state.odometer += follow_step(path, state.pose, state.speed, profile, t, dt);
   } else {
-    if (state.speed_profile) state.speed = state.speed_profile->at(t);
-    path.distance = std::min(path.length(), before + std::max(state.speed, 0.0) * dt);
+    if (path.timed) {
+      path.distance = path.distance_at(t);
+      state.speed = dt > 0 ? (path.distance - before) / dt : 0.0;
+    } else {
+      if (state.speed_profile) state.speed = state.speed_profile->at(t);
+      path.distance = std::min(path.length(), before + std::max(state.speed, 0.0) * dt);
+    }
+    state.odometer += std::abs(path.distance - before);
+    state.pose = path.pose_at(path.distance);
   }
   state.acceleration = dt > 0 ? (state.speed - previous_speed) / dt : 0.0;
   state.lateral_rate = 0.0;
-  state.odometer += std::abs(path.distance - before);
-  state.pose = path.pose_at(path.distance);
   relocate(state, roads);
 }
 

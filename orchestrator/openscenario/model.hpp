@@ -9,6 +9,8 @@
 #include <variant>
 #include <vector>
 
+#include "map/position.hpp"
+
 namespace orch::openscenario {
 
 struct Place {  // where an element came from, for runtime messages
@@ -53,29 +55,17 @@ struct Entity {
 };
 
 // ---- Positions ----------------------------------------------------------------------
-struct Orientation {
-  bool relative = true;  // "relative" (to the road / reference) or "absolute"
-  double h = 0;
-};
-struct WorldPosition { double x = 0, y = 0; std::optional<double> h; };
-struct RelativeWorldPosition { std::string entity; double dx = 0, dy = 0; std::optional<Orientation> orientation; };
-struct RelativeObjectPosition { std::string entity; double dx = 0, dy = 0; std::optional<Orientation> orientation; };
-struct RoadPosition { std::string road_id; double s = 0, t = 0; std::optional<Orientation> orientation; };
-struct RelativeRoadPosition { std::string entity; double ds = 0, dt = 0; std::optional<Orientation> orientation; };
-struct LanePosition {
-  std::string road_id;
-  int lane_id = 0;
-  double s = 0, offset = 0;
-  std::optional<Orientation> orientation;
-};
-struct RelativeLanePosition {
-  std::string entity;
-  int d_lane = 0;
-  double ds = 0, offset = 0;
-  std::optional<Orientation> orientation;
-};
-using Position = std::variant<WorldPosition, RelativeWorldPosition, RelativeObjectPosition, RoadPosition,
-                              RelativeRoadPosition, LanePosition, RelativeLanePosition>;
+// One variant for both languages, resolved in map/ (map/position_resolver.hpp); the reader
+// produces the seven OpenSCENARIO kinds.
+using position::LanePosition;
+using position::Orientation;
+using position::Position;
+using position::RelativeLanePosition;
+using position::RelativeObjectPosition;
+using position::RelativeRoadPosition;
+using position::RelativeWorldPosition;
+using position::RoadPosition;
+using position::WorldPosition;
 
 // ---- Actions ------------------------------------------------------------------------
 enum class DynamicsShape { Step, Linear, Cubic, Sinusoidal };

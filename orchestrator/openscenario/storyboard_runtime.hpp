@@ -19,7 +19,6 @@
 #include "opendrive/road_network.hpp"
 #include "openscenario/entity_motion.hpp"
 #include "openscenario/model.hpp"
-#include "openscenario/position_resolver.hpp"
 
 namespace orch::openscenario {
 

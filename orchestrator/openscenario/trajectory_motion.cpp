@@ -60,6 +60,7 @@ double PathMotion::distance_at(double t) const {
 }
 
 bool PathMotion::done(double t) const {
+  if (follower) return distance >= length() - kFollowEnd;  // when the entity gets there, in time or not
   if (timed) return t >= *points.back().due - 1e-9;
   return distance >= length() - 1e-9;
 }

@@ -3,6 +3,7 @@
 // (Polyline vertices, or a Clothoid sampled every kClothoidStep metres) as inertial points
 // with their distance along the path and, when timed, the simulation time each is due.
 // Pure geometry; positions are resolved by the caller when the action starts.
+#include <limits>
 #include <optional>
 #include <vector>
 
@@ -16,10 +17,24 @@ struct PathPoint {
   std::optional<double> due;    // simulation time (s) the entity is here (timed paths)
 };
 
+// followingMode "follow": the entity's own limits and the tracking state (trajectory_follow.hpp).
+struct FollowLimits {
+  static constexpr double kNone = std::numeric_limits<double>::infinity();
+  double max_speed = kNone, max_acceleration = kNone, max_deceleration = kNone;
+  double max_curvature = kNone;  // tan(maxSteering) / wheelbase, for vehicles with axles
+  double max_lateral_acceleration = kNone;
+};
+struct PathFollower {
+  FollowLimits limits;
+  double speed = 0;           // the entity's actual speed
+  double wanted_speed = 0;    // untimed paths: the speed the storyboard last set
+};
+
 struct PathMotion {
   std::vector<PathPoint> points;  // at least two, distances increasing
   bool timed = false;
-  double distance = 0;  // where the entity is now
+  double distance = 0;  // where the entity is now (follow: its nearest point on the path)
+  std::optional<PathFollower> follower;  // followingMode "follow" (else "position": put on the path)
 
   [[nodiscard]] double length() const { return points.back().distance; }
   // Reference point and heading (of the segment) at `d` along the path, clamped to it.
@@ -31,6 +46,7 @@ struct PathMotion {
 };
 
 inline constexpr double kClothoidStep = 0.25;  // m
+inline constexpr double kFollowEnd = 0.1;       // m: a followed path is done this close to its end
 
 // Points of a clothoid from `start`: curvature k0 + k' s for s in [0, length].
 std::vector<PathPoint> clothoid_points(const opendrive::Pose2& start, double k0, double k_prime, double length);

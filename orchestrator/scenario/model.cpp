@@ -2,6 +2,12 @@
 
 namespace orch::scenario {
 
+position::Position StartPosition::position(ActorId ego) const {
+  if (type == StartPositionType::Waypoint) return *waypoint;
+  return position::RouteDistance{std::to_string(target.value_or(ego)), distance, measure == MeasureType::Surface,
+                                 waypoint};
+}
+
 const char* to_string(Comparison c) {
   switch (c) {
     case Comparison::Greater: return ">";

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "core/diagnostics.hpp"
+#include "map/position.hpp"
 
 namespace orch::scenario {
 
@@ -29,13 +30,9 @@ enum class RouteMoveType { Waypoint, WpOffset };
 enum class StartPositionType { Waypoint, Distance };
 enum class Logic { And, Or };
 
-// A point of a RoadEditor route. wp_idx may be fractional in real files (33.333): the
-// position is interpolated between the two neighbouring points.
-struct WaypointRef {
-  std::string wp_id;
-  double wp_idx = 0;
-  SourceLocation where;
-};
+// A point of a RoadEditor route (wp_id, wp_idx, where): one alternative of the positions
+// both languages share, resolved in map/ (map/position_resolver.hpp).
+using position::WaypointRef;
 
 struct Accel {
   AccelType type = AccelType::GodsHand;  // absent "accel" = instant, as in the reference
@@ -185,6 +182,10 @@ struct StartPosition {
   double distance = 0;                  // m along the road from the target, + = ahead of it
   MeasureType measure = MeasureType::Center;
   SourceLocation where;
+  // Where it is, as one of the shared positions: a WaypointRef, or a RouteDistance from the
+  // target actor (named by its id in decimal). wp_offset and heading apply on top.
+  // `ego`: the target when none is named (the loader names one always).
+  [[nodiscard]] position::Position position(ActorId ego) const;
 };
 
 struct EgoOpening {

@@ -1,4 +1,4 @@
-// OpenSCENARIO positions resolved on OpenDRIVE geometry: values by hand on a straight
+// OpenSCENARIO positions resolved on OpenDRIVE geometry (map/position_resolver.hpp): values by hand on a straight
 // three-lane road and on an arc (closed form).
 #include <gtest/gtest.h>
 
@@ -7,9 +7,9 @@
 
 #include "core/errors.hpp"
 #include "opendrive/xodr_reader.hpp"
-#include "openscenario/position_resolver.hpp"
+#include "map/position_resolver.hpp"
 
-namespace orch::openscenario {
+namespace orch::position {
 namespace {
 
 using opendrive::Pose2;
@@ -104,4 +104,4 @@ TEST_F(Positions, RoadWorldAndObjectRelativePositions) {
 }
 
 }  // namespace
-}  // namespace orch::openscenario
+}  // namespace orch::position

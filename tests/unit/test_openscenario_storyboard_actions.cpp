@@ -134,11 +134,8 @@ TEST_F(StoryboardActions, TimedPolylineRelativeStartsWithTheAction) {
   load(object("A"), place("A", 10, -1, 10),
        event("Follow",
              polyline_trajectory(vertex(20, -1.75, "0") + vertex(60, -5.25, "4"),
-                                 R"(<Timing domainAbsoluteRelative="relative" scale="1" offset="0"/>)", "follow"),
+                                 R"(<Timing domainAbsoluteRelative="relative" scale="1" offset="0"/>)"),
              at_time(1)));
-  EXPECT_TRUE(std::get<FollowTrajectoryAction>(scenario_.storyboard.stories[0].acts[0].groups[0].maneuvers[0].events[0]
-                                                   .actions[0].action)
-                  .follow_mode);
   run_until(3);  // half way: t = 1 + 2
   EXPECT_NEAR(entity("A").pose.x, 40.0, 1e-9);
   EXPECT_NEAR(entity("A").pose.y, -3.5, 1e-9);
@@ -147,6 +144,30 @@ TEST_F(StoryboardActions, TimedPolylineRelativeStartsWithTheAction) {
   EXPECT_NEAR(first("FollowAction", "endTransition"), 5.0, 1e-9);
   EXPECT_EQ(entity("A").lane, -2);  // continues in the lane the trajectory ended in
   EXPECT_NEAR(entity("A").pose.y, -5.25, 1e-9);
+}
+
+TEST_F(StoryboardActions, FollowModeTracksThePathUnderTheEntitysLimits) {
+  // The lane change of the test above, followingMode "follow": the car stays where it is at
+  // the start and steers (pure pursuit, trajectory_follow.hpp), so it is not on the
+  // straight line between the vertices half way, and arrives in the lane later.
+  load(object("A"), place("A", 10, -1, 10),
+       event("Follow",
+             polyline_trajectory(vertex(20, -1.75, "0") + vertex(60, -5.25, "4"),
+                                 R"(<Timing domainAbsoluteRelative="relative" scale="1" offset="0"/>)", "follow"),
+             at_time(1)));
+  EXPECT_TRUE(std::get<FollowTrajectoryAction>(scenario_.storyboard.stories[0].acts[0].groups[0].maneuvers[0].events[0]
+                                                   .actions[0].action)
+                  .follow_mode);
+  run_until(3);
+  const double on_line = -1.75 - 3.5 * (entity("A").pose.x - 20.0) / 40.0;
+  EXPECT_GT(std::abs(entity("A").pose.y - on_line), 0.01);  // the path is tracked, not imposed
+  EXPECT_LT(std::abs(entity("A").pose.y - on_line), 0.5);
+  EXPECT_GT(entity("A").pose.y, on_line);  // its heading lags the path's
+  run_until(8);
+  const double end = first("FollowAction", "endTransition");
+  EXPECT_GE(end, 5.0 - 1e-9);
+  EXPECT_LT(end, 6.0);
+  EXPECT_EQ(entity("A").lane, -2);
 }
 
 TEST_F(StoryboardActions, UntimedPolylineAtTheEntitysOwnSpeed) {

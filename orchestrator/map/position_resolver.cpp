@@ -1,12 +1,13 @@
-#include "openscenario/position_resolver.hpp"
+#include "map/position_resolver.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include <fmt/format.h>
 
 #include "core/errors.hpp"
 
-namespace orch::openscenario {
+namespace orch::position {
 namespace {
 
 using opendrive::Pose2;
@@ -17,7 +18,48 @@ double oriented(const std::optional<Orientation>& orientation, double reference)
   return orientation->relative ? reference + orientation->h : orientation->h;
 }
 
+// A caller's pose lookup as Entities (OpenDRIVE positions need only poses).
+class PoseLookupEntities final : public Entities {
+ public:
+  explicit PoseLookupEntities(const EntityPoseLookup& lookup) : lookup_(lookup) {}
+  [[nodiscard]] std::optional<Pose2> pose(const std::string& name) const override { return lookup_(name); }
+
+ private:
+  const EntityPoseLookup& lookup_;
+};
+
+ResolvedPosition on_route(const WaypointRoute& route, double s) {
+  const Vec2 p = route.line.point_at(s);
+  return ResolvedPosition{Pose2{p.x(), p.y(), route.line.heading_at(s)}, std::nullopt, std::nullopt,
+                          RoutePlace{&route, s}};
+}
+
 }  // namespace
+
+const opendrive::RoadNetwork& PositionResolver::roads() const {
+  if (!roads_) throw MapError("an OpenSCENARIO position needs OpenDRIVE roads, and this scenario has a waypoint map");
+  return *roads_;
+}
+
+const WaypointFile& PositionResolver::waypoints() const {
+  if (!waypoints_) throw MapError("a waypoint position needs a RoadEditor waypoint map, and this scenario has OpenDRIVE roads");
+  return *waypoints_;
+}
+
+const WaypointRoute& PositionResolver::route(const WaypointRef& ref) const {
+  const WaypointRoute* r = waypoints().find(ref.wp_id);
+  if (!r) throw ScenarioError(ref.where, "no route \"" + ref.wp_id + "\" in the map's waypoint file");
+  return *r;
+}
+
+RoutePlace PositionResolver::place(const WaypointRef& ref) const {
+  const WaypointRoute& r = route(ref);
+  return {&r, r.s_of(std::min(ref.wp_idx, r.last_index()))};
+}
+
+ResolvedPosition PositionResolver::resolve(const Position& position, const EntityPoseLookup& entity_pose) const {
+  return resolve(position, PoseLookupEntities(entity_pose));
+}
 
 int shifted_lane(int lane, int d_lane) {
   int result = lane + d_lane;
@@ -27,14 +69,15 @@ int shifted_lane(int lane, int d_lane) {
 }
 
 ResolvedPosition PositionResolver::locate(const Pose2& pose) const {
-  ResolvedPosition r{pose, roads_.to_road(pose.x, pose.y), std::nullopt};
-  if (r.road) r.lane = roads_.road(r.road->road_id).lane_at(r.road->s, r.road->t);
+  ResolvedPosition r{pose, roads().to_road(pose.x, pose.y), std::nullopt, std::nullopt};
+  if (r.road) r.lane = roads().road(r.road->road_id).lane_at(r.road->s, r.road->t);
   return r;
 }
 
-ResolvedPosition PositionResolver::resolve(const Position& position, const EntityPoseLookup& entity_pose) const {
+ResolvedPosition PositionResolver::resolve(const Position& position, const Entities& entities,
+                                           double own_length) const {
   const auto pose_of = [&](const std::string& entity) {
-    const auto p = entity_pose(entity);
+    const auto p = entities.pose(entity);
     if (!p) throw MapError(fmt::format("entity \"{}\" has no position yet to place another relative to it", entity));
     return *p;
   };
@@ -44,12 +87,27 @@ ResolvedPosition PositionResolver::resolve(const Position& position, const Entit
     Pose2 p = road.world(s, t);
     const double road_heading = p.heading;
     p.heading = heading;
-    return ResolvedPosition{p, opendrive::RoadCoordinate{road.id, s, t, road_heading}, road.lane_at(s, t)};
+    return ResolvedPosition{p, opendrive::RoadCoordinate{road.id, s, t, road_heading}, road.lane_at(s, t), std::nullopt};
   };
   return std::visit(
       [&](const auto& kind) -> ResolvedPosition {
         using T = std::decay_t<decltype(kind)>;
-        if constexpr (std::is_same_v<T, WorldPosition>) {
+        if constexpr (std::is_same_v<T, WaypointRef>) {
+          const RoutePlace at = place(kind);
+          return on_route(*at.route, at.s);
+        } else if constexpr (std::is_same_v<T, RouteDistance>) {
+          // Along the route from the point of it nearest the target (bumper to bumper:
+          // half of both lengths further).
+          const Pose2 target = pose_of(kind.target);
+          const WaypointRoute* r = kind.route ? &route(*kind.route) : entities.route(kind.target);
+          if (!r) throw MapError(fmt::format("actor {} drives no route to measure a distance along", kind.target));
+          double offset = kind.distance;
+          if (kind.surface) {
+            const double halves = (own_length + entities.length(kind.target)) / 2;
+            offset += offset >= 0 ? halves : -halves;
+          }
+          return on_route(*r, r->line.project(Vec2{target.x, target.y}).s + offset);
+        } else if constexpr (std::is_same_v<T, WorldPosition>) {
           return locate(Pose2{kind.x, kind.y, kind.h.value_or(0.0)});
         } else if constexpr (std::is_same_v<T, RelativeWorldPosition>) {
           const Pose2 e = pose_of(kind.entity);
@@ -61,17 +119,17 @@ ResolvedPosition PositionResolver::resolve(const Position& position, const Entit
           return locate(Pose2{e.x + c * kind.dx - s * kind.dy, e.y + s * kind.dx + c * kind.dy,
                               oriented(kind.orientation, e.heading)});
         } else if constexpr (std::is_same_v<T, RoadPosition>) {
-          const opendrive::Road& road = roads_.road(kind.road_id);
+          const opendrive::Road& road = roads().road(kind.road_id);
           const double heading = road.plan_view.pose(kind.s).heading;
           return on_road(road, kind.s, kind.t, oriented(kind.orientation, heading));
         } else if constexpr (std::is_same_v<T, RelativeRoadPosition>) {
           const ResolvedPosition from = locate(pose_of(kind.entity));
           if (!from.road) throw MapError(fmt::format("entity \"{}\" is on no road", kind.entity));
-          const opendrive::Road& road = roads_.road(from.road->road_id);
+          const opendrive::Road& road = roads().road(from.road->road_id);
           const double s = from.road->s + kind.ds;
           return on_road(road, s, from.road->t + kind.dt, oriented(kind.orientation, road.plan_view.pose(s).heading));
         } else if constexpr (std::is_same_v<T, LanePosition>) {
-          const opendrive::Road& road = roads_.road(kind.road_id);
+          const opendrive::Road& road = roads().road(kind.road_id);
           const double heading = road.plan_view.pose(kind.s).heading;
           return on_road(road, kind.s, road.lane_center_t(kind.lane_id, kind.s) + kind.offset,
                          oriented(kind.orientation, heading));
@@ -79,7 +137,7 @@ ResolvedPosition PositionResolver::resolve(const Position& position, const Entit
           const ResolvedPosition from = locate(pose_of(kind.entity));
           if (!from.road || !from.lane)
             throw MapError(fmt::format("entity \"{}\" is on no lane", kind.entity));
-          const opendrive::Road& road = roads_.road(from.road->road_id);
+          const opendrive::Road& road = roads().road(from.road->road_id);
           const double s = from.road->s + kind.ds;
           const int lane = shifted_lane(*from.lane, kind.d_lane);
           if (s < 0 || s > road.length)
@@ -91,4 +149,4 @@ ResolvedPosition PositionResolver::resolve(const Position& position, const Entit
       position);
 }
 
-}  // namespace orch::openscenario
+}  // namespace orch::position

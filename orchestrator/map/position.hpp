@@ -1,0 +1,62 @@
+#pragma once
+// Positions of both scenario languages as one variant, resolved in one place
+// (map/position_resolver.hpp):
+//  - the ScenarioExecutor format's: a point of a RoadEditor route (WaypointRef) and a
+//    distance along a route from another actor (RouteDistance), on the waypoint maps;
+//  - OpenSCENARIO's: World, RelativeWorld, RelativeObject, Road, RelativeRoad, Lane and
+//    RelativeLane positions with their Orientation, on OpenDRIVE roads.
+// Relative positions name the entity they refer to; the resolver asks the caller for its pose.
+#include <optional>
+#include <string>
+#include <variant>
+
+#include "core/diagnostics.hpp"
+
+namespace orch::position {
+
+// ---- ScenarioExecutor (RoadEditor waypoint maps) ------------------------------------
+// A point of a RoadEditor route. wp_idx may be fractional in real files (33.333): the
+// position is interpolated between the two neighbouring points.
+struct WaypointRef {
+  std::string wp_id;
+  double wp_idx = 0;
+  SourceLocation where;
+};
+// `distance` metres along `route` (the target's own route when absent) from the point of it
+// nearest the target actor; with `surface`, from bumper to bumper (half of both lengths added).
+struct RouteDistance {
+  std::string target;  // the actor, by the name the caller's pose lookup knows
+  double distance = 0;  // + = ahead of the target
+  bool surface = false;
+  std::optional<WaypointRef> route;
+};
+
+// ---- OpenSCENARIO (OpenDRIVE roads) -------------------------------------------------
+struct Orientation {
+  bool relative = true;  // "relative" (to the road / reference) or "absolute"
+  double h = 0;
+};
+struct WorldPosition { double x = 0, y = 0; std::optional<double> h; };
+struct RelativeWorldPosition { std::string entity; double dx = 0, dy = 0; std::optional<Orientation> orientation; };
+struct RelativeObjectPosition { std::string entity; double dx = 0, dy = 0; std::optional<Orientation> orientation; };
+struct RoadPosition { std::string road_id; double s = 0, t = 0; std::optional<Orientation> orientation; };
+struct RelativeRoadPosition { std::string entity; double ds = 0, dt = 0; std::optional<Orientation> orientation; };
+struct LanePosition {
+  std::string road_id;
+  int lane_id = 0;
+  double s = 0, offset = 0;
+  std::optional<Orientation> orientation;
+};
+struct RelativeLanePosition {
+  std::string entity;
+  int d_lane = 0;
+  double ds = 0, offset = 0;
+  std::optional<Orientation> orientation;
+};
+
+// Every position of both languages: each reader produces its own kinds, the resolver
+// resolves any of them given the geometry it needs.
+using Position = std::variant<WaypointRef, RouteDistance, WorldPosition, RelativeWorldPosition, RelativeObjectPosition,
+                              RoadPosition, RelativeRoadPosition, LanePosition, RelativeLanePosition>;
+
+}  // namespace orch::position

@@ -1,0 +1,54 @@
+#pragma once
+// FollowTrajectoryAction with followingMode "follow": the entity's controller tracks the
+// trajectory as a target path under the entity's own dynamics, instead of being put on it
+// ("position"). A pure-pursuit controller on a kinematic bicycle at the reference point
+// (the rear axle centre of a vehicle), one step of dt:
+//   lookahead   L_d = max(kFollowMinLookahead, kFollowLookaheadTime * v, 1 / k_max)
+//               (never inside the tightest turning circle)
+//   goal        the path point L_d beyond the entity's nearest point (past the end: on the
+//               last segment's extension)
+//   curvature   k = 2 sin(alpha) / |goal - p|   (alpha: the goal's bearing from the heading),
+//               |k| <= k_max = tan(maxSteering) / wheelbase and <= kFollowMaxLateralAcceleration / v^2
+//   speed       timed: v* = v_due + e / kFollowSpeedTau, e = due distance - nearest point's
+//               distance; untimed: the speed the storyboard sets; v* within [0, maxSpeed]
+//               and slow enough for the corners ahead: a corner at x metres whose heading
+//               changes by dh over kFollowMinLookahead allows v_c = sqrt(a_lat L_min / dh)
+//               there, so sqrt(v_c^2 + 2 maxDeceleration x) now; and v* <= sqrt(a_lat / |k|)
+//               for the turn it is making; v changes by at most maxAcceleration dt /
+//               maxDeceleration dt (k and L_d from the speed before the step)
+//   motion      heading += v k dt, position += v dt along the mean heading of the step.
+// So a sharp corner is rounded and a schedule the entity cannot keep is kept late.
+#include <optional>
+
+#include "opendrive/plan_view.hpp"
+#include "openscenario/model.hpp"
+#include "openscenario/trajectory_motion.hpp"
+
+namespace orch::openscenario {
+
+inline constexpr double kFollowMinLookahead = 3.0;             // m
+inline constexpr double kFollowLookaheadTime = 0.8;            // s
+inline constexpr double kFollowMaxLateralAcceleration = 4.0;   // m/s^2, also without axles
+inline constexpr double kFollowSpeedTau = 1.0;                 // s to close a schedule error
+inline constexpr double kFollowMaxPreview = 200.0;             // m looked ahead for corners
+inline constexpr double kFollowPreviewStep = 0.5;              // m
+
+// The entity's limits: Performance (absent: none), the front axle's maxSteering over the
+// wheelbase (front minus rear positionX; absent axles: no steering limit) and the lateral
+// acceleration limit.
+FollowLimits follow_limits(const Entity& entity);
+
+// Distance along the path of its point nearest (x, y), searched in [from, to].
+double nearest_distance(const PathMotion& path, double x, double y, double from, double to);
+
+// Makes `path` a followed one for an entity at `pose` moving at `speed`: it starts from its
+// nearest point at or beyond the path's initial distance.
+void start_following(PathMotion& path, const opendrive::Pose2& pose, double speed, const FollowLimits& limits);
+
+// Moves the entity from t - dt to t along the followed path (see above); `profile_speed` is
+// its speed profile's value when one runs. Updates pose, speed and path.distance; returns
+// the distance driven.
+double follow_step(PathMotion& path, opendrive::Pose2& pose, double& speed, std::optional<double> profile_speed,
+                   double t, double dt);
+
+}  // namespace orch::openscenario
