@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <optional>
 
@@ -169,6 +170,7 @@ void check_criteria(const EvaluationRequest& ev, const openscenario::Scenario& s
 }  // namespace
 
 RunResult run_openscenario(const RunRequest& req, Simulator& sim) {
+  const auto wall_start = std::chrono::steady_clock::now();
   std::filesystem::create_directories(req.out_dir);
   RunLog log(req.out_dir / "run.log", req.echo);
   RunResult result = new_run_result(req, sim);
@@ -353,6 +355,7 @@ RunResult run_openscenario(const RunRequest& req, Simulator& sim) {
     log.note(describe(*result.ego_plugin));
   }
   sim.close();
+  result.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
   log.note(fmt::format("verdict {}: {} (simulated {:.2f} s in {} steps)", to_string(result.verdict), result.reason,
                        result.sim_time, result.steps));
   write_result(req.out_dir, result);

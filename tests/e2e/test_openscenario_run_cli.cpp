@@ -24,6 +24,7 @@ TEST(OpenScenarioRunCli, OvertakingRunsToItsStopTriggerWithEveryEntityTraced) {
   EXPECT_EQ(r.exit_code, 0);
   EXPECT_NE(result["reason"].get<std::string>().find("StopTrigger"), std::string::npos);
   EXPECT_EQ(result["map_id"], "motorway_3_lanes");
+  EXPECT_GT(result["wall_time_s"].get<double>(), 0.0);  // the report's "wall time"
   const Trace trace(out / "trace.csv");
   bool ego = false, overtaker = false;
   for (const auto& row : trace.rows()) {
