@@ -4,6 +4,7 @@
 #include <openssl/evp.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstring>
 #include <fstream>
@@ -36,28 +37,30 @@ void write_file_atomically(const std::filesystem::path& path, std::string_view c
   if (ec) throw OrchError("cannot rename " + tmp.string() + " to " + path.string() + ": " + ec.message());
 }
 
-std::string read_file(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw OrchError("cannot open " + path.string());
+std::string read_open_file(std::ifstream& in, const std::filesystem::path& path, std::size_t max_bytes) {
   // Straight into the string when the size is known (a stream buffer copy doubles the cost
-  // of a 2 MB waypoint file); to the end otherwise (a pipe).
+  // of a 2 MB waypoint file); through a stream buffer otherwise (a pipe, /proc) or for what
+  // a file still being written gained since its size was taken.
   std::error_code ec;
   const auto size = std::filesystem::file_size(path, ec);
   std::string text;
   if (!ec && size > 0) {
-    text.resize(static_cast<std::size_t>(size));
+    text.resize(static_cast<std::size_t>(std::min<std::uintmax_t>(size, max_bytes)));
     in.read(text.data(), static_cast<std::streamsize>(text.size()));
     text.resize(static_cast<std::size_t>(in.gcount()));
-    if (in.gcount() == static_cast<std::streamsize>(size)) {
-      std::ostringstream rest;  // a file that grew while being read
-      rest << in.rdbuf();
-      text += rest.str();
-    }
-    return text;
   }
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
+  if (text.size() < max_bytes && in && in.peek() != std::char_traits<char>::eof()) {
+    std::ostringstream rest;
+    rest << in.rdbuf();
+    text += rest.str();
+  }
+  return text;
+}
+
+std::string read_file(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw OrchError("cannot open " + path.string());
+  return read_open_file(in, path);
 }
 
 std::string sha256_hex(std::string_view bytes) {

@@ -7,10 +7,10 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <iterator>
 #include <vector>
 
 #include "core/errors.hpp"
+#include "core/files.hpp"
 #include "core/utf8.hpp"
 #include "json/json_scan.hpp"
 
@@ -139,16 +139,8 @@ JsonDocument JsonDocument::load(const std::string& path) {
     throw ScenarioError(SourceLocation{path, "", 0}, "is a folder, not a JSON file");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw ScenarioError(SourceLocation{path, "", 0}, fmt::format("cannot open file for reading ({})", std::strerror(errno)));
-  // Read straight into the text (a stream buffer and its copy would hold the file twice).
-  const auto size = std::filesystem::file_size(path, ec);
-  std::string text;
-  if (!ec && size > 0) {
-    text.resize(static_cast<std::size_t>(std::min<std::uintmax_t>(size, kMaxJsonBytes + 1)));
-    in.read(text.data(), static_cast<std::streamsize>(text.size()));
-    text.resize(static_cast<std::size_t>(in.gcount()));
-  } else {  // no size known (a pipe, /proc): read to the end
-    text.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-  }
+  // One byte more than the limit, so that parse() names a file that is too large.
+  std::string text = read_open_file(in, path, kMaxJsonBytes + 1);
   if (in.bad()) throw ScenarioError(SourceLocation{path, "", 0}, "cannot read the file");
   return parse(std::move(text), path);
 }
