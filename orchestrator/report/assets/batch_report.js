@@ -79,7 +79,7 @@
           options: {
             scales: { x: { title: { display: true, text: px } }, y: { title: { display: true, text: py } } },
             plugins: { legend: { display: !metric },
-              title: { display: !!metric, text: metric ? `colour: ${metric} (${fmtNum(lo, 2)} … ${fmtNum(hi, 2)}), border: verdict` : '' },
+              title: { display: !!metric, text: metric ? `colour: ${metric} (${fmtNum(lo, digitsFor(hi - lo))} … ${fmtNum(hi, digitsFor(hi - lo))}), border: verdict` : '' },
               tooltip: { callbacks: { label: (item) => {
                 const r = item.raw.run;
                 return `${r.verdict} · seed ${r.seed}${metric ? ` · ${metric} ${fmtNum(metricOf(r, metric), 3)}` : ''} · ${r.values_text}`;
@@ -92,8 +92,7 @@
     }
     function histogram(list, metric, lo, hi) {
       const bins = 16, width = hi > lo ? (hi - lo) / bins : 1;
-      // As many decimals as the bin width needs: a metric spanning 0.005 gets distinct labels.
-      const digits = Math.min(6, Math.max(2, Math.ceil(-Math.log10(width)) + 1));
+      const digits = digitsFor(width);
       const labels = [...Array(bins).keys()].map(i => fmtNum(lo + (i + 0.5) * width, digits));
       const datasets = VERDICTS.map(v => {
         const counts = new Array(bins).fill(0);

@@ -24,6 +24,12 @@ function svgEl(tag, attrs) {
   return e;
 }
 
+// Decimals that tell apart values `step` apart (at least two, at most six): a metric that
+// spans 0.005 s gets 1.9793 … 1.9796, not 1.98 … 1.98.
+function digitsFor(step) {
+  return step > 0 ? Math.min(6, Math.max(2, Math.ceil(-Math.log10(step)) + 1)) : 2;
+}
+
 function fmtNum(v, digits) {
   if (v === null || v === undefined || Number.isNaN(v)) return '–';
   if (typeof v !== 'number') return String(v);
