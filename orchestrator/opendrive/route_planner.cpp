@@ -87,7 +87,7 @@ std::optional<std::vector<LaneEntry>> plan_route(const RoadNetwork& roads, const
     return std::vector<LaneEntry>{};
 
   std::vector<Node> nodes;
-  std::set<std::string> settled;
+  std::set<std::pair<std::string, int>> settled;  // (road, lane) reached at the lowest cost
   std::priority_queue<Item, std::vector<Item>, std::greater<>> queue;
   const auto expand = [&](const Road& road, int lane, double s, double cost, std::size_t parent) {
     const auto exit = lane_at_road_exit(road, lane, s);
@@ -110,8 +110,7 @@ std::optional<std::vector<LaneEntry>> plan_route(const RoadNetwork& roads, const
       for (std::size_t n = item.node; n != std::string::npos; n = nodes[n].parent) path.push_back(nodes[n].entry);
       return std::vector<LaneEntry>(path.rbegin(), path.rend());
     }
-    const std::string key = entry.road_id + "\n" + std::to_string(entry.lane);
-    if (!settled.insert(key).second) continue;
+    if (!settled.emplace(entry.road_id, entry.lane).second) continue;
     const Road& road = roads.road(entry.road_id);
     if (entry.road_id == to.road_id && entry.direction == goal_direction) {
       queue.push({item.cost + weight(strategy, road, entry.lane, entry.s, std::abs(to.s - entry.s), !entry.junction.empty()),
@@ -126,12 +125,12 @@ std::optional<std::vector<LaneEntry>> plan_route(const RoadNetwork& roads, const
 std::vector<LaneEntry> default_continuation(const RoadNetwork& roads, const std::string& road_id, int lane,
                                             std::size_t max_roads) {
   std::vector<LaneEntry> out;
-  std::set<std::string> seen{road_id + "\n" + std::to_string(lane)};
+  std::set<std::pair<std::string, int>> seen{{road_id, lane}};
   std::string road = road_id;
   int current = lane;
   while (out.size() < max_roads) {
     const auto next = straightest_next(roads, road, current);
-    if (!next || !seen.insert(next->road_id + "\n" + std::to_string(next->lane)).second) break;
+    if (!next || !seen.emplace(next->road_id, next->lane).second) break;
     out.push_back(*next);
     const auto exit = lane_at_road_exit(roads.road(next->road_id), next->lane, next->s);
     if (!exit) break;
