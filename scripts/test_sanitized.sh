@@ -9,14 +9,8 @@
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 build=${1:-$root/build-sanitize}
-# -O1 -g1: sanitized code at -O2 takes much longer to compile and gains the tests little;
-# line tables (-g1) are all the sanitizers need for their stack traces.
-ORCH_BUILD_TARGETS="unit_tests e2e_tests orchestrator scenario_pipeline_fuzz_random binder_fuzz_random traci_fuzz_random" \
-  "$root/scripts/build.sh" "$build" -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1" -DORCH_SANITIZE=ON -DORCH_WERROR=ON
-# A report aborts the process (exit 134 in the CLI tests, never mistaken for a verdict).
-export ASAN_OPTIONS=halt_on_error=1:abort_on_error=1:detect_leaks=1
-export UBSAN_OPTIONS=halt_on_error=1:abort_on_error=1:print_stacktrace=1
-export LSAN_OPTIONS=suppressions=$root/scripts/lsan.supp:print_suppressions=0
+"$root/scripts/build_sanitized.sh" "$build"
+source "$root/scripts/sanitizer_env.sh"
 cd "$build"
 status=0
 ctest --output-on-failure -j "$(nproc)" --timeout 900 -L unit "$@" || status=$?

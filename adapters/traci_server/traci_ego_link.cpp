@@ -2,8 +2,10 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <array>
 #include <chrono>
+#include <cmath>
 #include <optional>
 #include <utility>  // before Asio: Boost 1.74's awaitable.hpp uses std::exchange without it
 
@@ -21,8 +23,10 @@ using Clock = std::chrono::steady_clock;
 
 constexpr auto kPollSlice = std::chrono::milliseconds(100);  // how often a wait looks at Ctrl-C
 
+// Clamped to [0, a century] (NaN: 0): nanoseconds in 64 bits overflow past ~292 years.
 Clock::duration seconds(double s) {
-  return std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(s));
+  const double bounded = std::isnan(s) ? 0.0 : std::clamp(s, 0.0, 3.2e9);
+  return std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(bounded));
 }
 
 std::string endpoint_text(const tcp::endpoint& e) { return fmt::format("{}:{}", e.address().to_string(), e.port()); }

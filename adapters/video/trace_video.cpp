@@ -12,6 +12,7 @@
 #include <map>
 #include <set>
 
+#include "core/checked_numeric.hpp"
 #include "core/errors.hpp"
 #include "core/process.hpp"
 #include "results/run_files.hpp"
@@ -96,7 +97,7 @@ void add_actor_frames(const RunFiles& run, double interval, Frames& frames, std:
                 color_of(info.value("color", ""), info.value("ego", false)), info.value("ego", false)};
     if (p.ego) ego_id = p.id;
     if (first_edge.empty() && !t.cell(r, c("edge")).empty() && t.cell(r, c("edge"))[0] != ':') first_edge = t.cell(r, c("edge"));
-    frames[std::llround(frame)].push_back(std::move(p));
+    frames[orch::clamped_round<long long>(frame, 0, 1LL << 40)].push_back(std::move(p));
   }
 }
 
@@ -105,7 +106,7 @@ void add_background_frames(const CsvTable& t, double interval, Frames& frames) {
   for (std::size_t r = 0; r < t.rows(); ++r) {
     const double frame = t.number(r, c("time")).value_or(0) / interval;
     if (std::abs(frame - std::round(frame)) > 1e-6) continue;
-    frames[std::llround(frame)].push_back({t.cell(r, c("vehicle_id")), *t.number(r, c("x")), *t.number(r, c("y")),
+    frames[orch::clamped_round<long long>(frame, 0, 1LL << 40)].push_back({t.cell(r, c("vehicle_id")), *t.number(r, c("x")), *t.number(r, c("y")),
                                            *t.number(r, c("heading")), *t.number(r, c("length")),
                                            *t.number(r, c("width")), libsumo::TraCIColor(150, 156, 164, 255), false});
   }

@@ -171,8 +171,8 @@ void read_sumo_config(ObjectReader& top, LogicalScenario& out) {
   const json* cfg = top.object("sumo_config", Need::Optional);
   if (!cfg) return;
   ObjectReader r(top.doc(), *cfg, top.child("sumo_config"), top.diags(), "sumo_config");
-  out.sumo_config.step = r.number("step", Need::Optional);
-  out.sumo_config.max_time = r.number("max_time", Need::Optional);
+  out.sumo_config.step = r.number("step", Need::Optional, Quantity::Time);
+  out.sumo_config.max_time = r.number("max_time", Need::Optional, Quantity::Time);
   out.sumo_config.traffic = r.string("traffic", Need::Optional);
   out.sumo_config.backend = r.string("backend", Need::Optional);
   if (out.sumo_config.step && (*out.sumo_config.step < 0.001 || *out.sumo_config.step > 1.0))

@@ -19,14 +19,14 @@ void read_sumo_config(ObjectReader& set, ParameterSet& out) {
   if (!cfg) return;
   ObjectReader r(set.doc(), *cfg, set.child("sumo_config"), set.diags(), "sumo_config");
   out.sumo_config.map = r.string("map", Need::Optional).value_or("");
-  out.sumo_config.step = r.number("step", Need::Required).value_or(0.05);
+  out.sumo_config.step = r.number("step", Need::Required, Quantity::Time).value_or(0.05);
   if (out.sumo_config.step < 0.001 || out.sumo_config.step > 1.0)
     r.error("step", fmt::format("\"step\" must lie in [0.001, 1] s, found {}", out.sumo_config.step));
   // null means "not set" for the optional ones: the file says so explicitly.
   for (const char* key : {"max_time", "traffic", "backend"})
     if (r.has(key) && cfg->at(key).is_null()) r.allow({key});
   if (!(r.has("max_time") && cfg->at("max_time").is_null())) {
-    out.sumo_config.max_time = r.number("max_time", Need::Optional);
+    out.sumo_config.max_time = r.number("max_time", Need::Optional, Quantity::Time);
     if (out.sumo_config.max_time && *out.sumo_config.max_time <= 0)
       r.error("max_time", fmt::format("\"max_time\" must be positive, found {}", *out.sumo_config.max_time));
   }

@@ -4,6 +4,8 @@
 
 #include <cmath>
 
+#include "core/checked_numeric.hpp"
+
 namespace orch::batch {
 
 Progress::Progress(std::ostream& out, bool terminal, std::size_t total, std::size_t already_done)
@@ -16,7 +18,7 @@ double Progress::elapsed() const {
 }
 
 std::string Progress::clock(double seconds) {
-  const auto s = static_cast<long long>(std::llround(std::max(0.0, seconds)));
+  const auto s = clamped_round<long long>(seconds, 0, 1LL << 40);  // NaN (no estimate yet) shows 0:00
   if (s >= 3600) return fmt::format("{}:{:02}:{:02}", s / 3600, (s / 60) % 60, s % 60);
   return fmt::format("{}:{:02}", s / 60, s % 60);
 }

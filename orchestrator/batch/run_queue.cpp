@@ -43,7 +43,8 @@ class BlockedSignals {
 
   // Waits up to `seconds`; returns the signal received or 0.
   int wait(double seconds) const {
-    const double s = std::max(0.0, seconds);
+    // At most a day per wait (callers loop); NaN waits not at all.
+    const double s = std::isnan(seconds) ? 0.0 : std::clamp(seconds, 0.0, 86400.0);
     timespec ts{static_cast<time_t>(s), static_cast<long>((s - std::floor(s)) * 1e9)};
     const int sig = ::sigtimedwait(&set_, nullptr, &ts);
     return sig > 0 ? sig : 0;

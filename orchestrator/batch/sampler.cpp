@@ -3,6 +3,8 @@
 #include <cmath>
 #include <numbers>
 
+#include "core/checked_numeric.hpp"
+
 namespace orch::batch {
 
 namespace {
@@ -19,7 +21,7 @@ std::uint64_t fnv1a(const std::string& text) {
 }
 
 nlohmann::json as_type(ValueType type, double x) {
-  if (type == ValueType::Int) return static_cast<long long>(std::llround(x));
+  if (type == ValueType::Int) return clamped_round<long long>(x, -(1LL << 53), 1LL << 53);
   return x;
 }
 
@@ -34,7 +36,7 @@ struct Drawer {
     if (spec.type == ValueType::Int) {
       // Every whole number of [min, max] equally likely.
       const double count = u.max - u.min + 1.0;
-      return static_cast<long long>(u.min + std::min(std::floor(x * count), count - 1.0));
+      return clamped_floor<long long>(u.min + std::min(std::floor(x * count), count - 1.0), -(1LL << 53), 1LL << 53);
     }
     return u.min + (u.max - u.min) * x;
   }

@@ -153,7 +153,9 @@ std::vector<std::uint64_t> seeded_subset(std::uint64_t size, std::uint64_t count
   // Rejection of repeats: at most count <= left draws are kept, so this ends; when nearly
   // the whole product is asked for it takes longer, never wrongly.
   while (out.size() < count) {
-    const auto i = static_cast<std::uint64_t>(unit_interval(engine) * static_cast<double>(size));
+    const double x = unit_interval(engine) * static_cast<double>(size);
+    if (!(x < 0x1p64)) continue;  // a product of 2^64 rounds up to it: not an index
+    const auto i = static_cast<std::uint64_t>(x);
     if (i >= size || taken.count(i) || !chosen.insert(i).second) continue;
     out.push_back(i);
   }

@@ -155,7 +155,7 @@ Handler setup_sample(CLI::App& cmd) {
       ->check(CLI::Range(0LL, 2147483647LL));
   cmd.add_option("--step", o->request.step, "sumo_config.step of the new sets, s")->check(CLI::Range(0.001, 1.0));
   cmd.add_option("--max-time", o->request.max_time, "sumo_config.max_time of the new sets, s")
-      ->check(CLI::PositiveNumber);
+      ->check(CLI::Range(1e-9, 1e7));
   cmd.add_option("--traffic", o->request.traffic, "sumo_config.traffic of the new sets (passed to run --traffic)");
   cmd.add_option("--backend", o->request.backend, "sumo_config.backend of the new sets (passed to run --backend)");
   return [o] { return sample_command(*o); };
@@ -170,7 +170,7 @@ Handler setup_batch(CLI::App& cmd) {
       ->check(CLI::ExistingDirectory);
   cmd.add_option("--jobs,-j", o->jobs, "Runs at a time (default: the number of cores)")->check(CLI::Range(1, 1024));
   cmd.add_option("--timeout", o->timeout, "Wall-clock limit per run, s; its process tree is then killed (default 1800)")
-      ->check(CLI::PositiveNumber);
+      ->check(CLI::Range(1e-3, 1e7));
   cmd.add_option("--retries", o->retries, "Extra attempts for runs ending in error (default 1); failures are never retried")
       ->check(CLI::Range(0, 100));
   cmd.add_option("--shard", o->shard, "Run only shard K of N (K/N, 1-based): a deterministic 1/N of the runs");

@@ -10,6 +10,10 @@ namespace orch::cli {
 
 namespace {
 
+// SUMO reads its --seed as a 32-bit int; times follow core/plausible.hpp (at most 1e7 s).
+const CLI::Range kSeedRange(0LL, 2147483647LL, "SEED");
+const CLI::Range kTimeRange(1e-9, 1e7, "SECONDS");
+
 void add_common(CLI::App* app, CommonOptions& c) {
   // One value per --maps, so that `--maps DIR a.json b.json` keeps both files as files.
   app->add_option("--maps", c.map_dirs, "Folder holding map folders (repeatable; default: $ORCH_MAPS, then sumo_nets/)")
@@ -37,9 +41,9 @@ Handler setup_run(CLI::App& cmd) {
   r->add_option("file", run->file, "Scenario file")->required();
   r->add_option("--out", run->out, "Output folder (result.json, trace.csv, run.log)")->capture_default_str();
   r->add_option("--step", run->step, "Simulation step, s")->capture_default_str()->check(CLI::Range(0.001, 1.0));
-  r->add_option("--seed", run->seed, "Random seed for SUMO")->capture_default_str();
+  r->add_option("--seed", run->seed, "Random seed for SUMO")->capture_default_str()->check(kSeedRange);
   r->add_option("--max-time", run->max_time, "End the run (verdict failure) at this simulation time, s")
-      ->check(CLI::PositiveNumber);
+      ->check(kTimeRange);
   r->add_flag("--strict", run->strict, "Refuse to run a scenario with validation warnings");
   r->add_flag("-q,--quiet", run->quiet, "Do not echo the run log to the terminal");
   r->add_option("--ego-port", run->ego_port,
@@ -57,9 +61,9 @@ Handler setup_run(CLI::App& cmd) {
               "was preventable");
   r->add_option("--ego-address", run->ego_address, "Address the ego TraCI server listens on")->capture_default_str();
   r->add_option("--ego-wait", run->ego_wait, "Seconds to wait for the ego plug-in to connect")
-      ->capture_default_str()->check(CLI::PositiveNumber);
+      ->capture_default_str()->check(kTimeRange);
   r->add_option("--ego-timeout", run->ego_timeout, "Seconds the world waits for the ego plug-in's next message")
-      ->capture_default_str()->check(CLI::PositiveNumber);
+      ->capture_default_str()->check(kTimeRange);
   r->add_option("--traffic", run->traffic,
                 "Background traffic: none, light, medium, dense, vehicles per hour and lane, or a SUMO route file "
                 "(default: the scenario's own \"traffic\", else none)");
@@ -71,10 +75,10 @@ Handler setup_run(CLI::App& cmd) {
   r->add_flag("--gui", run->gui, "Watch the run in sumo-gui (traci backend)");
   r->add_option("--connect", run->connect, "Use a SUMO already running with --remote-port, at HOST:PORT (traci backend)");
   r->add_option("--realtime", run->realtime, "Advance at most FACTOR times as fast as wall-clock time (1 = real time)")
-      ->check(CLI::PositiveNumber);
+      ->check(CLI::Range(1e-6, 1e6));
   r->add_option("--sumo-timeout", run->sumo_timeout,
                 "Seconds without an answer from SUMO before the run ends as an error (traci backend; 0: no limit)")
-      ->capture_default_str()->check(CLI::NonNegativeNumber);
+      ->capture_default_str()->check(CLI::Range(0.0, 1e7));
   r->add_option("--jsonl-every", run->jsonl_every, "Evaluation files: a result.jsonl frame line every N steps")
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
@@ -94,7 +98,7 @@ Handler setup_baseline(CLI::App& cmd) {
   bl->add_option("--traffic", baseline->traffic, "Background traffic, as for run")->capture_default_str();
   bl->add_option("--steps", baseline->steps, "Simulation steps")->capture_default_str()->check(CLI::PositiveNumber);
   bl->add_option("--step", baseline->step, "Simulation step, s")->capture_default_str()->check(CLI::Range(0.001, 1.0));
-  bl->add_option("--seed", baseline->seed, "Random seed for SUMO")->capture_default_str();
+  bl->add_option("--seed", baseline->seed, "Random seed for SUMO")->capture_default_str()->check(kSeedRange);
   bl->add_option("--backend", baseline->backend, "libsumo or traci")->capture_default_str()
       ->check(CLI::IsMember({"libsumo", "traci"}));
   bl->add_option("--out", baseline->out, "Folder for sumo.log")->capture_default_str();

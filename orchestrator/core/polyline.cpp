@@ -1,10 +1,13 @@
 #include "core/polyline.hpp"
 
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numbers>
 #include <stdexcept>
+
+#include "core/checked_numeric.hpp"
 
 namespace orch {
 
@@ -26,21 +29,52 @@ Polyline::Polyline(std::vector<Vec2> points) : points_(std::move(points)) {
   build_grid();
 }
 
+namespace {
+// Coordinates beyond kGridReach (core/checked_numeric.hpp) are not indexed. A segment whose bounding box covers more cells than this is not indexed cell by cell.
+constexpr long long kMaxCellsPerSegment = 65536;
+// Beyond this many rings of cells, scanning every segment is cheaper and gives the same result.
+constexpr double kMaxRings = 64;
+}  // namespace
+
+std::optional<long long> Polyline::cell_of(double v) const {
+  if (!(std::abs(v) <= kGridReach)) return std::nullopt;
+  return floor_to_integer(v / cell_);
+}
+
 void Polyline::build_grid() {
   for (std::size_t seg = 0; seg + 1 < points_.size(); ++seg) {
     const Vec2& a = points_[seg];
     const Vec2& b = points_[seg + 1];
-    const auto x0 = static_cast<long long>(std::floor(std::min(a.x(), b.x()) / cell_));
-    const auto x1 = static_cast<long long>(std::floor(std::max(a.x(), b.x()) / cell_));
-    const auto y0 = static_cast<long long>(std::floor(std::min(a.y(), b.y()) / cell_));
-    const auto y1 = static_cast<long long>(std::floor(std::max(a.y(), b.y()) / cell_));
-    for (long long cx = x0; cx <= x1; ++cx)
-      for (long long cy = y0; cy <= y1; ++cy) grid_[cell_key(cx, cy)].push_back(seg);
+    const auto x0 = cell_of(std::min(a.x(), b.x()));
+    const auto x1 = cell_of(std::max(a.x(), b.x()));
+    const auto y0 = cell_of(std::min(a.y(), b.y()));
+    const auto y1 = cell_of(std::max(a.y(), b.y()));
+    if (!x0 || !x1 || !y0 || !y1 || *x1 - *x0 >= kMaxCellsPerSegment || *y1 - *y0 >= kMaxCellsPerSegment ||
+        (*x1 - *x0 + 1) * (*y1 - *y0 + 1) > kMaxCellsPerSegment) {
+      unindexed_.push_back(seg);
+      continue;
+    }
+    for (long long cx = *x0; cx <= *x1; ++cx)
+      for (long long cy = *y0; cy <= *y1; ++cy) grid_[cell_key(cx, cy)].push_back(seg);
+  }
+}
+
+void Polyline::nearest_of_all(const Vec2& p, Projection& best) const {
+  for (std::size_t seg = 0; seg + 1 < points_.size(); ++seg) {
+    Projection r = project_on_segment(p, seg);
+    if (r.distance < best.distance) best = r;
+  }
+}
+
+void Polyline::nearest_in(const std::vector<std::size_t>& segments, const Vec2& p, Projection& best) const {
+  for (std::size_t seg : segments) {
+    Projection r = project_on_segment(p, seg);
+    if (r.distance < best.distance) best = r;
   }
 }
 
 double Polyline::s_at_fractional_index(double index) const {
-  if (index <= 0) return 0;
+  if (!(index > 0)) return 0;  // NaN too
   const double last = static_cast<double>(points_.size() - 1);
   if (index >= last) return length();
   const auto i = static_cast<std::size_t>(std::floor(index));
@@ -121,19 +155,26 @@ Polyline::Projection Polyline::project(const Vec2& p) const {
   if (auto near = project_within(p, 4 * cell_)) return *near;
   Projection best;
   best.distance = std::numeric_limits<double>::infinity();
-  for (std::size_t seg = 0; seg + 1 < points_.size(); ++seg) {
-    Projection r = project_on_segment(p, seg);
-    if (r.distance < best.distance) best = r;
-  }
+  nearest_of_all(p, best);
   return finish(best, p);
 }
 
 std::optional<Polyline::Projection> Polyline::project_within(const Vec2& p, double radius) const {
-  const auto cx = static_cast<long long>(std::floor(p.x() / cell_));
-  const auto cy = static_cast<long long>(std::floor(p.y() / cell_));
-  const auto rings = static_cast<long long>(std::ceil(radius / cell_));
+  if (!p.allFinite() || !(radius >= 0)) return std::nullopt;
   Projection best;
   best.distance = std::numeric_limits<double>::infinity();
+  nearest_in(unindexed_, p, best);
+  const auto cell_x = cell_of(p.x());
+  const auto cell_y = cell_of(p.y());
+  const double ring_count = std::ceil(radius / cell_);
+  if (!cell_x || !cell_y || !(ring_count <= kMaxRings)) {
+    nearest_of_all(p, best);
+    if (best.distance > radius) return std::nullopt;
+    return finish(best, p);
+  }
+  const long long cx = *cell_x;
+  const long long cy = *cell_y;
+  const auto rings = static_cast<long long>(ring_count);
   for (long long ring = 0; ring <= rings; ++ring) {
     for (long long dx = -ring; dx <= ring; ++dx)
       for (long long dy = -ring; dy <= ring; ++dy) {
@@ -148,10 +189,7 @@ std::optional<Polyline::Projection> Polyline::project_within(const Vec2& p, doub
         if (gap_x * gap_x + gap_y * gap_y > reach * reach) continue;
         auto it = grid_.find(cell_key(cx + dx, cy + dy));
         if (it == grid_.end()) continue;
-        for (std::size_t seg : it->second) {
-          Projection r = project_on_segment(p, seg);
-          if (r.distance < best.distance) best = r;
-        }
+        nearest_in(it->second, p, best);
       }
     // A hit within the searched radius cannot be beaten further out.
     if (best.distance <= static_cast<double>(ring) * cell_) break;

@@ -65,12 +65,19 @@ class Polyline {
   [[nodiscard]] Projection project_on_segment(const Vec2& p, std::size_t seg) const;
   [[nodiscard]] Projection finish(Projection best, const Vec2& p) const;
   void build_grid();
-  [[nodiscard]] long long cell_key(long long cx, long long cy) const { return cx * 1000003LL + cy; }
+  // The grid cell of a coordinate, or nullopt beyond the grid's reach (or NaN / infinite).
+  [[nodiscard]] std::optional<long long> cell_of(double v) const;
+  [[nodiscard]] static long long cell_key(long long cx, long long cy) { return cx * 1000003LL + cy; }
+  void nearest_in(const std::vector<std::size_t>& segments, const Vec2& p, Projection& best) const;
+  void nearest_of_all(const Vec2& p, Projection& best) const;
 
   std::vector<Vec2> points_;
   std::vector<double> cumulative_;
   double cell_ = 16.0;
   std::unordered_map<long long, std::vector<std::size_t>> grid_;
+  // Segments the grid does not index (a coordinate beyond its reach, or a bounding box of
+  // too many cells): few in any real shape, and checked by every projection.
+  std::vector<std::size_t> unindexed_;
 };
 
 }  // namespace orch

@@ -56,7 +56,7 @@ std::optional<criteria::CriterionSpec> read_criterion(ObjectReader& r) {
   c.max = r.number("Max", Need::Optional);
   const auto mode = r.choice("Mode", names_of_modes(), Need::Optional);
   const auto pass_rate = r.number("PassRate", Need::Optional);
-  const auto duration = r.number("Duration", Need::Optional);
+  const auto duration = r.number("Duration", Need::Optional, Quantity::Time);
   c.mode = mode ? *criteria::parse_mode(*mode)
            : pass_rate ? criteria::Mode::PassRate
            : duration  ? criteria::Mode::Duration
@@ -67,8 +67,8 @@ std::optional<criteria::CriterionSpec> read_criterion(ObjectReader& r) {
   if (c.mode == criteria::Mode::PassRate && !pass_rate) r.error("Mode", "mode pass_rate needs \"PassRate\" (a percentage)");
   if (c.mode == criteria::Mode::Duration && !duration) r.error("Mode", "mode duration needs \"Duration\" (s)");
   if (pass_rate && (*pass_rate < 0 || *pass_rate > 100)) r.error("PassRate", "\"PassRate\" is a percentage, 0 to 100");
-  c.from_time = r.number("FromTime", Need::Optional);
-  c.to_time = r.number("ToTime", Need::Optional);
+  c.from_time = r.number("FromTime", Need::Optional, Quantity::Time);
+  c.to_time = r.number("ToTime", Need::Optional, Quantity::Time);
   c.from_scene = r.integer("FromScene", Need::Optional);
   c.to_scene = r.integer("ToScene", Need::Optional);
   c.scene = r.integer("Scene", Need::Optional);
@@ -161,9 +161,9 @@ LoadedEvaluation read_evaluation(const JsonDocument& doc) {
       }
       if (const auto t = c.string("Traffic", Need::Optional)) f.traffic = *t;
       if (const auto s = c.integer("Seed", Need::Optional)) f.seed = *s;
-      f.step = c.number("Step", Need::Optional);
+      f.step = c.number("Step", Need::Optional, Quantity::Time);
       if (f.step && (*f.step < 0.001 || *f.step > 1.0)) c.error("Step", "\"Step\" must lie in [0.001, 1] s");
-      f.max_time = c.number("MaxTime", Need::Optional);
+      f.max_time = c.number("MaxTime", Need::Optional, Quantity::Time);
       if (const auto b = c.choice("Backend", {"libsumo", "traci"}, Need::Optional)) f.backend = *b;
       if (const auto* list = c.array("Criteria", Need::Optional)) {
         for (std::size_t i = 0; i < list->size(); ++i) {

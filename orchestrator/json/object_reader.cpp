@@ -78,6 +78,16 @@ std::optional<double> ObjectReader::number(const std::string& key, Need need) {
   return v->get<double>();
 }
 
+std::optional<double> ObjectReader::number(const std::string& key, Need need, Quantity quantity) {
+  const auto value = number(key, need);
+  if (!value) return std::nullopt;
+  if (const auto why = implausible(*value, quantity)) {
+    error(key, fmt::format("\"{}\" {}", key, *why));
+    return std::nullopt;
+  }
+  return value;
+}
+
 std::optional<int> ObjectReader::integer(const std::string& key, Need need) {
   const auto* v = fetch(key, need, "a whole number", [](const nlohmann::json& j) { return j.is_number(); });
   if (!v) return std::nullopt;

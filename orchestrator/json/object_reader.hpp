@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/diagnostics.hpp"
+#include "core/plausible.hpp"
 #include "json/json_document.hpp"
 
 namespace orch {
@@ -29,6 +30,9 @@ class ObjectReader {
   [[nodiscard]] Diagnostics& diags() const { return diags_; }
 
   std::optional<double> number(const std::string& key, Need need);
+  // A number that stands for a physical quantity: a magnitude no map or run can mean
+  // (core/plausible.hpp) is an error naming the key, and the value is not returned.
+  std::optional<double> number(const std::string& key, Need need, Quantity quantity);
   // A whole number (ids); 3.0 is accepted, 3.5 is an error.
   std::optional<int> integer(const std::string& key, Need need);
   std::optional<std::string> string(const std::string& key, Need need);

@@ -10,6 +10,7 @@
 #include <sstream>
 #include <string_view>
 
+#include "core/checked_numeric.hpp"
 #include "core/xml_text.hpp"
 #include "core/errors.hpp"
 #include "core/files.hpp"
@@ -143,7 +144,7 @@ std::string even_fill(const std::vector<NetEdge>& edges, double per_km) {
     for (int lane = 0; lane < static_cast<int>(e.lanes.size()); ++lane) {
       if (!e.lanes[static_cast<std::size_t>(lane)].for_cars) continue;
       const double length = e.lanes[static_cast<std::size_t>(lane)].length;
-      const long n = std::lround(per_km * length / 1000.0);
+      const long n = clamped_round<long>(per_km * length / 1000.0, 0, 1L << 30);
       for (long i = 0; i < n; ++i) {
         const double pos = length * (static_cast<double>(n - i) - 0.5) / static_cast<double>(n);
         placed.push_back({offset.count(e.id) ? offset.at(e.id) + pos : pos,
@@ -210,7 +211,7 @@ std::string background_traffic_xml(const std::filesystem::path& net_file, const 
       // Steady state of the rate at the lane's speed: vehicles/h over km/h = vehicles/km.
       const double per_km = s.fill_per_km >= 0 ? s.fill_per_km
                                                : s.vehicles_per_hour_per_lane / (std::max(l.speed, 1.0) * 3.6);
-      const long number = std::lround(per_km * l.length / 1000.0);
+      const long number = clamped_round<long>(per_km * l.length / 1000.0, 0, 1L << 30);
       if (number > 0 && s.fill_per_km < 0)
         fills += flow(fmt::format("bgfill{}_{}", k, lane), e.id, sinks.front(), lane,
                       fmt::format("end=\"{:.2f}\" number=\"{}\"", kBegin + kFillWindow, number), "random_free");

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "core/checked_numeric.hpp"
+
 namespace orch::corridor {
 
 Vec2 end_direction(const Polyline& line, bool at_end) {
@@ -17,7 +19,7 @@ std::pair<Polyline, double> extend_straight(const Polyline& line, double before,
   std::vector<Vec2> pts;
   const Vec2 d0 = end_direction(line, false);
   const Vec2 d1 = end_direction(line, true);
-  const auto steps = [](double len) { return static_cast<int>(std::ceil(len / kExtensionStep)); };
+  const auto steps = [](double len) { return pieces_covering(len, kExtensionStep, 0, 1 << 30); };
   for (int k = steps(before); k >= 1; --k) pts.push_back(line.point(0) - before * k / steps(before) * d0);
   const auto prefix = pts.size();
   pts.insert(pts.end(), line.points().begin(), line.points().end());
@@ -51,7 +53,7 @@ Polyline::Projection project_along(const Polyline& line, const Vec2& p, const Ve
 }
 
 std::vector<double> track_along(const Polyline& axis, const Polyline& line) {
-  const auto n = static_cast<std::size_t>(std::ceil(line.length() / kTrackStep)) + 1;
+  const auto n = static_cast<std::size_t>(pieces_covering(line.length(), kTrackStep, 0, 1 << 30)) + 1;
   const auto at = [&](std::size_t i) { return std::min(static_cast<double>(i) * kTrackStep, line.length()); };
   std::vector<double> keys(n);
   const std::size_t mid = n / 2;

@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/checked_numeric.hpp"
+
 namespace orch {
 
 namespace {
@@ -49,7 +51,7 @@ WaypointRoute make_line(std::string id, std::vector<WaypointPoint> pts) {
 bool lies_along(const RoutePiece& inner, const RoutePiece& outer) {
   const Polyline& a = inner.line.line;
   const Polyline& b = outer.line.line;
-  const int n = std::max(2, static_cast<int>(std::ceil(a.length() / kContainSample)) + 1);
+  const int n = pieces_covering(a.length(), kContainSample, 1, 1 << 30) + 1;
   for (int k = 0; k < n; ++k) {
     const double s = a.length() * k / (n - 1);
     const Polyline::Projection pr = b.project(a.point_at(s));

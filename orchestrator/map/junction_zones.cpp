@@ -5,6 +5,7 @@
 #include <map>
 #include <unordered_map>
 
+#include "core/checked_numeric.hpp"
 #include "core/components.hpp"
 
 namespace orch {
@@ -81,7 +82,7 @@ class SegmentGrid {
   }
 
  private:
-  static long long cell(double v) { return static_cast<long long>(std::floor(v / kCell)); }
+  static long long cell(double v) { return grid_cell(v, kCell); }
   static long long key(long long cx, long long cy) { return cx * 4000037LL + cy; }
   [[nodiscard]] double segment_f(const SegmentRef& ref, const Vec2& p) const {
     const Vec2& a = routes_[ref.route].line.point(ref.segment);

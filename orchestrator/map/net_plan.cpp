@@ -8,6 +8,7 @@
 #include <set>
 #include <tuple>
 
+#include "core/checked_numeric.hpp"
 #include "core/errors.hpp"
 #include "map/corridor_geometry.hpp"
 #include "map/route_corridors.hpp"
@@ -259,7 +260,7 @@ class CorridorPlanner {
     if (on == open.end()) return;
     const std::size_t ref = static_cast<std::size_t>(on - open.begin());
     const double from = cuts_.back().key;
-    const auto pieces = static_cast<int>(std::ceil((key - from) / settings_.max_edge_length - 1e-9));
+    const auto pieces = clamped_ceil<int>((key - from) / settings_.max_edge_length - 1e-9, 0, 1 << 30);
     for (int j = 1; j < pieces; ++j) {
       const double k = from + (key - from) * j / pieces;
       const double s = members_[ref].s_of_key(k);

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <unordered_map>
 
+#include "core/checked_numeric.hpp"
 #include "core/components.hpp"
 
 namespace orch {
@@ -45,7 +46,7 @@ class NearIndex {
 
  private:
   static constexpr double kCell = 10.0;
-  static long long cell_of(double v) { return static_cast<long long>(std::floor(v / kCell)); }
+  static long long cell_of(double v) { return grid_cell(v, kCell); }
   static long long key(long long cx, long long cy) { return cx * 2000003LL + cy; }
   std::unordered_map<long long, std::vector<Vec2>> cells_;
 };

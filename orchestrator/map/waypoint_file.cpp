@@ -81,10 +81,10 @@ WaypointFile read_waypoint_file_with_messages(const std::string& path) {
       std::vector<Vec2> xy;
       for (std::size_t k = 0; k < points->size(); ++k) {
         ObjectReader p(doc, (*points)[k], json_pointer_child(r.child("points"), k), diags, "waypoint");
-        const auto x = p.number("x", Need::Required);
-        const auto y = p.number("y", Need::Optional);
-        const auto z = p.number("z", Need::Required);
-        const auto v = p.number("v", Need::Optional);
+        const auto x = p.number("x", Need::Required, Quantity::Coordinate);
+        const auto y = p.number("y", Need::Optional, Quantity::Coordinate);
+        const auto z = p.number("z", Need::Required, Quantity::Coordinate);
+        const auto v = p.number("v", Need::Optional, Quantity::SpeedKmh);
         p.finish();
         if (!x || !z) continue;
         route.points.push_back(map_point(*x, y, *z, v));

@@ -3,15 +3,16 @@
 #include <cmath>
 #include <unordered_map>
 
+#include "core/checked_numeric.hpp"
+
+
 namespace orch::metrics {
 
 namespace {
 
 constexpr double kCell = 10.0;  // m, grid of path segments
 
-long long cell_key(const Vec2& p) {
-  return static_cast<long long>(std::floor(p.x() / kCell)) * 1000003LL + static_cast<long long>(std::floor(p.y() / kCell));
-}
+long long cell_key(const Vec2& p) { return grid_cell(p.x(), kCell) * 1000003LL + grid_cell(p.y(), kCell); }
 
 double cross(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
 

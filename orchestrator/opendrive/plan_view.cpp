@@ -4,6 +4,8 @@
 #include <array>
 #include <cmath>
 
+#include "core/checked_numeric.hpp"
+
 namespace orch::opendrive {
 namespace {
 
@@ -21,7 +23,7 @@ constexpr double kPieceLength = 2.0;  // metres per quadrature piece
 template <class F>
 double integrate(F&& f, double a, double b, double piece) {
   if (b <= a) return 0.0;
-  const int pieces = std::max(1, static_cast<int>(std::ceil((b - a) / piece)));
+  const int pieces = pieces_covering(b - a, piece, 1, 1 << 30);
   const double h = (b - a) / pieces;
   double sum = 0.0;
   for (int i = 0; i < pieces; ++i) {

@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 
+#include "core/checked_numeric.hpp"
 #include "core/errors.hpp"
 
 namespace orch::opendrive {
@@ -119,7 +120,7 @@ Pose2 RoadNetwork::lane_pose(const std::string& road_id, int lane_id, double s, 
 RoadCoordinate project(const Road& road, double x, double y) {
   // Coarse: the nearest of samples every ~1 m; fine: Newton on (q - p(s)) . T(s) = 0.
   const double length = road.plan_view.length();
-  const int samples = std::max(2, static_cast<int>(std::ceil(length)) + 1);
+  const int samples = pieces_covering(length, 1.0, 1, 1 << 30) + 1;
   double best_s = 0.0;
   double best_d2 = std::numeric_limits<double>::infinity();
   for (int i = 0; i < samples; ++i) {

@@ -9,6 +9,7 @@
 
 #include <fmt/format.h>
 
+#include "core/plausible.hpp"
 #include "core/suggest.hpp"
 #include "xml/xml_source.hpp"
 
@@ -50,7 +51,25 @@ class Reader {
     const double value = std::strtod(text, &end);
     if (end == text || *end != '\0' || !std::isfinite(value))
       throw ScenarioError(src_.where(node, name), fmt::format("expected a number, found \"{}\"", text));
+    // Positions and lengths no map can hold are refused here (core/plausible.hpp), before
+    // any geometry is sampled along them.
+    const std::string_view n(name);
+    const auto quantity = n == "x" || n == "y" ? std::optional(Quantity::Coordinate)
+                          : n == "s" || n == "length" || n == "sOffset" ? std::optional(Quantity::Length)
+                                                                         : std::nullopt;
+    if (quantity)
+      if (const auto why = implausible(value, *quantity))
+        throw ScenarioError(src_.where(node, name), fmt::format("{} {}", name, *why));
     return value;
+  }
+
+  // A whole number that fits an int (lane ids): 1e300 or 2.5 is an error, not a cast.
+  int integer(const pugi::xml_node& node, const char* name) const {
+    const double value = number(node, name);
+    if (std::floor(value) != value || std::abs(value) > 1e9)
+      throw ScenarioError(src_.where(node, name),
+                          fmt::format("expected a whole number (a lane id), found \"{}\"", node.attribute(name).value()));
+    return static_cast<int>(value);
   }
 
   CubicRecord cubic(const pugi::xml_node& node, const char* start) const {
@@ -121,7 +140,7 @@ class Reader {
 
   std::optional<int> lane_link(const pugi::xml_node& node) const {
     if (!node) return std::nullopt;
-    return static_cast<int>(number(node, "id"));
+    return integer(node, "id");
   }
 
   Junction read_junction(const pugi::xml_node& node) const {
@@ -140,7 +159,7 @@ class Reader {
       const ContactPoint contact = contact_point(c);
       connection.contact = contact == ContactPoint::None ? ContactPoint::Start : contact;
       for (const pugi::xml_node l : c.children("laneLink"))
-        connection.lane_links.push_back({static_cast<int>(number(l, "from")), static_cast<int>(number(l, "to"))});
+        connection.lane_links.push_back({integer(l, "from"), integer(l, "to")});
       junction.connections.push_back(std::move(connection));
     }
     return junction;
@@ -171,7 +190,7 @@ class Reader {
 
   Lane read_lane(const pugi::xml_node& node) const {
     Lane lane;
-    lane.id = node.attribute("id").as_int();
+    lane.id = integer(node, "id");
     lane.type = node.attribute("type").as_string("none");
     if (node.child("border"))
       src_.fail(node.child("border"), "lane border records are not supported (use width records)");

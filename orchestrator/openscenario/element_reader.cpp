@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 
+#include "core/plausible.hpp"
 #include "core/suggest.hpp"
 #include "openscenario/expression.hpp"
 #include "openscenario/standard_elements.hpp"
@@ -41,11 +42,27 @@ void Element::missing_attribute(const char* attribute) const {
   fail_attribute(attribute, "missing attribute");
 }
 
+namespace {
+// Attributes that are a coordinate or a length wherever the standard uses them (positions,
+// distances, offsets): a magnitude no map can hold is refused (core/plausible.hpp). Names
+// that mean different quantities in different elements ("value") are left to their readers.
+std::optional<Quantity> quantity_of(std::string_view attribute) {
+  static constexpr std::string_view coordinates[] = {"x", "y", "z"};
+  static constexpr std::string_view lengths[] = {"s", "t", "ds", "dsLane", "dx", "dy", "dz", "offset", "distance"};
+  if (std::find(std::begin(coordinates), std::end(coordinates), attribute) != std::end(coordinates))
+    return Quantity::Coordinate;
+  if (std::find(std::begin(lengths), std::end(lengths), attribute) != std::end(lengths)) return Quantity::Length;
+  return std::nullopt;
+}
+}  // namespace
+
 std::optional<double> Element::optional_number(const char* attribute) {
   const auto value = raw(attribute);
   if (!value) return std::nullopt;
   const auto d = parse_whole<double>(*value);
   if (!d) fail_attribute(attribute, fmt::format("expected a number, found \"{}\"", *value));
+  if (const auto quantity = quantity_of(attribute))
+    if (const auto why = implausible(*d, *quantity)) fail_attribute(attribute, fmt::format("{} {}", attribute, *why));
   return d;
 }
 

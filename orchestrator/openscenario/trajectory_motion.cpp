@@ -3,13 +3,14 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/checked_numeric.hpp"
 #include "core/errors.hpp"
 
 namespace orch::openscenario {
 
 std::vector<PathPoint> clothoid_points(const opendrive::Pose2& start, double k0, double k_prime, double length) {
   const opendrive::Geometry geometry{0.0, start, length, opendrive::Spiral{k0, k0 + k_prime * length}};
-  const int pieces = std::max(2, static_cast<int>(std::ceil(length / kClothoidStep)));
+  const int pieces = pieces_covering(length, kClothoidStep, 2, 1 << 30);
   std::vector<PathPoint> points;
   for (int i = 0; i <= pieces; ++i) {
     const opendrive::Pose2 p = opendrive::evaluate(geometry, length * i / pieces);

@@ -54,7 +54,7 @@ std::vector<std::string> range_values(Element& range_element) {
   range_element.finish();
   if (!(step > 0)) range_element.fail_attribute("stepWidth", fmt::format("stepWidth must be > 0, found {}", format_number(step)));
   const double count = std::floor((r.upper - r.lower) / step + 1e-9) + 1;
-  if (count > kMaxRangeValues)
+  if (!(count <= kMaxRangeValues))  // NaN too
     range_element.fail_attribute("stepWidth", fmt::format("the range gives {:.0f} values (more than {:.0f})", count,
                                                          kMaxRangeValues));
   std::vector<std::string> values;

@@ -6,6 +6,8 @@
 #include <cmath>
 #include <limits>
 
+#include "core/checked_numeric.hpp"
+
 namespace orch::reference_driver {
 
 namespace {
@@ -122,7 +124,7 @@ bool R157Driver::critical(const DriverView& v, const PerceivedObject& target) co
 void R157Driver::update_home_lanes(const DriverView& v) {
   for (const auto& o : v.objects) {
     if (o.kind != ObjectKind::Vehicle) continue;
-    const long k = std::lround(o.d / v.lane_width);
+    const long k = clamped_round<long>(o.d / v.lane_width, -(1L << 30), 1L << 30);
     if (std::abs(o.d - static_cast<double>(k) * v.lane_width) <= p_.wandering_threshold)
       home_lane_[o.id] = static_cast<int>(k);
   }

@@ -3,6 +3,7 @@
 // (1 = real time), for hardware in the loop or an ego stack that needs it. A decorator
 // around any Simulator: the scenario logic never sees the clock (simulated time stays the
 // only time it knows), and without --realtime nothing waits.
+#include <algorithm>
 #include <chrono>
 #include <thread>
 
@@ -26,8 +27,10 @@ class PacedSimulator final : public Simulator {
   void advance() override {
     inner_.advance();
     ++steps_;
+    // Clamped to a century: a duration in nanoseconds overflows its 64 bits past ~292 years.
+    const double seconds = std::min(static_cast<double>(steps_) * step_ / factor_, 3.2e9);
     const auto due = origin_ + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-                                   std::chrono::duration<double>(static_cast<double>(steps_) * step_ / factor_));
+                                   std::chrono::duration<double>(seconds));
     const auto now = std::chrono::steady_clock::now();
     if (due > now) {
       std::this_thread::sleep_until(due);

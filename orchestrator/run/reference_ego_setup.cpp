@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <stdexcept>
 
+#include "core/checked_numeric.hpp"
 #include "core/errors.hpp"
 
 namespace orch {
@@ -58,7 +59,7 @@ DrivingPath lane_path(const opendrive::RoadNetwork& roads, const openscenario::E
   const opendrive::Road& road = roads.road(start.road_id);
   // The lane's centre line in the lane's driving direction (right lanes along s).
   std::vector<Vec2> points;
-  const int n = std::max(2, static_cast<int>(road.length));
+  const int n = clamped_floor<int>(road.length, 2, 1 << 30);
   for (int i = 0; i <= n; ++i) {
     const double s = road.length * i / n;
     const opendrive::Pose2 p = roads.lane_pose(start.road_id, start.lane, s, 0.0);

@@ -26,7 +26,7 @@ void check_speed(CheckContext& ctx, const SpeedAction& a, const SourceLocation& 
 std::optional<TraveledDistanceAction> read_traveled_distance(LoadContext& ctx, ObjectReader& r) {
   const auto actor = r.integer("actor_id", Need::Required);
   const auto target = r.integer("target_actor_id", Need::Optional);
-  const auto value = r.number("value", Need::Required);
+  const auto value = r.number("value", Need::Required, Quantity::Length);
   const auto measure = scenario_loading::read_measure_type(r);
   if (!actor || !value || !measure) return std::nullopt;
   // Absent target_actor_id: the distance is kept to the ego, as in the reference.
@@ -46,7 +46,7 @@ std::optional<LaneChangeAction> read_lane_change(LoadContext&, ObjectReader& r) 
   const auto actor = r.integer("actor_id", Need::Required);
   r.choice("type", {"lane"}, Need::Optional);  // "lane" is the only kind, and the default
   const auto wp_id = scenario_loading::read_id_string(r, "wp_id", Need::Required);
-  const auto time = r.number("time", Need::Required);
+  const auto time = r.number("time", Need::Required, Quantity::Time);
   if (!actor || !wp_id || !time) return std::nullopt;
   return LaneChangeAction{*actor, *wp_id, *time};
 }
@@ -60,8 +60,8 @@ void check_lane_change(CheckContext& ctx, const LaneChangeAction& a, const Sourc
 // ---------------------------------------------------------------- lane_offset
 std::optional<LaneOffsetAction> read_lane_offset(LoadContext&, ObjectReader& r) {
   const auto actor = r.integer("actor_id", Need::Required);
-  const auto value = r.number("value", Need::Required);
-  const auto time = r.number("time", Need::Required);
+  const auto value = r.number("value", Need::Required, Quantity::Length);
+  const auto time = r.number("time", Need::Required, Quantity::Time);
   if (!actor || !value || !time) return std::nullopt;
   return LaneOffsetAction{*actor, *value, *time};
 }
@@ -76,14 +76,14 @@ std::optional<RouteLeg> read_route_leg(LoadContext& ctx, const nlohmann::json& v
   ObjectReader r(ctx.doc, value, pointer, ctx.diags, "route point");
   RouteLeg leg;
   leg.where = r.where();
-  const auto time = r.number("time", Need::Required);
+  const auto time = r.number("time", Need::Required, Quantity::Time);
   bool complete = time.has_value();
   if (type == RouteMoveType::Waypoint) {
     leg.waypoint = scenario_loading::read_waypoint_ref(r);
-    leg.wp_offset = r.number("wp_offset", Need::Optional);
+    leg.wp_offset = r.number("wp_offset", Need::Optional, Quantity::Length);
     complete = complete && leg.waypoint;
   } else {
-    leg.wp_offset = r.number("wp_offset", Need::Required);
+    leg.wp_offset = r.number("wp_offset", Need::Required, Quantity::Length);
     complete = complete && leg.wp_offset;
     for (const char* key : {"wp_id", "wp_idx"})
       scenario_loading::reject_key(r, key,

@@ -42,7 +42,7 @@ std::optional<ModelInfo> read_model(const JsonDocument& doc, const nlohmann::jso
                                        : ActorKind::Obstacle;
   for (auto [key, field] : {std::pair{"length", &m.length}, std::pair{"width", &m.width},
                             std::pair{"height", &m.height}}) {
-    const auto size = r.number(key, Need::Required);
+    const auto size = r.number(key, Need::Required, Quantity::Length);
     if (size && *size <= 0) r.error(key, fmt::format("\"{}\" must be > 0 m, found {}", key, *size));
     *field = size.value_or(0.0);
   }

@@ -27,7 +27,7 @@ std::optional<PositionCondition> read_position(LoadContext&, ObjectReader& r) {
   const auto actor = r.integer("actor_id", Need::Required);
   r.choice("type", {"reach"}, Need::Optional);  // "reach" is the only kind, and the default
   const auto waypoint = loading::read_waypoint_ref(r);
-  const auto tolerance = r.number("tolerance", Need::Required);
+  const auto tolerance = r.number("tolerance", Need::Required, Quantity::Length);
   if (!actor || !waypoint || !tolerance) return std::nullopt;
   return PositionCondition{*actor, *waypoint, *tolerance};
 }
@@ -44,7 +44,7 @@ std::optional<DistanceCondition> read_distance(LoadContext& ctx, ObjectReader& r
   // Absent target_actor_id: the distance to the ego, as in the reference implementation.
   const auto target = r.integer("target_actor_id", Need::Optional);
   const auto comparison = loading::read_comparison(r, Need::Required);
-  const auto value = r.number("value", Need::Required);
+  const auto value = r.number("value", Need::Required, Quantity::Length);
   const auto measure = loading::read_measure_type(r);
   if (!actor || !comparison || !value || !measure) return std::nullopt;
   c.actor = *actor;
@@ -70,7 +70,7 @@ std::optional<SpeedCondition> read_speed(LoadContext& ctx, ObjectReader& r) {
   const auto type = loading::read_speed_type(r);
   const auto target = r.integer("target_actor_id", Need::Optional);
   const auto comparison = loading::read_comparison(r, Need::Required);
-  const auto value = r.number("value", Need::Required);
+  const auto value = r.number("value", Need::Required, Quantity::SpeedKmh);
   if (!actor || !type || !comparison || !value) return std::nullopt;
   c.actor = *actor;
   c.type = *type;
@@ -97,7 +97,7 @@ std::optional<TimeHeadwayCondition> read_time_headway(LoadContext&, ObjectReader
   const auto actor = r.integer("actor_id", Need::Required);
   const auto waypoint = loading::read_waypoint_ref(r);
   const auto comparison = loading::read_comparison(r, Need::Required);
-  const auto value = r.number("value", Need::Required);
+  const auto value = r.number("value", Need::Required, Quantity::Time);
   if (!actor || !waypoint || !comparison || !value) return std::nullopt;
   return TimeHeadwayCondition{*actor, *waypoint, *comparison, *value};
 }
@@ -121,7 +121,7 @@ void check_collision(CheckContext& ctx, const CollisionCondition& c, const Sourc
 // ---------------------------------------------------------------- simulation_time
 std::optional<SimulationTimeCondition> read_simulation_time(LoadContext&, ObjectReader& r) {
   const auto comparison = loading::read_comparison(r, Need::Required);
-  const auto value = r.number("value", Need::Required);
+  const auto value = r.number("value", Need::Required, Quantity::Time);
   if (!comparison || !value) return std::nullopt;
   return SimulationTimeCondition{*comparison, *value};
 }

@@ -78,7 +78,7 @@ std::optional<Scene> read_scene(LoadContext& ctx, const nlohmann::json& value, c
     scene.conditions = read_condition_group(ctx, value["conditions"], r.child("conditions"));
   }
   if (!ending) {
-    scene.duration = r.number("duration", Need::Optional).value_or(0.0);
+    scene.duration = r.number("duration", Need::Optional, Quantity::Time).value_or(0.0);
     if (const auto* actions = r.array("actions", Need::Optional))
       scene.actions = read_actions(ctx, *actions, r.child("actions"));
     const auto* next = r.array("next_scenes", Need::Optional);

@@ -21,7 +21,7 @@ std::optional<Accel> read_accel(LoadContext& ctx, ObjectReader& parent) {
   // The document spells it "gods_hand", the reference implementation "god_hands".
   const auto type = r.choice("type", {"specify", "gods_hand", "god_hands"}, Need::Required);
   const bool specify = type && *type == "specify";
-  const auto magnitude = r.number("value", specify ? Need::Required : Need::Optional);
+  const auto magnitude = r.number("value", specify ? Need::Required : Need::Optional, Quantity::Acceleration);
   r.finish();
   if (!type || (specify && !magnitude)) return std::nullopt;
   return Accel{specify ? AccelType::Specify : AccelType::GodsHand, magnitude.value_or(0.0)};
@@ -71,7 +71,7 @@ std::optional<SpeedAction> read_speed_body(LoadContext& ctx, ObjectReader& r, bo
   const auto actor = needs_actor ? r.integer("actor_id", Need::Required) : std::optional<int>(0);
   const auto type = read_speed_type(r);
   const auto target = r.integer("target_actor_id", Need::Optional);
-  const auto value = r.number("value", Need::Required);
+  const auto value = r.number("value", Need::Required, Quantity::SpeedKmh);
   const auto accel = read_accel(ctx, r);
   if (!actor || !type || !value || !accel) return std::nullopt;
   a.actor = *actor;

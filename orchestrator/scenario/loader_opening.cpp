@@ -22,7 +22,7 @@ std::optional<double> read_orientation(LoadContext& ctx, ObjectReader& parent) {
 
 void read_waypoint_placement(LoadContext& ctx, ObjectReader& r, StartPosition& start) {
   start.waypoint = read_waypoint_ref(r);
-  start.wp_offset = r.number("wp_offset", Need::Optional).value_or(0.0);
+  start.wp_offset = r.number("wp_offset", Need::Optional, Quantity::Length).value_or(0.0);
   start.heading = read_orientation(ctx, r);
 }
 
@@ -79,9 +79,9 @@ StartPosition read_other_start(LoadContext& ctx, const nlohmann::json& value, co
     start.type = StartPositionType::Distance;
     // Absent target_actor_id: placed relative to the ego, like relative speeds and distances.
     start.target = r.integer("target_actor_id", Need::Optional).value_or(ctx.ego_id);
-    start.distance = r.number("distance", Need::Required).value_or(0.0);
+    start.distance = r.number("distance", Need::Required, Quantity::Length).value_or(0.0);
     start.measure = read_measure_type(r).value_or(MeasureType::Center);
-    start.wp_offset = r.number("wp_offset", Need::Optional).value_or(0.0);
+    start.wp_offset = r.number("wp_offset", Need::Optional, Quantity::Length).value_or(0.0);
     start.heading = read_orientation(ctx, r);
     // The route the actor drives (the reference implementation reads it for every start
     // position); absent: the target's route.

@@ -1,7 +1,10 @@
 // A bounded random-input driver for LLVMFuzzerTestOneInput, for compilers without libFuzzer
 // (the default g++ build): mutates the seed corpus (bit flips, cuts, splices, lengths set to
-// 0, 2 GB or random) for a fixed time, with a printed seed so that a failure can be replayed.
-//   traci_fuzz_random [--seconds S] [--seed N] [CORPUS_DIR...]
+// 0, 2 GB or random): a fixed number of inputs from a fixed seed by default (the same inputs on
+// every run of the test command), or for a time with any seed (the soak); the seed is printed
+// so that a failure can be replayed.
+//   traci_fuzz_random [--runs N | --seconds S] [--seed N] [CORPUS_DIR...]
+#include <algorithm>
 #include <chrono>
 #include <cstdint>
 #include <filesystem>
@@ -60,37 +63,49 @@ std::string mutate(std::string s, const std::vector<std::string>& seeds, std::mt
 }  // namespace
 
 int main(int argc, char** argv) {
-  double seconds = 5;
-  std::uint64_t seed = std::random_device{}();
+  // Deterministic by default (ctest): a fixed seed and a fixed number of inputs, so the same
+  // tree always tries the same inputs. The soak (scripts/soak.sh) passes --seed and --seconds.
+  double seconds = 0;
+  long long max_inputs = 4096;
+  std::uint64_t seed = 1;
   std::vector<std::string> seeds;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--seconds" && i + 1 < argc) {
       seconds = std::stod(argv[++i]);
+      max_inputs = 0;
+    } else if (a == "--runs" && i + 1 < argc) {
+      max_inputs = std::stoll(argv[++i]);
     } else if (a == "--seed" && i + 1 < argc) {
       seed = std::stoull(argv[++i]);
     } else {
-      // Seed folders may hold sub-folders (scenarios/nightly) and markers (.keep): files only.
-      for (const auto& f : std::filesystem::recursive_directory_iterator(a)) {
-        if (!f.is_regular_file()) continue;
-        std::ifstream in(f.path(), std::ios::binary);
+      // Seed folders may hold sub-folders (scenarios/nightly) and markers (.keep): files only,
+      // in a fixed order (a directory's order is the file system's).
+      std::vector<std::filesystem::path> paths;
+      for (const auto& f : std::filesystem::recursive_directory_iterator(a))
+        if (f.is_regular_file()) paths.push_back(f.path());
+      std::sort(paths.begin(), paths.end());
+      for (const auto& path : paths) {
+        std::ifstream in(path, std::ios::binary);
         seeds.emplace_back(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
       }
     }
   }
   if (seeds.empty()) seeds.emplace_back("\0\0\0\x05\x02", 5);
   const std::string name = std::filesystem::path(argv[0]).filename().string();
-  std::cout << name << ": seed " << seed << ", " << seeds.size() << " corpus file(s), " << seconds << " s\n";
+  std::cout << name << ": seed " << seed << ", " << seeds.size() << " corpus file(s), "
+            << (max_inputs > 0 ? std::to_string(max_inputs) + " inputs" : std::to_string(seconds) + " s") << "\n";
   std::mt19937_64 rng(seed);
   const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
   long long runs = 0;
   for (const auto& s : seeds) LLVMFuzzerTestOneInput(reinterpret_cast<const std::uint8_t*>(s.data()), s.size());
-  while (std::chrono::steady_clock::now() < end) {
-    for (int batch = 0; batch < 256; ++batch, ++runs) {
+  const auto more = [&] { return max_inputs > 0 ? runs < max_inputs : std::chrono::steady_clock::now() < end; };
+  while (more()) {
+    for (int batch = 0; batch < 256 && (max_inputs == 0 || runs < max_inputs); ++batch, ++runs) {
       const std::string input = mutate(seeds[rng() % seeds.size()], seeds, rng);
       LLVMFuzzerTestOneInput(reinterpret_cast<const std::uint8_t*>(input.data()), input.size());
     }
   }
-  std::cout << name << ": " << runs << " inputs, no crash\n";
+  std::cout << name << ": " << runs << " inputs, no crash (seed " << seed << ")\n";
   return 0;
 }
