@@ -236,9 +236,15 @@ class Reader {
       if (road.type.empty()) road.type = type.attribute("type").as_string();
     }
     std::vector<Geometry> geometries;
-    for (const pugi::xml_node g : node.child("planView").children("geometry"))
-      geometries.push_back(Geometry{number(g, "s"), {number(g, "x"), number(g, "y"), number(g, "hdg")},
-                                    number(g, "length"), shape(g)});
+    for (const pugi::xml_node g : node.child("planView").children("geometry")) {
+      // A geometry of no length has no shape to sample (found by the soak: length -2000).
+      const double length = number(g, "length");
+      if (!(length > 0))
+        throw ScenarioError(src_.where(g, "length"),
+                            fmt::format("geometry length must be > 0 m, found {}", g.attribute("length").value()));
+      geometries.push_back(
+          Geometry{number(g, "s"), {number(g, "x"), number(g, "y"), number(g, "hdg")}, length, shape(g)});
+    }
     if (geometries.empty()) src_.fail(node, "road without planView geometry");
     road.plan_view = PlanView(std::move(geometries));
     const pugi::xml_node lanes = node.child("lanes");

@@ -202,4 +202,9 @@ TEST(Plausible, TheOpenDriveReaderRefusesImplausibleLengthsAndLaneIds) {
   EXPECT_NE(read("100", "-1e300", "-1").find("x is -1e+300 m"), std::string::npos);
   EXPECT_NE(read("100", "0", "1e300").find("expected a whole number"), std::string::npos) << read("100", "0", "1e300");
   EXPECT_NE(read("100", "0", "9223372036854775808").find("expected a whole number"), std::string::npos);
+  // The soak's first find (seed 4164491318): a geometry of negative length reached the
+  // polyline code and ended the run as an internal error.
+  EXPECT_NE(read("-2000", "0", "-1").find("geometry length must be > 0 m, found -2000"), std::string::npos)
+      << read("-2000", "0", "-1");
+  EXPECT_NE(read("0", "0", "-1").find("geometry length must be > 0 m"), std::string::npos);
 }
