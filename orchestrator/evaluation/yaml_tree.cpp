@@ -2,12 +2,14 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
 #include <charconv>
 #include <fstream>
 #include <regex>
 #include <sstream>
 
 #include "core/errors.hpp"
+#include "core/utf8.hpp"
 
 namespace orch {
 
@@ -72,6 +74,18 @@ nlohmann::json convert(const YAML::Node& node, const std::string& pointer, const
 }  // namespace
 
 JsonDocument parse_yaml_document(const std::string& text, const std::string& path_for_messages) {
+  // YAML is Unicode text; yaml-cpp passes any bytes through, and an ill-formed string would
+  // reach the outputs (found by the soak, seed 2679876088: an internal error). The first
+  // line that is not UTF-8 is named.
+  if (!is_valid_utf8(text)) {
+    int line = 1;
+    for (std::size_t start = 0; start < text.size(); ++line) {
+      const std::size_t end = std::min(text.find('\n', start), text.size());
+      if (!is_valid_utf8(std::string_view(text).substr(start, end - start))) break;
+      start = end + 1;
+    }
+    throw ScenarioError(SourceLocation{path_for_messages, "", line}, "invalid UTF-8: a YAML file is UTF-8 text");
+  }
   YAML::Node root;
   try {
     root = YAML::Load(text);

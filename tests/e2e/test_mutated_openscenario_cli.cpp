@@ -85,7 +85,8 @@ TEST(MutatedOpenScenarioCli, EveryMutatedRoadEndsInAWrittenResult) {
 TEST(MutatedOpenScenarioCli, EveryMutatedEvaluationFileEndsInAWrittenResult) {
   const auto files = files_in({source_path("scenarios/evaluation")}, ".yaml");
   ASSERT_FALSE(files.empty());
-  const PropertySeeds p = property_seeds({20261126}, 8);
+  // 2679876088: the soak's find (bytes that are not UTF-8 in a string, mutant 7 of 16).
+  const PropertySeeds p = property_seeds({20261126, 2679876088}, 8);
   SubreaperScope reaper;
   ASSERT_TRUE(reaper.ok());
   TempDir dir;

@@ -147,6 +147,13 @@ TEST_F(EvaluationFileTest, InvalidYamlAndRepeatedKeysNameTheLine) {
   EXPECT_NE(e.find("eval.yaml:2: error: /ScenarioName: duplicate key"), std::string::npos) << e;
 }
 
+// The soak's find (seed 2679876088): bytes that are not UTF-8 in a YAML string reached the
+// outputs and ended the run as an internal error. Now the reader names the line.
+TEST_F(EvaluationFileTest, BytesThatAreNotUtf8NameTheirLine) {
+  const std::string e = errors("ScenarioName: a\nScenarioDescription: b\xff\xfe c\n");
+  EXPECT_NE(e.find("eval.yaml:2: error: /: invalid UTF-8: a YAML file is UTF-8 text"), std::string::npos) << e;
+}
+
 TEST(YamlTree, ScalarsTypedQuotedStayStrings) {
   const JsonDocument d = parse_yaml_document("a: 1\nb: 1.5\nc: true\nd: ~\ne: \"2\"\nf: 2.0.0\ng: [x, 3]\n", "t.yaml");
   EXPECT_EQ(d.root()["a"], 1);
