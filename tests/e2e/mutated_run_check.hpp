@@ -68,4 +68,31 @@ inline void run_mutant_and_check(const std::string& kind, std::uint64_t seed, in
   EXPECT_TRUE(live_children().empty()) << "a process outlived the run";
 }
 
+// One mutant written to disk: what was done, the file to run, and the original it came from.
+struct WrittenMutant {
+  Mutation mutation;
+  std::filesystem::path file;
+  std::filesystem::path source;
+};
+
+// Every mutant of the seeds in `p`: each draws an original from `files` and `make(original,
+// rng, stem)` writes its mutant (files named `stem` + extension); then the property is checked.
+template <class Make>
+void check_mutants(const std::string& kind, const std::vector<std::filesystem::path>& files, const PropertySeeds& p,
+                   const std::vector<std::string>& run_options, Make make) {
+  ASSERT_FALSE(files.empty());
+  SubreaperScope reaper;
+  ASSERT_TRUE(reaper.ok());
+  TempDir dir;
+  for (const std::uint64_t seed : p.seeds) {
+    std::cout << kind << " mutants: ORCH_PROPERTY_SEED=" << seed << ", " << p.runs << " runs\n";
+    std::mt19937_64 rng(seed);
+    for (int i = 0; i < p.runs; ++i) {
+      const std::filesystem::path& original = files[rng() % files.size()];
+      const WrittenMutant w = make(original, rng, (dir / ("mutated_" + std::to_string(seed) + "_" + std::to_string(i))).string());
+      run_mutant_and_check(kind, seed, i, w.source, w.mutation, w.file, run_options);
+    }
+  }
+}
+
 }  // namespace orch::test

@@ -31,74 +31,54 @@ const std::vector<std::string> kRunOptions = {"--max-time", "5"};
 
 }  // namespace
 
+pugi::xml_document load_xml(const fs::path& path) {
+  pugi::xml_document doc;
+  if (!doc.load_file(path.c_str())) throw std::runtime_error("cannot read " + path.string());
+  return doc;
+}
+
+std::filesystem::path write_file(const std::string& path, const std::string& text) {
+  std::ofstream(path) << text;
+  return path;
+}
+
 TEST(MutatedOpenScenarioCli, EveryMutatedXoscEndsInAWrittenResult) {
-  const auto files = openscenario_files();
-  ASSERT_FALSE(files.empty());
-  const PropertySeeds p = property_seeds({20261126}, 12);
-  SubreaperScope reaper;
-  ASSERT_TRUE(reaper.ok());
-  TempDir dir;
-  for (const std::uint64_t seed : p.seeds) {
-    std::mt19937_64 rng(seed);
-    for (int i = 0; i < p.runs; ++i) {
-      const fs::path& source = files[rng() % files.size()];
-      pugi::xml_document doc;
-      ASSERT_TRUE(doc.load_file(source.c_str())) << source;
-      absolutize_paths(doc, source.parent_path());
-      const Mutation m = mutate_xml(doc, rng);
-      const auto file = dir.write("mutated_" + std::to_string(seed) + "_" + std::to_string(i) + ".xosc", m.text);
-      run_mutant_and_check("xosc", seed, i, source, m, file, kRunOptions);
-    }
-  }
+  check_mutants("xosc", openscenario_files(), property_seeds({20261126}, 12), kRunOptions,
+                [](const fs::path& source, std::mt19937_64& rng, const std::string& stem) {
+                  pugi::xml_document doc = load_xml(source);
+                  absolutize_paths(doc, source.parent_path());
+                  Mutation m = mutate_xml(doc, rng);
+                  const auto file = write_file(stem + ".xosc", m.text);
+                  return WrittenMutant{std::move(m), file, source};
+                });
 }
 
 TEST(MutatedOpenScenarioCli, EveryMutatedRoadEndsInAWrittenResult) {
-  const auto files = openscenario_files();
-  ASSERT_FALSE(files.empty());
   // 4164491318: the soak's find (a geometry of negative length, mutant 4 of 16).
-  const PropertySeeds p = property_seeds({20261126, 4164491318}, 8);
-  SubreaperScope reaper;
-  ASSERT_TRUE(reaper.ok());
-  TempDir dir;
-  for (const std::uint64_t seed : p.seeds) {
-    std::mt19937_64 rng(seed);
-    for (int i = 0; i < p.runs; ++i) {
-      const fs::path& source = files[rng() % files.size()];
-      pugi::xml_document scenario;
-      ASSERT_TRUE(scenario.load_file(source.c_str())) << source;
-      absolutize_paths(scenario, source.parent_path());
-      pugi::xml_attribute road_attribute = road_file_attribute(scenario);
-      ASSERT_TRUE(road_attribute) << source << ": no road network file found";
-      const fs::path road = road_attribute.value();
-      pugi::xml_document doc;
-      ASSERT_TRUE(doc.load_file(road.c_str())) << road;
-      const Mutation m = mutate_xml(doc, rng);
-      const std::string stem = "mutated_" + std::to_string(seed) + "_" + std::to_string(i);
-      const auto road_file = dir.write(stem + ".xodr", m.text);
-      road_attribute.set_value(road_file.c_str());
-      const auto file = dir.write(stem + ".xosc", xml_text(scenario));
-      run_mutant_and_check("xodr", seed, i, road, m, file, kRunOptions);
-    }
-  }
+  check_mutants("xodr", openscenario_files(), property_seeds({20261126, 4164491318}, 8), kRunOptions,
+                [](const fs::path& source, std::mt19937_64& rng, const std::string& stem) {
+                  pugi::xml_document scenario = load_xml(source);
+                  absolutize_paths(scenario, source.parent_path());
+                  pugi::xml_attribute road_attribute = road_file_attribute(scenario);
+                  if (!road_attribute) throw std::runtime_error(source.string() + ": no road network file found");
+                  const fs::path road = road_attribute.value();
+                  pugi::xml_document doc = load_xml(road);
+                  Mutation m = mutate_xml(doc, rng);
+                  road_attribute.set_value(write_file(stem + ".xodr", m.text).c_str());
+                  const auto file = write_file(stem + ".xosc", xml_text(scenario));
+                  return WrittenMutant{std::move(m), file, road};
+                });
 }
 
 TEST(MutatedOpenScenarioCli, EveryMutatedEvaluationFileEndsInAWrittenResult) {
-  const auto files = files_in({source_path("scenarios/evaluation")}, ".yaml");
-  ASSERT_FALSE(files.empty());
   // 2679876088: the soak's find (bytes that are not UTF-8 in a string, mutant 7 of 16).
-  const PropertySeeds p = property_seeds({20261126, 2679876088}, 8);
-  SubreaperScope reaper;
-  ASSERT_TRUE(reaper.ok());
-  TempDir dir;
-  for (const std::uint64_t seed : p.seeds) {
-    std::mt19937_64 rng(seed);
-    for (int i = 0; i < p.runs; ++i) {
-      const fs::path& source = files[rng() % files.size()];
-      const Mutation m = mutate_yaml(slurp(source), source.parent_path(), rng);
-      const auto file = dir.write("mutated_" + std::to_string(seed) + "_" + std::to_string(i) + ".yaml", m.text);
-      run_mutant_and_check("yaml", seed, i, source, m, file, {"--max-time", "10"});
-    }
-  }
+  check_mutants("yaml", files_in({source_path("scenarios/evaluation")}, ".yaml"),
+                property_seeds({20261126, 2679876088}, 8), {"--max-time", "10"},
+                [](const fs::path& source, std::mt19937_64& rng, const std::string& stem) {
+                  Mutation m = mutate_yaml(slurp(source), source.parent_path(), rng);
+                  const auto file = write_file(stem + ".yaml", m.text);
+                  return WrittenMutant{std::move(m), file, source};
+                });
 }
 
 // Values no map can hold are refused at `validate`, naming the attribute and its line: a

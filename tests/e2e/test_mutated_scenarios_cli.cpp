@@ -26,24 +26,15 @@ std::vector<std::filesystem::path> real_scenarios() {
 }  // namespace
 
 TEST(MutatedScenariosCli, EveryMutationEndsInAWrittenResult) {
-  const auto files = real_scenarios();
-  ASSERT_FALSE(files.empty());
   // 249426645 found issue 22 (with ../shared present); 20261126 is the day it was fixed.
-  const PropertySeeds p = property_seeds({249426645, 20261126}, 16);
-  SubreaperScope reaper;
-  ASSERT_TRUE(reaper.ok());
-  TempDir dir;
-  for (const std::uint64_t seed : p.seeds) {
-    std::cout << "MutatedScenariosCli: ORCH_PROPERTY_SEED=" << seed << ", " << p.runs << " runs\n";
-    std::mt19937_64 rng(seed);
-    for (int i = 0; i < p.runs; ++i) {
-      const auto& source = files[rng() % files.size()];
-      const Mutation m = mutate_json(slurp(source), rng);
-      const auto file = dir.write("mutated_" + std::to_string(seed) + "_" + std::to_string(i) + ".json", m.text);
-      // Short runs: the property is about the ending, not about the whole scenario.
-      run_mutant_and_check("json", seed, i, source, m, file, {"--max-time", "20"});
-    }
-  }
+  // Short runs: the property is about the ending, not about the whole scenario.
+  check_mutants("json", real_scenarios(), property_seeds({249426645, 20261126}, 16), {"--max-time", "20"},
+                [](const std::filesystem::path& source, std::mt19937_64& rng, const std::string& stem) {
+                  Mutation m = mutate_json(slurp(source), rng);
+                  const std::filesystem::path file = stem + ".json";
+                  std::ofstream(file) << m.text;
+                  return WrittenMutant{std::move(m), file, source};
+                });
 }
 
 // Mutants that once failed, kept as files: each must now be refused by `validate` with the
