@@ -197,7 +197,9 @@ void R157Driver::detect(const DriverView& v, const Ahead& ahead, Decision& out) 
     if (home == home_lane_.end() || std::abs(home->second) != 1) continue;
     const double k = home->second;
     if ((k * v.lane_width - o.d) * k > p_.wandering_threshold) {
-      home_lane_[o.id] = 0;  // handled once: from now on it counts as in the ego's lane
+      // Handled once: it has no home lane until it keeps to a lane centre again (the ego's:
+      // from then on a move out of it is a cut-out; its own: a new cut-in).
+      home_lane_.erase(o.id);
       return start_risk(v, "cut-in", o, out);
     }
   }

@@ -211,3 +211,27 @@ TEST(R157Threats, ABackgroundLeaderBrakingHardIsARisk) {
   EXPECT_NEAR(*perceived, 1.05, 1e-9);
   EXPECT_EQ(ego.driver().risk(), "decelerating lead vehicle");
 }
+
+// A car cutting in at the ego's speed (30 m ahead, 1 m/s sideways) is in the ego's path while
+// still 1.7 m out of the lane centre, with a car standing 140 m ahead: that is the cut-in
+// going on, not a cut-out revealing the standing car.
+TEST(R157Threats, ACutInIsNoCutOut) {
+  R157Driver driver;
+  double ego_s = 0, ego_v = kKmh60, cutter_s = 2.25 + 30 + 2.25;
+  std::vector<std::string> events;
+  for (int i = 0; i <= 100; ++i) {
+    const double t = i * kDt;
+    DriverView v = road(t, ego_s, ego_v, kKmh60);
+    PerceivedObject cutter = car("cutter", cutter_s, std::max(0.0, 3.5 - 1.0 * t), kKmh60);
+    cutter.speed_d = cutter.d > 0 ? -1.0 : 0.0;
+    v.objects.push_back(cutter);
+    v.objects.push_back(car("standing", 2.25 + 140 + 2.25, 0.0, 0.0));
+    const Decision d = driver.step(v);
+    events.insert(events.end(), d.events.begin(), d.events.end());
+    ego_s += (ego_v + d.speed) / 2 * kDt;
+    ego_v = d.speed;
+    cutter_s += kKmh60 * kDt;
+  }
+  EXPECT_EQ(count_events(events, "cut-in (cutter, gap"), 1);
+  EXPECT_EQ(count_events(events, "cut-out"), 0) << (events.empty() ? "" : events.back());
+}
