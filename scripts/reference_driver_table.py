@@ -8,7 +8,8 @@ the reference-table markers in docs/reference-driver.md.
 driver and with esmini's ReferenceDriver (../shared/tools/esmini, ALKS_R157SM_Controller) and
 writes that side-by-side table between the peer-table markers (reference_driver_peer.py).
 
-Usage: scripts/reference_driver_table.py [--binary build/bin/orchestrator] [--jobs 2] [--max-time S] [--peer]
+Usage: scripts/reference_driver_table.py [--binary build/bin/orchestrator] [--jobs 2] [--max-time S]
+       [--peer [--templates DIR]]
 """
 import argparse
 import json
@@ -101,11 +102,13 @@ def main() -> None:
     parser.add_argument("--jobs", type=int, default=2)
     parser.add_argument("--max-time", type=float, default=0, help="end every run at this simulated time (0: none)")
     parser.add_argument("--peer", action="store_true", help="the side-by-side table with esmini's ReferenceDriver")
+    parser.add_argument("--templates", default=str(SHARED / "openscenario"),
+                        help="with --peer: the folder of the OSC-ALKS templates (alks_*.xosc, with their catalogs and roads)")
     args = parser.parse_args()
     if args.peer:
-        templates = sorted((SHARED / "openscenario").glob("alks_*.xosc"))
+        templates = sorted(pathlib.Path(args.templates).glob("alks_*.xosc"))
         if not templates or not (ESMINI / "esmini").exists():
-            raise SystemExit(f"need the OSC-ALKS templates in {SHARED / 'openscenario'} and esmini in {ESMINI}")
+            raise SystemExit(f"need the OSC-ALKS templates in {args.templates} and esmini in {ESMINI}")
         rows = run_all(lambda f, root: peer_row(pathlib.Path(args.binary), f, root), templates, args.jobs)
         write_between(ROOT / "docs" / "reference-driver.md", PEER_BEGIN, PEER_END, peer_table(rows))
         print(peer_table(rows))
