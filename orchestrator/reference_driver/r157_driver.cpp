@@ -20,6 +20,12 @@ constexpr double kCruiseGain = 0.5;  // 1/s towards the set speed
 // driver brakes to match the leader's speed with the standstill gap left.
 constexpr double kMatchSpeedFrom = 0.5;  // m/s^2
 constexpr double kStandstill = 0.1;      // m/s
+// "Full wrap": the narrower body within the wider one laterally, up to this much (esmini's
+// ReferenceDriver uses the same overlap tolerance).
+constexpr double kWrapTolerance = 0.2;  // m
+// A risk of a vehicle already perceived reuses that perception (one threat, one perception),
+// except a leader that starts braking hard: that is a new event to perceive.
+constexpr const char* kDecelerating = "decelerating lead vehicle";
 }  // namespace
 
 const char* to_string(Phase phase) {
@@ -132,12 +138,50 @@ void R157Driver::update_home_lanes(const DriverView& v) {
 
 void R157Driver::start_risk(const DriverView& v, const std::string& risk, const PerceivedObject& target, Decision& out) {
   phase_ = Phase::Perceive;
-  risk_at_ = v.time;
   risk_ = risk;
   target_ = target.id;
   full_stop_ = target.kind != ObjectKind::Vehicle || target.speed_s < 0.5;
   brake_decel_ = 0;
+  wrapped_ = false;
+  const auto known = perceived_.find(target.id);
+  if (known != perceived_.end() && risk != kDecelerating) {
+    // The same threat, already perceived (and its brake reaction under way or done): the
+    // answer goes on from that risk perception point, without a second delay.
+    risk_at_ = known->second;
+    reused_ = fmt::format("r157: {} ({}, gap {:.2f} m): perceived at {:.2f} s already", risk, target.id,
+                          gap_to(v, target), risk_at_);
+    return;
+  }
+  reused_.clear();
+  risk_at_ = v.time;
+  perceived_[target.id] = v.time;
   out.events.push_back(fmt::format("r157: {} ({}, gap {:.2f} m): risk perceived", risk, target.id, gap_to(v, target)));
+}
+
+// A perceived threat is forgotten when it is out of sight, or while driving normally once the
+// ego no longer closes in on it and keeps at least the minimum following distance.
+void R157Driver::forget_resolved_threats(const DriverView& v) {
+  for (auto it = perceived_.begin(); it != perceived_.end();) {
+    const PerceivedObject* o = find(v, it->first);
+    const bool resolved = !o || (phase_ == Phase::Drive && o->speed_s >= v.ego.speed - kEps &&
+                                 gap_to(v, *o) >= p_.min_following_distance(v.ego.speed));
+    it = resolved ? perceived_.erase(it) : std::next(it);
+  }
+}
+
+// Annex 4 App. 3 Table 1: "after full wrap of ego vehicle and cut-in vehicle".
+bool R157Driver::fully_wraps(const DriverView& v, const PerceivedObject& o) const {
+  return std::abs(o.d - v.ego.d) <= std::abs(o.width - v.ego.width) / 2 + kWrapTolerance;
+}
+
+// The nearest object in the ego's path beyond `leader` (what a cut-out reveals).
+const PerceivedObject* R157Driver::revealed_beyond(const DriverView& v, const PerceivedObject& leader) const {
+  const PerceivedObject* best = nullptr;
+  for (const auto& o : v.objects) {
+    if (o.id == leader.id || o.s <= leader.s || !in_path(v, o) || gap_to(v, o) > p_.perception_range) continue;
+    if (!best || o.s < best->s) best = &o;
+  }
+  return best;
 }
 
 void R157Driver::detect(const DriverView& v, const Ahead& ahead, Decision& out) {
@@ -155,7 +199,9 @@ void R157Driver::detect(const DriverView& v, const Ahead& ahead, Decision& out) 
     if (home == home_lane_.end() || std::abs(home->second) != 1) continue;
     const double k = home->second;
     if ((k * v.lane_width - o.d) * k > p_.wandering_threshold) {
-      home_lane_[o.id] = 0;  // handled once: from now on it counts as in the ego's lane
+      // Handled once: it has no home lane until it keeps to a lane centre again (the ego's:
+      // from then on a move out of it is a cut-out; its own: a new cut-in).
+      home_lane_.erase(o.id);
       return start_risk(v, "cut-in", o, out);
     }
   }
@@ -171,17 +217,31 @@ void R157Driver::detect(const DriverView& v, const Ahead& ahead, Decision& out) 
     return;
   }
   const PerceivedObject& lead = *ahead.object;
-  // Cut-out: the leader went out of the ego's lane and revealed something in its path.
-  if (!last_leader_.empty() && last_leader_ != lead.id) {
+  // Cut-out (Table 1: "deviation of the centre of a vehicle over 0.375 m from the centre of the
+  // driving lane"): the leader, which kept to the ego's lane centre, is more than the
+  // wandering threshold out of it while something stands or drives beyond it in the path.
+  const auto lead_home = home_lane_.find(lead.id);
+  if (lead.kind == ObjectKind::Vehicle && lead_home != home_lane_.end() && lead_home->second == 0 &&
+      std::abs(lead.d) > p_.wandering_threshold && !cut_out_seen_.contains(lead.id)) {
+    if (const PerceivedObject* revealed = revealed_beyond(v, lead)) {
+      cut_out_seen_.insert(lead.id);
+      last_leader_ = lead.id;
+      return start_risk(v, "cut-out", *revealed, out);
+    }
+  }
+  // A leader that left the path without being seen at its lane centre before (it entered the
+  // view off-centre): the cut-out is perceived when it revealed the next object.
+  if (!last_leader_.empty() && last_leader_ != lead.id && !cut_out_seen_.contains(last_leader_)) {
     const PerceivedObject* previous = find(v, last_leader_);
     if (previous && std::abs(previous->d - v.ego.d) > p_.wandering_threshold && previous->s < lead.s) {
+      cut_out_seen_.insert(last_leader_);
       last_leader_ = lead.id;
       return start_risk(v, "cut-out", lead, out);
     }
   }
   last_leader_ = lead.id;
   if (lead.kind == ObjectKind::Vehicle && lead.accel_s < -p_.lead_deceleration_threshold && lead.speed_s > 0.5)
-    return start_risk(v, "decelerating lead vehicle", lead, out);
+    return start_risk(v, kDecelerating, lead, out);
   // Something in the path that comfortable braking no longer stops for.
   const double speed = v.ego.speed;
   const double lead_speed = std::max(0.0, lead.speed_s);
@@ -196,19 +256,36 @@ void R157Driver::advance_phase(const DriverView& v, Decision& out) {
   const double since = v.time - risk_at_ + kEps;
   const PerceivedObject* target = find(v, target_);
   auto end_risk = [&](const std::string& why) {
-    out.events.push_back(fmt::format("r157: {} ({}): {}", risk_, target_, why));
+    // A known threat judged again not critical: nothing new to tell (it may be every step).
+    const bool quiet = !reused_.empty() && phase_ != Phase::Brake;
+    if (!quiet) out.events.push_back(fmt::format("r157: {} ({}): {}", risk_, target_, why));
+    reused_.clear();
+    // Braked for and resolved: a later risk of the same vehicle is a new threat. Judged not
+    // critical: still the same threat while it stays in sight.
+    if (phase_ == Phase::Brake) perceived_.erase(target_);
     phase_ = Phase::Drive;
     brake_decel_ = 0;
+    wrapped_ = false;
   };
   if (!target) return end_risk("out of sight");
   if (phase_ == Phase::Perceive && since >= p_.risk_perception_time) phase_ = Phase::React;
   if (phase_ == Phase::React && since >= p_.risk_perception_time + p_.brake_reaction_time) {
     if (!critical(v, *target)) return end_risk("not critical, no braking");
     phase_ = Phase::Brake;
+    // Braking goes on from the deceleration the ego already has (it may be braking
+    // comfortably): the jerk-limited ramp starts there, never from zero.
+    brake_decel_ = std::max(0.0, -last_accel_);
+    if (!reused_.empty()) out.events.push_back(reused_);
+    reused_.clear();
     out.events.push_back(fmt::format("r157: {} ({}): braking", risk_, target_));
     return;
   }
   if (phase_ != Phase::Brake) return;
+  if (risk_ == "cut-in" && !wrapped_ && target->kind == ObjectKind::Vehicle && fully_wraps(v, *target)) {
+    wrapped_ = true;
+    out.events.push_back(fmt::format("r157: {} ({}): full wrap, braking up to {:.2f} m/s^2", risk_, target_,
+                                     p_.wrap_deceleration));
+  }
   if (full_stop_) {
     // Stopped: normal driving takes over again and keeps the standstill gap to whatever is
     // still in the path (it waits behind a pedestrian or an obstacle).
@@ -224,6 +301,7 @@ void R157Driver::advance_phase(const DriverView& v, Decision& out) {
 Decision R157Driver::step(const DriverView& v) {
   Decision out;
   update_home_lanes(v);
+  forget_resolved_threats(v);
   const Ahead ahead = object_ahead(v, p_.perception_range, p_.pedestrian_margin);
   if (phase_ == Phase::Drive) detect(v, ahead, out);
   if (phase_ != Phase::Drive) advance_phase(v, out);
@@ -245,9 +323,12 @@ Decision R157Driver::step(const DriverView& v) {
       break;
     case Phase::Brake: {
       // The deceleration builds up with the model's jerk to its maximum (the profile of
-      // Appendix 3 alone); exact for the ramp.
+      // Appendix 3 alone); exact for the ramp. After a full wrap the second stage builds up
+      // to 0.85 G in the same time (Table 1: 0.6 s to either).
+      const double cap = wrapped_ ? std::max(p_.wrap_deceleration, p_.max_deceleration) : p_.max_deceleration;
+      const double jerk = wrapped_ ? p_.brake_jerk * cap / p_.max_deceleration : p_.brake_jerk;
       const double from = brake_decel_;
-      brake_decel_ = std::min(brake_decel_ + p_.brake_jerk * dt, p_.max_deceleration);
+      brake_decel_ = std::min(brake_decel_ + jerk * dt, std::max(cap, from));
       dv = -(from + brake_decel_) / 2 * dt;
       a = -brake_decel_;
       break;

@@ -11,9 +11,13 @@
 // braking cannot stop for) starts the Appendix 3 sequence at its risk perception point:
 // risk perception time, brake reaction time (no more acceleration), then braking with the
 // model's jerk up to its maximum deceleration while the situation stays critical (to a full
-// stop for pedestrians and obstacles).
+// stop for pedestrians and obstacles). Braking continues from the deceleration the ego
+// already has; a cut-in vehicle that fully wraps the ego raises it to the second stage
+// (0.85 G). One threat, one perception: a vehicle already perceived is not perceived again
+// while it stays in sight and its threat is not resolved.
 #include <map>
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -102,6 +106,9 @@ class R157Driver {
   [[nodiscard]] double normal_accel(const DriverView& v, const Ahead& ahead) const;
   [[nodiscard]] bool critical(const DriverView& v, const PerceivedObject& target) const;
   void update_home_lanes(const DriverView& v);
+  void forget_resolved_threats(const DriverView& v);
+  [[nodiscard]] bool fully_wraps(const DriverView& v, const PerceivedObject& o) const;
+  [[nodiscard]] const PerceivedObject* revealed_beyond(const DriverView& v, const PerceivedObject& leader) const;
   void detect(const DriverView& v, const Ahead& ahead, Decision& out);
   void start_risk(const DriverView& v, const std::string& risk, const PerceivedObject& target, Decision& out);
   void advance_phase(const DriverView& v, Decision& out);
@@ -115,8 +122,14 @@ class R157Driver {
   bool full_stop_ = false;  // pedestrians and obstacles: brake to a standstill
   double brake_decel_ = 0;  // m/s^2 (positive) while braking
   double last_accel_ = 0;   // of the last decision
+  bool wrapped_ = false;
+  std::string reused_;      // the log line of a risk that reuses an earlier perception, until it is judged    // the second braking stage (cut-in vehicle fully wrapped) began
   std::map<std::string, int> home_lane_;  // object -> lane (relative to the ego's) whose centre it last kept to
   std::string last_leader_;
+  // Threat -> its risk perception point, while it stays in sight and unresolved: a later risk
+  // of the same vehicle (a cut-in that becomes an obstacle in the path) is no new perception.
+  std::map<std::string, double> perceived_;
+  std::set<std::string> cut_out_seen_;  // leaders whose cut-out was perceived
 };
 
 }  // namespace orch::reference_driver

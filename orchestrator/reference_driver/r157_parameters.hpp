@@ -18,6 +18,9 @@ struct R157Parameters {
   double brake_reaction_time = 0.75;      // s from the decision to the brake acting
   double max_deceleration = 0.774 * kGravity;  // m/s^2 (0.774 G)
   double brake_jerk = 12.65;              // m/s^3 the deceleration builds up with
+  // Table 1's second braking stage: after the full wrap of the ego and a cut-in vehicle the
+  // deceleration builds up (in the same 0.6 s) to 0.85 G, "derived from UN Regulation No. 152 on AEBS".
+  double wrap_deceleration = 0.85 * kGravity;  // m/s^2 (0.85 G)
   double lead_deceleration_threshold = 5.0;  // m/s^2: a leader braking harder is a risk
   // When the model's own braking stops (not in the regulation; the model's rule): a vehicle
   // ahead is critical while the time to collision is below this or the gap below the

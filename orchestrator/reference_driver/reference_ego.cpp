@@ -38,9 +38,26 @@ PerceivedObject in_path_frame(const Polyline& line, double ego_s, double window,
 
 }  // namespace
 
+double NearbyMotion::accel(const std::string& id, double time, double speed) {
+  auto [it, first] = seen_.try_emplace(id, Seen{time, speed, 0.0});
+  Seen& s = it->second;
+  if (first || time <= s.time) return s.accel;
+  // One step since the last sighting: the speed difference over it (SUMO's own integration);
+  // after a gap (out of reach meanwhile) nothing is known.
+  const double dt = time - s.time;
+  s.accel = dt < 0.5 ? (speed - s.speed) / dt : 0.0;
+  s.time = time;
+  s.speed = speed;
+  return s.accel;
+}
+
+void NearbyMotion::sweep(double time) {
+  std::erase_if(seen_, [time](const auto& kv) { return kv.second.time < time; });
+}
+
 std::optional<DriverView> perceive(const engine::WorldSnapshot& snap, const std::vector<engine::TrackedActor>& tracked,
                                    const ObjectKinds& kinds, const std::string& ego, const DrivingPath& path,
-                                   double path_s, double range) {
+                                   double path_s, double range, NearbyMotion* motion) {
   std::size_t me_at = tracked.size();
   for (std::size_t i = 0; i < tracked.size() && i < snap.actors.size(); ++i)
     if (tracked[i].sumo_id == ego) me_at = i;
@@ -72,13 +89,15 @@ std::optional<DriverView> perceive(const engine::WorldSnapshot& snap, const std:
   }
   for (const auto& n : snap.nearby) {
     if ((n.position - me->position).norm() > range + 60.0) continue;
-    PerceivedObject o = in_path_frame(path.line, view.ego.s, window, n.position, n.heading, n.speed, 0.0);
+    const double accel = motion ? motion->accel(n.sumo_id, snap.time, n.speed) : 0.0;
+    PerceivedObject o = in_path_frame(path.line, view.ego.s, window, n.position, n.heading, n.speed, accel);
     if (!near_enough(o)) continue;
     o.id = n.sumo_id;
     o.length = n.length;
     o.width = n.width;
     view.objects.push_back(std::move(o));
   }
+  if (motion) motion->sweep(snap.time);
   return view;
 }
 
@@ -111,7 +130,8 @@ void ReferenceEgo::observe(const std::vector<engine::Command>& commands) {
 std::vector<engine::Command> ReferenceEgo::drive(const engine::WorldSnapshot& snap,
                                                  const std::vector<engine::TrackedActor>& tracked,
                                                  std::vector<std::string>& events) {
-  auto view = perceive(snap, tracked, kinds_, ego_, path_, path_s_, driver_.parameters().perception_range);
+  auto view = perceive(snap, tracked, kinds_, ego_, path_, path_s_, driver_.parameters().perception_range,
+                       &nearby_motion_);
   if (!view) return {};
   path_s_ = view->ego.s;
   view->step = step_;

@@ -27,13 +27,33 @@ struct DrivingPath {
 // Actors by SUMO id: which are pedestrians or obstacles (the others are vehicles).
 using ObjectKinds = std::map<std::string, ObjectKind>;
 
+// Background vehicles' accelerations, from their speeds in consecutive snapshots (the
+// snapshot carries none for them): a background leader braking hard is a risk too.
+class NearbyMotion {
+ public:
+  // The acceleration of `id` since its last sighting (0 when first seen or seen again after
+  // a gap); remembers this one.
+  double accel(const std::string& id, double time, double speed);
+  // Forgets vehicles not seen at `time` (called once per snapshot, after every accel()).
+  void sweep(double time);
+
+ private:
+  struct Seen {
+    double time = 0;
+    double speed = 0;
+    double accel = 0;
+  };
+  std::map<std::string, Seen> seen_;
+};
+
 // What the driver sees in `snap`: the ego (the tracked actor `ego`, a SUMO id) and every
 // other present actor and nearby background vehicle within the perception range, in the
 // path's frame; `path_s` is the ego's arc length at the last step (the search starts
 // there; negative: search the whole path). Nullopt when the ego is not on the road.
+// `motion`, if given, supplies the background vehicles' accelerations (else 0).
 std::optional<DriverView> perceive(const engine::WorldSnapshot& snap, const std::vector<engine::TrackedActor>& tracked,
                                    const ObjectKinds& kinds, const std::string& ego, const DrivingPath& path,
-                                   double path_s, double range);
+                                   double path_s, double range, NearbyMotion* motion = nullptr);
 
 // Any ego, whatever drives it, seen through the driver's eyes: the closest approach to what
 // is ahead in its lane over the run (OpenSCENARIO runs have no metrics of their own yet).
@@ -76,6 +96,7 @@ class ReferenceEgo {
   double step_;
   double set_speed_;
   double path_s_ = -1;  // not located yet
+  NearbyMotion nearby_motion_;
 };
 
 }  // namespace orch::reference_driver

@@ -58,11 +58,6 @@ void judge_preventable_collisions(RunResult& result) {
 
 }  // namespace
 
-std::string preventability(const std::optional<CollisionFact>& run, const std::optional<CollisionFact>& reference) {
-  if (!run) return "no_collision";
-  return reference ? "unavoidable" : "preventable";
-}
-
 RunResult run_with_reference(const RunRequest& req, Simulator& sim,
                              const std::function<std::unique_ptr<Simulator>()>& make_reference_sim) {
   RunResult result = run_scenario(req, sim);
@@ -79,7 +74,10 @@ RunResult run_with_reference(const RunRequest& req, Simulator& sim,
   ReferenceRunRecord rec;
   rec.verdict = to_string(reference.verdict);
   rec.reference_collision = reference.collision;
-  rec.outcome = preventability(result.collision, rec.reference_collision);
+  auto place = [](const RunResult& r) {
+    return r.collision ? story_place(r.events, r.collision->time) : StoryPlace{};
+  };
+  rec.outcome = preventability(result.collision, rec.reference_collision, place(result), place(reference));
   auto measured = [](const RunResult& r, auto field, const std::optional<double>& watched) {
     const auto m = ego_min(r, field);
     return m ? m : watched;

@@ -9,13 +9,11 @@
 #include <optional>
 #include <string>
 
+#include "run/preventability.hpp"
 #include "run/run_result.hpp"
 #include "run/runner.hpp"
 
 namespace orch {
-
-// "preventable", "unavoidable" or "no_collision".
-std::string preventability(const std::optional<CollisionFact>& run, const std::optional<CollisionFact>& reference);
 
 // Runs req (on `sim`), then the reference run (on a simulator from `make_reference_sim`),
 // and returns the first run's result with `reference_run` filled in (result.json rewritten).

@@ -6,6 +6,7 @@
 #include <filesystem>
 
 #include "support/cli_runner.hpp"
+#include "support/ego_plugin_run.hpp"
 #include "support/trace_csv.hpp"
 
 using namespace orch::test;
@@ -149,3 +150,38 @@ TEST(ReferenceDriverCli, NightlyBatchWithReferenceRunHasThePreventableColumn) {
   const std::string report = slurp(dir / "out" / "report.html");
   EXPECT_NE(report.find("\"preventable\":\""), std::string::npos);
 }
+
+// `preventable` end to end (issue 26): a plug-in ego that takes over at 0.5 s and never brakes
+// (drive.py handover: the set speed, SUMO's checks off) runs into the lead car braking at
+// 6 m/s^2 from 65 km/h 30 m ahead; the reference run's R157 driver perceives the decelerating
+// lead vehicle and stops behind it. With Gap_m=3, Decel_mps2=10 and BrakeTime_s=1 neither
+// stops in time: the same conflict (the lead car, within a second) in both runs, unavoidable.
+TEST(ReferenceDriverCli, APluginEgoThatDoesNotBrakeCollidesPreventably) {
+  const std::string scenario = sample("openscenario/lead_brake_hand_over.xosc");
+  for (const bool close : {false, true}) {
+    TempDir out;
+    std::vector<std::string> extra{"--reference-run", "--no-report"};
+    if (close)
+      extra.insert(extra.end(), {"--param", "Gap_m=3", "--param", "Decel_mps2=10", "--param", "BrakeTime_s=1"});
+    const auto r = run_with_plugin(scenario, out,
+                                   python_client("drive.py", {"--port", "{port}", "--mode", "handover", "--speed",
+                                                              std::to_string(65 / 3.6)}),
+                                   extra, 120);
+    ASSERT_FALSE(r.result.is_null()) << r.orchestrator_output << r.plugin_output;
+    ASSERT_TRUE(r.result["collision"].is_object()) << r.result.dump(1);
+    EXPECT_EQ(r.result["collision"]["with"], "LeadVehicle");
+    if (close) {
+      ASSERT_TRUE(r.result["reference_collision"].is_object()) << r.result.dump(1);
+      EXPECT_EQ(r.result["reference_collision"]["with"], "LeadVehicle");
+      EXPECT_EQ(r.result["preventable"], "unavoidable");
+    } else {
+      EXPECT_TRUE(r.result["reference_collision"].is_null()) << r.result["reference_collision"].dump();
+      EXPECT_EQ(r.result["preventable"], "preventable");
+      EXPECT_EQ(r.result["verdict"], "failure");
+      // The careful driver's answer is in the reference run's log.
+      const std::string log = slurp(out / "reference" / "run.log");
+      EXPECT_NE(log.find("r157: decelerating lead vehicle (LeadVehicle"), std::string::npos) << log;
+    }
+  }
+}
+

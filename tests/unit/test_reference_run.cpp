@@ -20,6 +20,18 @@ TEST(ReferenceRun, PreventableUnavoidableOrNoCollision) {
   EXPECT_EQ(preventability(std::nullopt, hit), "no_collision");
 }
 
+// Unavoidable means the same conflict: the same other road user, at about the same place in
+// the story (within kSameConflictWindow). Without story places, the same time: a collision
+// with actor 1 at 17.45 s and one at 23.20 s are different conflicts.
+TEST(ReferenceRun, UnavoidableOnlyForTheSameConflict) {
+  const CollisionFact run{"actor 1", 17.45, 6.2};
+  EXPECT_EQ(preventability(run, CollisionFact{"actor 1", 23.20, 7.1}), "preventable");
+  EXPECT_EQ(preventability(run, CollisionFact{"actor 2", 17.45, 6.2}), "preventable");
+  EXPECT_EQ(preventability(run, CollisionFact{"actor 1", 17.45 + kSameConflictWindow - 0.01, 3.0}), "unavoidable");
+  EXPECT_EQ(preventability(run, CollisionFact{"actor 1", 17.45 - 1.0, 3.0}), "unavoidable");
+  EXPECT_EQ(preventability(run, CollisionFact{"actor 1", 17.45 + kSameConflictWindow + 0.01, 3.0}), "preventable");
+}
+
 TEST(ReferenceRun, BatchMetricsCsvHasThePreventableColumn) {
   batch::BatchReport report;
   for (const char* id : {"a", "b"}) report.planned.push_back({id, "L", std::string("P") + id, "", {}});
@@ -82,4 +94,34 @@ TEST(ReferenceRun, TheDriverSeesObjectsAlongItsPathAndPastItsEnd) {
   ASSERT_TRUE(ahead.object);
   EXPECT_EQ(ahead.object->id, "actor1");
   EXPECT_DOUBLE_EQ(ahead.gap, 90 - 2.5 - (60 + 2.0));
+}
+
+// The story's clock runs with the ego: 4.4_2's cut-in scene began at 16.45 s in the run and at
+// 22.20 s in the reference run (the careful driver reached 60 km/h later); both collided with
+// actor 1 1.0 s into it: the same conflict. 5 s into it would be another one.
+TEST(ReferenceRun, TheSameConflictIsTheSamePlaceInTheStory) {
+  auto scene = [](double t, int id) {
+    engine::Event e(t, engine::EventKind::Scene, "scene");
+    e.scene = id;
+    return e;
+  };
+  const std::vector<engine::Event> run_events{scene(0, 0), scene(6.5, 1), scene(16.45, 2)};
+  const std::vector<engine::Event> ref_events{scene(0, 0), scene(11.2, 1), scene(22.2, 2)};
+  const CollisionFact run{"actor 1", 17.45, 6.2};
+  const StoryPlace run_place = story_place(run_events, 17.45);
+  EXPECT_EQ(run_place.element, "scene 2");
+  EXPECT_NEAR(run_place.since, 1.0, 1e-9);
+  EXPECT_EQ(preventability(run, CollisionFact{"actor 1", 23.2, 7.1}, run_place, story_place(ref_events, 23.2)),
+            "unavoidable");
+  EXPECT_EQ(preventability(run, CollisionFact{"actor 1", 27.2, 7.1}, run_place, story_place(ref_events, 27.2)),
+            "preventable");
+  EXPECT_EQ(preventability(run, CollisionFact{"actor 2", 23.2, 7.1}, run_place, story_place(ref_events, 23.2)),
+            "preventable");
+  // OpenSCENARIO: the Event that started last.
+  const std::vector<engine::Event> osc{{0.0, engine::EventKind::Storyboard, "story S startTransition"},
+                                       {9.0, engine::EventKind::Storyboard, "event CutInEvent startTransition"},
+                                       {9.5, engine::EventKind::Storyboard, "event CutInEvent endTransition"}};
+  const StoryPlace p = story_place(osc, 10.0);
+  EXPECT_EQ(p.element, "event CutInEvent");
+  EXPECT_NEAR(p.since, 1.0, 1e-9);
 }
