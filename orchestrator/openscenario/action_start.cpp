@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "core/errors.hpp"
+#include "core/exhaustive.hpp"
 #include "openscenario/expression.hpp"
 #include "openscenario/route_plan.hpp"
 #include "openscenario/text_number.hpp"
@@ -321,11 +322,13 @@ std::vector<std::string> start_action(const PrivateAction& action, const std::st
           });
         } else if constexpr (std::is_same_v<T, ParameterSetAction>) {
           ctx.parameters.at(a.parameter).value = a.value;
-        } else {  // ParameterModifyAction
+        } else if constexpr (std::is_same_v<T, ParameterModifyAction>) {
           Parameter& p = ctx.parameters.at(a.parameter);
           const double now = parameter_number(p);
           const double value = a.multiply ? now * a.value : now + a.value;
           p.value = p.type == "double" ? format_number(value) : format_number(std::round(value));
+        } else {
+          static_assert(kUnhandled<T>, "an OpenSCENARIO action the reader makes needs its behaviour here");
         }
       },
       action);

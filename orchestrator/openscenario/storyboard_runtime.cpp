@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include "core/errors.hpp"
+#include "core/exhaustive.hpp"
 #include "openscenario/action_start.hpp"
 #include "openscenario/entity_measures.hpp"
 #include "openscenario/road_following.hpp"
@@ -114,8 +115,10 @@ struct StoryboardRuntime::Impl {
             // Both texts were checked as numbers of the parameter's type at load.
             return satisfies(kind.rule, parse_whole<double>(p.value).value_or(0.0),
                              parse_whole<double>(kind.value).value_or(0.0));
-          } else {
+          } else if constexpr (std::is_same_v<T, ByEntityCondition>) {
             return by_entity(kind, m);
+          } else {
+            static_assert(kUnhandled<T>, "an OpenSCENARIO condition the reader makes needs its evaluation here");
           }
         },
         c.kind);
@@ -153,36 +156,31 @@ struct StoryboardRuntime::Impl {
         [&](const auto& k) -> bool {
           using T = std::decay_t<decltype(k)>;
           if constexpr (std::is_same_v<T, SpeedCondition>) return satisfies(k.rule, self.speed, k.value);
-          if constexpr (std::is_same_v<T, AccelerationCondition>) return satisfies(k.rule, self.acceleration, k.value);
-          if constexpr (std::is_same_v<T, TraveledDistanceCondition>) return self.odometer >= k.value - 1e-9;
-          if constexpr (std::is_same_v<T, StandStillCondition>)
+          else if constexpr (std::is_same_v<T, AccelerationCondition>) return satisfies(k.rule, self.acceleration, k.value);
+          else if constexpr (std::is_same_v<T, TraveledDistanceCondition>) return self.odometer >= k.value - 1e-9;
+          else if constexpr (std::is_same_v<T, StandStillCondition>)
             return held_for(m, name, std::abs(self.speed) < 1e-6, k.duration);
-          if constexpr (std::is_same_v<T, EndOfRoadCondition>) {
+          else if constexpr (std::is_same_v<T, EndOfRoadCondition>) {
             return held_for(m, name, at_dead_end(self, roads), k.duration);
-          }
-          if constexpr (std::is_same_v<T, OffroadCondition>)
+          } else if constexpr (std::is_same_v<T, OffroadCondition>)
             return held_for(m, name, !resolver.locate(self.pose).lane.has_value(), k.duration);
-          if constexpr (std::is_same_v<T, ReachPositionCondition>) {
+          else if constexpr (std::is_same_v<T, ReachPositionCondition>) {
             const EntityState target = point_state(k.position);
             return std::hypot(target.pose.x - self.pose.x, target.pose.y - self.pose.y) <= k.tolerance;
-          }
-          if constexpr (std::is_same_v<T, DistanceCondition>) {
+          } else if constexpr (std::is_same_v<T, DistanceCondition>) {
             const EntityState target = point_state(k.position);
             const double d = relative_distance(me, {&target, &kPoint}, k.distance_type, k.coordinate_system, k.freespace);
             return satisfies(k.rule, d, k.value);
-          }
-          if constexpr (std::is_same_v<T, RelativeSpeedCondition>) {
+          } else if constexpr (std::is_same_v<T, RelativeSpeedCondition>) {
             const EntityState& other = entities.at(k.entity);
             return other.placed && satisfies(k.rule, self.speed - other.speed, k.value);
-          }
-          if constexpr (std::is_same_v<T, TimeHeadwayCondition>) {
+          } else if constexpr (std::is_same_v<T, TimeHeadwayCondition>) {
             const EntityState& other = entities.at(k.entity);
             if (!other.placed || self.speed <= 0) return false;
             const double d = relative_distance(me, {&other, &scenario.entity(k.entity)->box}, "longitudinal",
                                                k.coordinate_system, k.freespace);
             return satisfies(k.rule, d / self.speed, k.value);
-          }
-          if constexpr (std::is_same_v<T, TimeToCollisionCondition>) {
+          } else if constexpr (std::is_same_v<T, TimeToCollisionCondition>) {
             if (k.entity) {
               const EntityState& other = entities.at(*k.entity);
               if (!other.placed) return false;
@@ -194,23 +192,22 @@ struct StoryboardRuntime::Impl {
             return satisfies(k.rule, time_to_collision(me, {&target, &kPoint}, roads, k.distance_type,
                                                        k.coordinate_system, k.freespace),
                              k.value);
-          }
-          if constexpr (std::is_same_v<T, CollisionCondition>) {
+          } else if constexpr (std::is_same_v<T, CollisionCondition>) {
             for (const Entity& other : scenario.entities) {
               if (other.name == name || !entities.at(other.name).placed) continue;
               if (k.entity ? other.name != *k.entity : object_type(other.kind) != k.object_type) continue;
               if (boxes_overlap(me, {&entities.at(other.name), &other.box})) return true;
             }
             return false;
-          }
-          if constexpr (std::is_same_v<T, RelativeDistanceCondition>) {
+          } else if constexpr (std::is_same_v<T, RelativeDistanceCondition>) {
             const EntityState& other = entities.at(k.entity);
             if (!other.placed) return false;
             const double d = relative_distance(me, {&other, &scenario.entity(k.entity)->box}, k.distance_type,
                                                k.coordinate_system, k.freespace);
             return satisfies(k.rule, d, k.value);
           }
-          return false;
+          else
+            static_assert(kUnhandled<T>, "an OpenSCENARIO entity condition the reader makes needs its evaluation here");
         },
         c.condition);
   }

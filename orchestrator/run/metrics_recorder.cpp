@@ -24,15 +24,9 @@ struct Measured {
 
 }  // namespace
 
-MetricsRecorder::MetricsRecorder(const std::filesystem::path& csv, const LaneMap& lanes) : lanes_(lanes) {
+MetricsRecorder::MetricsRecorder(const std::filesystem::path& csv, const LaneMap& lanes)
+    : file_(csv, kHeader), lanes_(lanes) {
   for (int i = 0; i < static_cast<int>(lanes.lanes().size()); ++i) lane_index_[lanes.lane(i).id] = i;
-  file_ = std::fopen(csv.c_str(), "w");
-  if (!file_) throw OrchError("cannot write " + csv.string());
-  fmt::print(file_, "{}\n", kHeader);
-}
-
-MetricsRecorder::~MetricsRecorder() {
-  if (file_) std::fclose(file_);
 }
 
 const ActorMetrics* MetricsRecorder::current(scenario::ActorId id) const {
@@ -116,7 +110,7 @@ void MetricsRecorder::step(const StepView& view) {
     }
     if (std::isfinite(best)) m.min_dist = best;
 
-    fmt::print(file_, "{:.3f},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", snap.time, self.id,
+    file_.print("{:.3f},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", snap.time, self.id,
                m.leader ? m.leader->other : "", cell(metric_value(m, "gap")), cell(metric_value(m, "rel_speed")),
                cell(metric_value(m, "ttc")), cell(metric_value(m, "thw")), cell(metric_value(m, "drac")),
                cell(m.kinematics.accel), cell(m.kinematics.jerk), cell(m.kinematics.lat_accel), cell(m.lane_departure),
@@ -128,10 +122,7 @@ void MetricsRecorder::step(const StepView& view) {
     current_.push_back(std::move(m));
   }
   // Every 200 steps the rows reach the disk even if the process dies.
-  if (++steps_since_flush_ >= 200) {
-    std::fflush(file_);
-    steps_since_flush_ = 0;
-  }
+  file_.end_step(200);
 }
 
 std::vector<ActorSummary> MetricsRecorder::summaries() const {
@@ -147,7 +138,7 @@ std::vector<ActorSummary> MetricsRecorder::summaries() const {
 }
 
 void MetricsRecorder::finish(RunResult& result) noexcept {
-  std::fflush(file_);
+  file_.flush();
   try {
     result.metrics = summaries();
   } catch (const std::exception&) {

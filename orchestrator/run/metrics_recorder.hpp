@@ -4,12 +4,12 @@
 // snapshot holds (actors and the nearby background vehicles), writes metrics.csv and, at the
 // end, the per-actor summary into result.json. Criteria read this step's values through
 // current().
-#include <cstdio>
 #include <filesystem>
 #include <map>
 #include <unordered_map>
 #include <vector>
 
+#include "core/output_file.hpp"
 #include "map/lane_map.hpp"
 #include "metrics/actor_metrics.hpp"
 #include "metrics/pet.hpp"
@@ -24,9 +24,6 @@ class MetricsRecorder : public RunObserver {
       "time,actor_id,leader,gap,rel_speed,ttc,thw,drac,accel,jerk,lat_accel,lane_departure,min_dist,min_dist_to";
 
   MetricsRecorder(const std::filesystem::path& csv, const LaneMap& lanes);
-  ~MetricsRecorder() override;
-  MetricsRecorder(const MetricsRecorder&) = delete;
-  MetricsRecorder& operator=(const MetricsRecorder&) = delete;
 
   void step(const StepView& view) override;
   void finish(RunResult& result) noexcept override;
@@ -39,7 +36,7 @@ class MetricsRecorder : public RunObserver {
  private:
   [[nodiscard]] std::optional<double> departure(const engine::ActorState& a, double length, double width) const;
 
-  std::FILE* file_ = nullptr;
+  OutputFile file_;
   const LaneMap& lanes_;
   std::unordered_map<std::string, int> lane_index_;  // SUMO lane id -> LaneMap index
   std::vector<ActorMetrics> current_;
@@ -48,7 +45,6 @@ class MetricsRecorder : public RunObserver {
   std::map<scenario::ActorId, ActorSummary> summaries_;
   TrajectoryBook trajectories_;  // every body seen, for PET at the end
   std::optional<double> last_time_;
-  int steps_since_flush_ = 0;
 };
 
 }  // namespace orch::metrics

@@ -22,20 +22,10 @@ nlohmann::ordered_json stamp(double simulation) {
 
 const char* success_fail(bool ok) { return ok ? "Success" : "Fail"; }
 
-void write_line(std::FILE* f, const nlohmann::ordered_json& j) { fmt::print(f, "{}\n", j.dump()); }
-
 }  // namespace
 
 ResultJsonl::ResultJsonl(const std::filesystem::path& path, const nlohmann::json& conditions, int every)
-    : every_(std::max(1, every)) {
-  file_ = std::fopen(path.c_str(), "w");
-  if (!file_) throw OrchError("cannot write " + path.string());
-  write_line(file_, {{"Condition", conditions}});
-}
-
-ResultJsonl::~ResultJsonl() {
-  if (file_) std::fclose(file_);
-}
+    : file_(path, nlohmann::ordered_json{{"Condition", conditions}}.dump()), every_(std::max(1, every)) {}
 
 void ResultJsonl::frame(const criteria::FrameReport& report) {
   last_time_ = report.time;
@@ -53,9 +43,10 @@ void ResultJsonl::frame(const criteria::FrameReport& report) {
   }
   const std::string summary = failing.empty() ? fmt::format("Passed: {} criteria hold", report.frames.size())
                                               : "Failed: " + failing;
-  write_line(file_, {{"Result", {{"Success", failing.empty()}, {"Summary", summary}}},
-                     {"Stamp", stamp(report.time)},
-                     {"Frame", frames}});
+  file_.line(nlohmann::ordered_json{{"Result", {{"Success", failing.empty()}, {"Summary", summary}}},
+                                    {"Stamp", stamp(report.time)},
+                                    {"Frame", frames}}
+                 .dump());
 }
 
 namespace {
@@ -71,11 +62,11 @@ nlohmann::ordered_json final_line(const RunResult& result) {
 
 void ResultJsonl::finish(RunResult& result) noexcept {
   try {
-    write_line(file_, final_line(result));
+    file_.line(final_line(result).dump());
   } catch (const std::exception&) {
     // fmt failing to write: the file stays as it is, result.json still says everything.
   }
-  std::fflush(file_);
+  file_.flush();
 }
 
 void write_unstarted_jsonl(const std::filesystem::path& path, const nlohmann::json& conditions, const RunResult& result) {

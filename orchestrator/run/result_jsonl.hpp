@@ -7,12 +7,12 @@
 //   {"Result": {"Success", "Summary"}, "Stamp": {...}, "Frame": {}}            the final result
 // An evaluator reads the last line. "System" is the wall clock (Unix time, s): the only
 // value that differs between two runs of the same inputs.
-#include <cstdio>
 #include <filesystem>
 
 #include <nlohmann/json.hpp>
 
 #include "core/diagnostics.hpp"
+#include "core/output_file.hpp"
 #include "run/criteria_judge.hpp"
 #include "run/run_observer.hpp"
 
@@ -22,9 +22,6 @@ class ResultJsonl : public RunObserver {
  public:
   [[nodiscard]] const char* name() const override { return "result_jsonl"; }
   ResultJsonl(const std::filesystem::path& path, const nlohmann::json& conditions, int every);
-  ~ResultJsonl() override;
-  ResultJsonl(const ResultJsonl&) = delete;
-  ResultJsonl& operator=(const ResultJsonl&) = delete;
 
   // The judge's sink: one frame line every `every` steps.
   void frame(const criteria::FrameReport& report);
@@ -33,7 +30,7 @@ class ResultJsonl : public RunObserver {
   void finish(RunResult& result) noexcept override;
 
  private:
-  std::FILE* file_ = nullptr;
+  OutputFile file_;
   int every_ = 1;
   long long steps_ = 0;
   double last_time_ = 0;

@@ -2,20 +2,11 @@
 
 #include <fmt/format.h>
 
-#include "core/errors.hpp"
-
 namespace orch {
 
 TraceWriter::TraceWriter(const std::filesystem::path& path, const LaneMap& lanes, const engine::Engine& engine)
-    : lanes_(lanes), engine_(engine) {
+    : file_(path, kHeader), lanes_(lanes), engine_(engine) {
   for (int i = 0; i < static_cast<int>(lanes.lanes().size()); ++i) lane_index_[lanes.lane(i).id] = i;
-  file_ = std::fopen(path.c_str(), "w");
-  if (!file_) throw OrchError("cannot write " + path.string());
-  fmt::print(file_, "{}\n", kHeader);
-}
-
-TraceWriter::~TraceWriter() {
-  if (file_) std::fclose(file_);
 }
 
 double TraceWriter::lateral_offset(const engine::ActorState& a) const {
@@ -35,18 +26,13 @@ void TraceWriter::record(const engine::Engine& engine, std::optional<scenario::A
                          : engine.scripted(a.id)  ? "script"
                          : model_driven_ == a.id ? model_label_
                                                   : "sumo";
-    fmt::print(file_, "{:.3f},{},{},{:.3f},{:.3f},{:.4f},{:.3f},{:.3f},{},{},{:.3f},{:.3f},{},{},{}\n", snap.time,
+    file_.print("{:.3f},{},{},{:.3f},{:.3f},{:.4f},{:.3f},{:.3f},{},{},{:.3f},{:.3f},{},{},{}\n", snap.time,
                engine.scene(), a.id, a.position.x(), a.position.y(), a.heading, a.speed, a.accel, a.edge, a.lane,
                a.lane_pos, lateral_offset(a), a.signals, a.siren ? 1 : 0, driver);
     ++rows_;
   }
   // Every 200 steps (10 s at 0.05 s) the rows reach the disk even if the process dies.
-  if (++steps_since_flush_ >= 200) flush();
-}
-
-void TraceWriter::flush() {
-  std::fflush(file_);
-  steps_since_flush_ = 0;
+  file_.end_step(200);
 }
 
 }  // namespace orch

@@ -2,12 +2,12 @@
 // trace.csv: one row per present actor per step, a contract users script against
 // (docs/outputs.md). Rows are written with fixed precision so the same run gives the
 // same bytes, and flushed regularly so a crash keeps what was simulated.
-#include <cstdio>
 #include <filesystem>
 #include <optional>
 #include <string>
 #include <unordered_map>
 
+#include "core/output_file.hpp"
 #include "engine/engine.hpp"
 #include "map/lane_map.hpp"
 #include "run/run_observer.hpp"
@@ -23,9 +23,6 @@ class TraceWriter : public RunObserver {
 
   // `engine`: the run's scene graph (the scene and who drives each actor).
   TraceWriter(const std::filesystem::path& path, const LaneMap& lanes, const engine::Engine& engine);
-  ~TraceWriter() override;
-  TraceWriter(const TraceWriter&) = delete;
-  TraceWriter& operator=(const TraceWriter&) = delete;
 
   // The actor a built-in ego model drives (driver `label`, e.g. "r157") instead of SUMO's.
   void set_model_driven(scenario::ActorId id, const char* label) {
@@ -34,7 +31,7 @@ class TraceWriter : public RunObserver {
   }
   // `plugin_driven`: the actor an external ego plug-in drove in this step (driver "plugin").
   void record(const engine::Engine& engine, std::optional<scenario::ActorId> plugin_driven = std::nullopt);
-  void flush();
+  void flush() { file_.flush(); }
   [[nodiscard]] long long rows() const { return rows_; }
 
   void step(const StepView& view) override { record(engine_, view.plugin_driven); }
@@ -46,14 +43,13 @@ class TraceWriter : public RunObserver {
  private:
   [[nodiscard]] double lateral_offset(const engine::ActorState& a) const;
 
-  std::FILE* file_ = nullptr;
+  OutputFile file_;
   const LaneMap& lanes_;
   const engine::Engine& engine_;
   std::unordered_map<std::string, int> lane_index_;  // SUMO lane id -> LaneMap index
   std::optional<scenario::ActorId> model_driven_;
   const char* model_label_ = "sumo";
   long long rows_ = 0;
-  int steps_since_flush_ = 0;
 };
 
 }  // namespace orch

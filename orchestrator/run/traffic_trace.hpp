@@ -7,9 +7,10 @@
 //                   per step (the ones the engine sees, within 75 m of an actor), so that
 //                   traces of dense runs stay small.
 // Fixed precision, like trace.csv: the same run gives the same bytes.
-#include <cstdio>
 #include <filesystem>
+#include <optional>
 
+#include "core/output_file.hpp"
 #include "engine/world.hpp"
 #include "run/run_observer.hpp"
 
@@ -22,9 +23,6 @@ class TrafficTrace : public RunObserver {
   static constexpr const char* kBackgroundHeader = "time,vehicle_id,x,y,heading,speed,length,width";
 
   TrafficTrace(const std::filesystem::path& dir, bool background_rows);
-  ~TrafficTrace() override;
-  TrafficTrace(const TrafficTrace&) = delete;
-  TrafficTrace& operator=(const TrafficTrace&) = delete;
 
   void record(const engine::WorldSnapshot& snapshot);
   void flush();
@@ -34,8 +32,8 @@ class TrafficTrace : public RunObserver {
   void finish(RunResult& /*result*/) noexcept override { flush(); }
 
  private:
-  std::FILE* counts_ = nullptr;
-  std::FILE* background_ = nullptr;
+  OutputFile counts_;
+  std::optional<OutputFile> background_;
   long long background_rows_ = 0;
   int steps_since_flush_ = 0;
 };

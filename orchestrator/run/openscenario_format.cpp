@@ -1,0 +1,308 @@
+#include "run/openscenario_format.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <optional>
+
+#include "core/errors.hpp"
+#include "core/files.hpp"
+#include "map/background_traffic.hpp"
+#include "map/lane_map.hpp"
+#include "opendrive/sumo_lanes.hpp"
+#include "opendrive/sumo_net.hpp"
+#include "opendrive/xodr_reader.hpp"
+#include "openscenario/storyboard_runtime.hpp"
+#include "openscenario/xosc_reader.hpp"
+#include "run/collision_fact.hpp"
+#include "run/ego_link.hpp"
+#include "run/entity_trace.hpp"
+#include "run/openscenario_ego_choice.hpp"
+#include "run/openscenario_observed.hpp"
+#include "run/openscenario_world.hpp"
+#include "run/reference_ego_setup.hpp"
+#include "run/ssm_device.hpp"
+#include "run/storyboard_events.hpp"
+
+namespace orch {
+
+namespace {
+
+// --traffic on the converted net: a level or a rate is generated from the net into the run
+// folder (the map generator, map/background_traffic.hpp), a route file is used as it is.
+std::string traffic_route_file(const RunRequest& req, const std::filesystem::path& net_file, RunResult& result,
+                               RunLog& log) {
+  const TrafficChoice choice = parse_traffic(req.traffic.empty() ? "none" : req.traffic);
+  result.traffic = choice.label;
+  std::filesystem::path file;
+  switch (choice.kind) {
+    case TrafficChoice::Kind::None: return "";
+    case TrafficChoice::Kind::File: file = choice.file; break;
+    case TrafficChoice::Kind::Rate:
+      file = std::filesystem::absolute(req.out_dir / "traffic.rou.xml");
+      write_file_atomically(file, background_traffic_xml(net_file, {choice.vehicles_per_hour_per_lane, -1, choice.label}));
+      break;
+  }
+  result.traffic_file = {file.string(), sha256_of_file(file)};
+  log.note(fmt::format("background traffic {} ({})", choice.label, file.string()));
+  return std::filesystem::absolute(file).string();
+}
+
+const engine::ActorState* find_actor(const engine::WorldSnapshot& snap, const OpenScenarioActors& actors,
+                                     const std::string& name) {
+  for (const auto& a : snap.actors)
+    if (actors.name_of(a.id) == name) return &a;
+  return nullptr;
+}
+
+// The entities SUMO had, for result.json's "actors": what the report draws them with. The
+// trace names entities in actor_id, so the report finds a record by its sumo_id (an
+// entity's first SUMO id is its name); actor_id here is the run's index of the entity.
+std::vector<ActorRecord> entity_records(const OpenScenarioActors& actors) {
+  std::vector<ActorRecord> out;
+  for (const engine::TrackedActor& t : actors.tracked()) {
+    const std::string& name = actors.name_of(t.id);
+    out.push_back({static_cast<int>(t.id), name, "", "", "", t.length, t.width, name == actors.ego()});
+  }
+  std::sort(out.begin(), out.end(), [](const ActorRecord& l, const ActorRecord& r) { return l.id < r.id; });
+  return out;
+}
+
+// The ego's first collision SUMO reported, if any (its SUMO vehicle: the ego's name, or
+// "ego" with an external ego).
+std::optional<CollisionFact> sumo_ego_collision(const engine::WorldSnapshot& snap, const OpenScenarioActors& actors,
+                                                const std::string& ego, double time) {
+  if (ego.empty()) return std::nullopt;
+  const std::string sumo_id = actors.ego_drive().sumo_id();
+  for (const auto& c : snap.collisions)
+    if (c.collider == sumo_id || c.victim == sumo_id) {
+      const std::string& other = c.collider == sumo_id ? c.victim : c.collider;
+      return CollisionFact{other, time, relative_speed(snap, actors.tracked(), sumo_id, other)};
+    }
+  return std::nullopt;
+}
+
+// An external ego needs an ego, and the SUMO id "ego" free for it.
+void check_external_ego(const openscenario::Scenario& scenario, const std::string& ego, bool external) {
+  if (!external) return;
+  if (ego.empty())
+    throw ScenarioError(SourceLocation{scenario.file, "/OpenSCENARIO/Entities", 0},
+                        "--ego-port: the scenario has no ego (docs/openscenario.md \"The ego\"): "
+                        "name it with --ego NAME");
+  if (ego != kEgoSumoId && scenario.entity(kEgoSumoId))
+    throw ScenarioError(SourceLocation{scenario.file, "/OpenSCENARIO/Entities", 0},
+                        fmt::format("--ego-port: the external ego drives the SUMO vehicle \"{}\", but another entity "
+                                    "has that name", kEgoSumoId));
+}
+
+// The ego's model: --ego-model, or the reference driver when the ego's controller is named so.
+EgoModelChoice ego_model_of(const RunRequest& req, const openscenario::Scenario& scenario, const std::string& ego) {
+  EgoModelChoice model = req.ego_model;
+  const openscenario::Entity* e = ego.empty() ? nullptr : scenario.entity(ego);
+  if (e && e->controller && e->controller->name == kR157ControllerName) model.name = "r157";
+  return model;
+}
+
+// An evaluation file's criteria name entities by their run index (result.json actors[].actor_id)
+// or default to the ego; scenes are ScenarioExecutor's. Checked before SUMO starts.
+void check_criteria(const EvaluationRequest& ev, const openscenario::Scenario& scenario, const std::string& ego,
+                    RunLog& log) {
+  const SourceLocation where{ev.file, "/Evaluation/Conditions/Criteria", 0};
+  for (const auto& c : ev.criteria) {
+    if (c.actor && (*c.actor < 0 || static_cast<std::size_t>(*c.actor) >= scenario.entities.size()))
+      throw ScenarioError(where, fmt::format("criterion \"{}\" names actor {}; the OpenSCENARIO file has {} entities "
+                                             "(actors 0 to {}, in the order of its Entities)",
+                                             c.name, *c.actor, scenario.entities.size(), scenario.entities.size() - 1));
+    if (!c.actor && ego.empty() && c.type != "reach_scene")
+      throw ScenarioError(where, fmt::format("criterion \"{}\" has no Actor and the scenario has no ego "
+                                             "(docs/openscenario.md \"The ego\"): give Actor or --ego", c.name));
+    if (c.from_scene || c.to_scene || c.scene)
+      throw ScenarioError(where, fmt::format("criterion \"{}\": FromScene, ToScene and Scene are ScenarioExecutor "
+                                             "scenes; an OpenSCENARIO run has none (use FromTime/ToTime; reach_scene "
+                                             "without Scene holds once the Storyboard's StopTrigger fires)", c.name));
+  }
+  if (!ev.vehicle_model.empty())
+    log.note(fmt::format("VehicleModel {} is not used: OpenSCENARIO entities bring their own vehicles", ev.vehicle_model));
+}
+
+class OpenScenarioFormat : public RunFormat {
+ public:
+  explicit OpenScenarioFormat(const RunRequest& req) : req_(req) {}
+
+  [[nodiscard]] const char* input_kind() const override { return "OpenSCENARIO"; }
+  void note_settings(RunLog& log) const override {
+    for (const auto& [name, value] : req_.parameter_overrides) log.note(fmt::format("--param {}={}", name, value));
+  }
+
+  void open(RunResult& result, RunLog& log, SimulatorConfig& config) override;
+
+  void add_observers(RunObservers& observers) override {
+    observers.add(std::make_unique<EntityTrace>(req_.out_dir / "trace.csv", *actors_, [this] { return ego_label_; }));
+  }
+  [[nodiscard]] const LaneMap& measured_lanes() const override { return *sumo_lanes_; }
+  [[nodiscard]] const ObservedRun& observed() const override { return *observed_; }
+
+  std::vector<engine::Command> start(RunResult& /*result*/, RunLog& /*log*/) override {
+    auto commands = actors_->place(runtime_->entities());
+    watch_ego(nullptr);
+    return commands;
+  }
+  [[nodiscard]] const std::vector<engine::TrackedActor>& tracked() const override { return actors_->tracked(); }
+  std::optional<reference_driver::ReferenceEgo> take_reference_ego() override {
+    return std::exchange(reference_ego_, std::nullopt);
+  }
+
+  double take_step(const engine::WorldSnapshot& snap, RunResult& result, RunLog& log) override;
+  std::optional<CollisionFact> ego_collision(const engine::WorldSnapshot& snap, double time, RunLog& log) override {
+    auto fact = sumo_ego_collision(snap, *actors_, ego_, time);
+    if (fact) {
+      collision_ = fmt::format("the ego {} collided with {} at t={:.2f} s", ego_, fact->with, time);
+      log.at(time, *collision_);
+    }
+    return fact;
+  }
+  [[nodiscard]] bool ended() const override { return runtime_->finished(); }
+  [[nodiscard]] std::string max_time_reason(double max_time) const override {
+    return fmt::format("--max-time {} s reached before the Storyboard's StopTrigger", max_time);
+  }
+  // The storyboard advances a step; the poses of its time t reach SUMO in the next step.
+  std::vector<engine::Command> commands(const engine::WorldSnapshot& snap, RunLog& /*log*/) override {
+    runtime_->step(req_.step);
+    auto commands = actors_->place(runtime_->entities());
+    watch_ego(&snap);
+    return commands;
+  }
+  void conclude(RunResult& result, RunLog& log) override {
+    if (runtime_->finished()) {
+      result.verdict = Verdict::Success;
+      result.reason = fmt::format("the Storyboard's StopTrigger fired at t={:.2f} s", result.sim_time);
+      log.at(result.sim_time, result.reason);
+    }
+    if (!result.traffic.empty() && result.traffic != "none")
+      log.note(fmt::format("{} background vehicles in SUMO at the end", background_));
+  }
+
+  void finish(RunResult& result) override {
+    if (ego_watch_) {
+      result.ego_min_gap = ego_watch_->exposure().min_gap;
+      result.ego_min_ttc = ego_watch_->exposure().min_ttc;
+    }
+    if (actors_) result.actors = entity_records(*actors_);
+    if (observed_) result.collisions = observed_->contacts();
+  }
+  [[nodiscard]] std::optional<std::string> ego_collision_reason() const override { return collision_; }
+
+ private:
+  // The reference driver takes the ego (and the ego's watch starts) once the storyboard has
+  // placed it; the watch measures every step after.
+  void watch_ego(const engine::WorldSnapshot* snap) {
+    if (!ego_watch_ && !ego_.empty()) {
+      const auto it = runtime_->entities().find(ego_);
+      if (it != runtime_->entities().end() && it->second.placed) {
+        reference_ego_ = reference_ego_for(ego_model_, *scenario_, *roads_, ego_, it->second, req_.step);
+        model_drives_ego_ = reference_ego_.has_value();
+        ego_watch_.emplace(lane_path(*roads_, it->second), ego_, object_kinds(*scenario_), 150.0);
+      }
+    }
+    if (ego_watch_ && snap) ego_watch_->step(*snap, actors_->tracked());
+  }
+
+  const RunRequest& req_;
+  // Declared in this order: the runtime and the actors refer to the roads and lanes.
+  std::optional<openscenario::Scenario> scenario_;
+  std::optional<opendrive::RoadNetwork> roads_;
+  std::optional<opendrive::SumoLaneIndex> lanes_;
+  std::optional<openscenario::StoryboardRuntime> runtime_;
+  std::optional<OpenScenarioActors> actors_;
+  std::optional<LaneMap> sumo_lanes_;        // the converted net's lanes, for lane keeping
+  std::optional<OpenScenarioRun> observed_;  // the run as metrics and criteria see it
+  std::optional<std::string> collision_;     // the ego's first collision, as the verdict says it
+  std::optional<reference_driver::ReferenceEgo> reference_ego_;  // --ego-model r157, until the loop takes it
+  bool model_drives_ego_ = false;                                // the reference driver drives the ego
+  std::optional<reference_driver::EgoWatch> ego_watch_;          // the ego's minimum gap and TTC
+  EgoModelChoice ego_model_;
+  std::string ego_;
+  const char* ego_label_ = "sumo";  // the ego's trace `driver` this step
+  std::size_t logged_ = 0;          // storyboard transitions already in the log
+  int background_ = 0;              // SUMO vehicles that are not entities, at the last step
+};
+
+void OpenScenarioFormat::open(RunResult& result, RunLog& log, SimulatorConfig& config) {
+  result.scenario = {req_.scenario_file, sha256_of_file(req_.scenario_file)};
+  scenario_.emplace(openscenario::load_scenario(req_.scenario_file, {req_.parameter_overrides}));
+  result.title = std::filesystem::path(req_.scenario_file).stem().string();
+  result.description = scenario_->description;
+  if (scenario_->road_file.empty())
+    throw ScenarioError(SourceLocation{req_.scenario_file, "/OpenSCENARIO/RoadNetwork/LogicFile", 0},
+                        "an OpenSCENARIO run needs a RoadNetwork LogicFile (an OpenDRIVE road)");
+  result.map_id = std::filesystem::path(scenario_->road_file).stem().string();
+  roads_.emplace(opendrive::read_xodr_file(scenario_->road_file));
+  const opendrive::SumoNet net = opendrive::convert_to_sumo_net(scenario_->road_file, opendrive::default_net_cache());
+  result.net = {net.net_file.string(), sha256_of_file(net.net_file)};
+  log.note(fmt::format("road {} -> SUMO net {} ({})", scenario_->road_file, net.net_file.string(),
+                       net.from_cache ? "cached" : "converted now"));
+  lanes_.emplace(*roads_, net.net_file.string());
+  const EgoChoice chosen = choose_ego(*scenario_, req_.ego_entity);
+  ego_ = chosen.entity;
+  check_external_ego(*scenario_, ego_, req_.ego_link != nullptr);
+  ego_model_ = ego_model_of(req_, *scenario_, ego_);
+  if (req_.ego_link && ego_model_.r157())
+    throw OrchError("--ego-port: an external ego drives the ego; the R157 reference driver (--ego-model r157 or "
+                    "an R157ReferenceDriver controller) cannot drive it too");
+  result.ego_model = ego_model_.name;
+  log.note(ego_.empty() ? fmt::format("no ego: {}", chosen.rule)
+           : req_.ego_link ? fmt::format("ego {} (SUMO vehicle \"ego\"; driven by SUMO's car-following model until "
+                                         "an ActivateControllerAction hands it to the external ego); chosen: {}",
+                                         ego_, chosen.rule)
+                           : fmt::format("ego {} (driven by {}); chosen: {}", ego_,
+                                         ego_model_.r157() ? "the UN R157 reference driver"
+                                                           : "SUMO's car-following model",
+                                         chosen.rule));
+  if (req_.evaluation) check_criteria(*req_.evaluation, *scenario_, ego_, log);
+  runtime_.emplace(*scenario_, *roads_);
+  actors_.emplace(*scenario_, *lanes_, ego_, req_.ego_link != nullptr);
+  sumo_lanes_.emplace(LaneMap::build(net.net_file.string(), WaypointFile{}));
+  observed_.emplace(*scenario_, *roads_, *actors_);
+
+  config.net_file = std::filesystem::absolute(net.net_file).string();
+  if (const auto traffic = traffic_route_file(req_, net.net_file, result, log); !traffic.empty())
+    config.route_files.push_back(traffic);
+  if (req_.ssm && !ego_.empty()) {  // the ego is SUMO's (its vehicle id is the entity's name)
+    const auto ssm = ssm_device_arguments(ego_, req_.out_dir / kSsmFileName);
+    config.extra_args.insert(config.extra_args.end(), ssm.begin(), ssm.end());
+  }
+}
+
+double OpenScenarioFormat::take_step(const engine::WorldSnapshot& snap, RunResult& result, RunLog& log) {
+  // The poses of storyboard time t reached SUMO in this step: the step's time is t.
+  const double t = runtime_->time();
+  background_ = snap.other_vehicles;
+  const auto ego_driver = ego_.empty() ? OpenScenarioEgo::Driver::Sumo
+                                       : actors_->ego_drive().driver(runtime_->entities().at(ego_));
+  const bool model_drives = model_drives_ego_ && ego_driver == OpenScenarioEgo::Driver::Sumo;
+  ego_label_ = model_drives ? "r157" : OpenScenarioEgo::label(ego_driver);
+  observed_->update(snap, t, runtime_->entities(), runtime_->finished());
+  // Entities SUMO (or the external ego) drove are what the storyboard's conditions see of
+  // them from now on; while the storyboard moves the ego laterally, its own state stands.
+  // (The observers see the step afterwards, through observed_, which does not read the runtime.)
+  for (const std::string& driven : actors_->sumo_driven()) {
+    if (driven == ego_ && ego_driver == OpenScenarioEgo::Driver::Storyboard) continue;
+    if (const engine::ActorState* e = find_actor(snap, *actors_, driven); e && e->present) {
+      const Vec2 ref = actors_->reference_point(*e);
+      runtime_->observe(driven, {ref.x(), ref.y(), e->heading}, e->speed, e->accel);
+    }
+  }
+  for (const auto& l = runtime_->log(); logged_ < l.size(); ++logged_) {
+    result.events.push_back(storyboard_event(l[logged_]));
+    log.at(l[logged_].time, result.events.back().text);
+  }
+  return t;
+}
+
+}  // namespace
+
+std::unique_ptr<RunFormat> openscenario_format(const RunRequest& request) {
+  return std::make_unique<OpenScenarioFormat>(request);
+}
+
+}  // namespace orch
