@@ -116,6 +116,8 @@ LaneOffsetAction read_lane_offset(Element& e) {
 
 ActivateControllerAction read_activate(Element& e) {
   ActivateControllerAction a{e.optional_boolean("lateral"), e.optional_boolean("longitudinal")};
+  // 1.3: which of the entity's ObjectControllers; an entity has one here (several are refused).
+  e.ignore_attributes({"objectControllerRef"});
   for (const char* unsupported : {"animation", "lighting"})
     if (e.optional_boolean(unsupported).value_or(false))
       e.fail_attribute(unsupported, fmt::format("activating {} control is not supported", unsupported));
@@ -190,6 +192,12 @@ const std::vector<ActionEntry> kPrivateActions = {
      }},
     {"RoutingAction", "FollowTrajectoryAction",
      [](Element&, Element& e, Context& c) -> PrivateAction { return read_follow_trajectory(e, c); }},
+    {"AppearanceAction", "LightStateAction",
+     [](Element&, Element& e, Context&) -> PrivateAction { return read_light_state(e); }},
+    {"TrailerAction", "ConnectTrailerAction",
+     [](Element&, Element& e, Context&) -> PrivateAction { return ConnectTrailerAction{e.text("trailerRef")}; }},
+    {"TrailerAction", "DisconnectTrailerAction",
+     [](Element&, Element&, Context&) -> PrivateAction { return DisconnectTrailerAction{}; }},
 };
 
 const std::vector<ActionEntry> kGlobalActions = {
@@ -204,6 +212,12 @@ const std::vector<ActionEntry> kGlobalActions = {
      [](Element& w, Element& e, Context&) -> PrivateAction { return read_parameter_set(w, e); }},
     {"ParameterAction", "ModifyAction",
      [](Element& w, Element& e, Context&) -> PrivateAction { return read_parameter_modify(w, e); }},
+    {"", "EnvironmentAction",
+     [](Element&, Element& e, Context& c) -> PrivateAction { return read_environment_action(e, c); }},
+    {"VariableAction", "SetAction",
+     [](Element& w, Element& e, Context& c) -> PrivateAction { return read_variable_set(w, e, c); }},
+    {"VariableAction", "ModifyAction",
+     [](Element& w, Element& e, Context& c) -> PrivateAction { return read_variable_modify(w, e, c); }},
 };
 
 PrivateAction read_from_table(Element& holder, const std::vector<ActionEntry>& table, Context& context) {

@@ -196,6 +196,13 @@ double parameter_number(const Parameter& p) {
   return *value;
 }
 
+// ParameterModifyAction / VariableModifyAction: add or multiply; whole-number types stay whole.
+void modify_value(Parameter& p, bool multiply, double by) {
+  const double now = parameter_number(p);
+  const double value = multiply ? now * by : now + by;
+  p.value = p.type == "double" ? format_number(value) : format_number(std::round(value));
+}
+
 }  // namespace
 
 std::vector<std::string> start_action(const PrivateAction& action, const std::string& entity,
@@ -323,10 +330,17 @@ std::vector<std::string> start_action(const PrivateAction& action, const std::st
         } else if constexpr (std::is_same_v<T, ParameterSetAction>) {
           ctx.parameters.at(a.parameter).value = a.value;
         } else if constexpr (std::is_same_v<T, ParameterModifyAction>) {
-          Parameter& p = ctx.parameters.at(a.parameter);
-          const double now = parameter_number(p);
-          const double value = a.multiply ? now * a.value : now + a.value;
-          p.value = p.type == "double" ? format_number(value) : format_number(std::round(value));
+          modify_value(ctx.parameters.at(a.parameter), a.multiply, a.value);
+        } else if constexpr (std::is_same_v<T, VariableSetAction>) {
+          ctx.variables.at(a.variable).value = a.value;
+        } else if constexpr (std::is_same_v<T, VariableModifyAction>) {
+          modify_value(ctx.variables.at(a.variable), a.multiply, a.value);
+        } else if constexpr (std::is_same_v<T, ConnectTrailerAction>) {
+          connect_trailer(ctx.scenario, ctx.entities, ctx.trailers, entity, a.entity, ctx.roads);
+        } else if constexpr (std::is_same_v<T, DisconnectTrailerAction>) {
+          disconnect_trailer(ctx.entities, ctx.trailers, entity);
+        } else if constexpr (std::is_same_v<T, AppearanceAction> || std::is_same_v<T, EnvironmentAction>) {
+          // No effect on motion: SUMO has no lights or weather here (model.hpp).
         } else {
           static_assert(kUnhandled<T>, "an OpenSCENARIO action the reader makes needs its behaviour here");
         }

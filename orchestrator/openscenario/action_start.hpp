@@ -8,6 +8,7 @@
 #include "map/position_resolver.hpp"
 #include "openscenario/entity_motion.hpp"
 #include "openscenario/model.hpp"
+#include "openscenario/trailer_motion.hpp"
 
 namespace orch::openscenario {
 
@@ -23,6 +24,8 @@ struct ActionContext {
   const PositionResolver& resolver;
   std::map<std::string, EntityState>& entities;
   std::map<std::string, Parameter>& parameters;  // as ParameterSet/ModifyActions left them
+  std::map<std::string, Parameter>& variables;   // as VariableSet/ModifyActions left them
+  TrailerLinks& trailers;                        // which trailer each tractor tows now
   double t;
   double dt = 0;  // the step that led to t (0 at the start)
 };

@@ -45,7 +45,14 @@ void read_catalog_locations(Element& locations, const std::string& scenario_dir,
       directory.finish();
       fs::path dir = fs::path(path).is_absolute() ? fs::path(path) : fs::path(scenario_dir) / path;
       std::error_code ec;
-      if (!fs::is_directory(dir, ec)) directory.fail_attribute("path", fmt::format("no directory {}", dir.string()));
+      if (!fs::is_directory(dir, ec)) {
+        // The file may not use this catalog: only a reference into it is an error (resolve).
+        const std::string shown = dir.lexically_normal().string();
+        context.warnings.warning(directory.source().where(directory.node(), "path"),
+                                 fmt::format("no directory {} ({}); a reference into it will fail", shown, kind));
+        context.missing_catalog_directories[kind] = shown;
+        continue;
+      }
       std::vector<fs::path> files;
       for (const auto& f : fs::directory_iterator(dir))
         if (f.path().extension() == ".xosc") files.push_back(f.path());
@@ -63,8 +70,11 @@ Element Context::resolve(Element& reference, const std::vector<std::string>& kin
   if (catalog == catalogs.end()) {
     std::vector<std::string> names;
     for (const auto& [n, c] : catalogs) names.push_back(n);
-    reference.fail_attribute("catalogName", fmt::format("no catalog named \"{}\" in the CatalogLocations{}",
-                                                        catalog_name, did_you_mean(catalog_name, names)));
+    std::string missing;
+    for (const auto& [kind, dir] : missing_catalog_directories)
+      missing += fmt::format("; the {} directory {} does not exist", kind, dir);
+    reference.fail_attribute("catalogName", fmt::format("no catalog named \"{}\" in the CatalogLocations{}{}",
+                                                        catalog_name, did_you_mean(catalog_name, names), missing));
   }
   const auto entry = catalog->second.find(entry_name);
   if (entry == catalog->second.end()) {
@@ -84,23 +94,33 @@ Element Context::resolve(Element& reference, const std::vector<std::string>& kin
   std::vector<std::string> declared;
   if (auto declarations = entry_element.optional_child("ParameterDeclarations")) {
     for (Element d : declarations->children("ParameterDeclaration")) {
-      const std::string name = d.text("name");
-      scope.set(name, d.text("parameterType"), d.text("value"));
-      declared.push_back(name);
+      const Parameter p = read_declaration(d);
+      scope.set(p.name, p.type, p.value, "");  // the runtime does not change an entry's parameters
+      declared.push_back(p.name);
       d.finish();
     }
     declarations->finish();
   }
   if (auto assignments = reference.optional_child("ParameterAssignments")) {
     for (Element a : assignments->children("ParameterAssignment")) {
-      const std::string name = a.text("parameterRef");
+      // parameterRef is the entry's parameter's name; "$name" (which, read as a parameter
+      // reference, would be a value of the scenario's) is read as the name where the entry
+      // declares it, as the peer player esmini does and its example files write it.
+      const std::string raw = a.node().attribute("parameterRef").value();
+      std::string name;
+      if (raw.size() > 1 && raw.front() == '$' && scope.declares(raw.substr(1))) {
+        name = raw.substr(1);
+        a.ignore_attributes({"parameterRef"});
+      } else {
+        name = a.text("parameterRef");
+      }
       if (!scope.declares(name))
         a.fail_attribute("parameterRef", fmt::format("catalog entry \"{}\" declares no parameter \"{}\"{}",
                                                      entry_name, name, did_you_mean(name, declared)));
       const std::string value = a.text("value");
       const std::string problem = check_parameter_value(*scope.type(name), value);
       if (!problem.empty()) a.fail_attribute("value", problem);
-      scope.set(name, *scope.type(name), value);
+      scope.assign(name, value);
       a.finish();
     }
     assignments->finish();

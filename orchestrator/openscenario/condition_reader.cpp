@@ -35,14 +35,16 @@ std::string read_coordinate_system(Element& e) {
 // A condition of the standard not in a table is an error "not supported" (Element::one_of
 // and finish), a misspelt one "unknown" with "did you mean". Entity references are checked
 // where the storyboard is read (by member); what a condition means is in storyboard_runtime.cpp.
-using ValueReader = decltype(Condition::kind) (*)(Element&);
+using ValueReader = decltype(Condition::kind) (*)(Element&, const Context&);
 using EntityReader = decltype(ByEntityCondition::condition) (*)(Element&);
 
 const std::vector<std::pair<std::string, ValueReader>> kValueConditions = {
     {"SimulationTimeCondition",
-     [](Element& e) -> decltype(Condition::kind) { return SimulationTimeCondition{read_rule(e), e.number("value")}; }},
+     [](Element& e, const Context&) -> decltype(Condition::kind) {
+       return SimulationTimeCondition{read_rule(e), e.number("value")};
+     }},
     {"StoryboardElementStateCondition",
-     [](Element& e) -> decltype(Condition::kind) {
+     [](Element& e, const Context&) -> decltype(Condition::kind) {
        StoryboardElementStateCondition s;
        s.type = e.choice<std::string>("storyboardElementType", {{"story", "story"},
                                                                 {"act", "act"},
@@ -59,20 +61,32 @@ const std::vector<std::pair<std::string, ValueReader>> kValueConditions = {
        return s;
      }},
     {"ParameterCondition",
-     [](Element& e) -> decltype(Condition::kind) {
-       ParameterCondition p{e.text("parameterRef"), read_rule(e), e.text("value")};
-       const auto type = e.scope().type(p.parameter);
-       if (!type) e.fail_attribute("parameterRef", fmt::format("no parameter \"{}\" is declared", p.parameter));
-       const std::string problem = check_parameter_value(*type, p.value);
-       if (!problem.empty()) e.fail_attribute("value", fmt::format("{} ({} parameter {})", problem, *type, p.parameter));
+     [](Element& e, const Context&) -> decltype(Condition::kind) {
+       const auto [key, type] = runtime_parameter(e, "parameterRef");
+       ParameterCondition p{key, read_rule(e), e.text("value")};
+       const std::string problem = check_parameter_value(type, p.value);
+       if (!problem.empty()) e.fail_attribute("value", fmt::format("{} ({} parameter {})", problem, type, p.parameter));
        return p;
+     }},
+    {"VariableCondition",
+     [](Element& e, const Context& context) -> decltype(Condition::kind) {
+       const auto [name, type] = declared_variable(e, context);
+       VariableCondition v{name, read_rule(e), e.text("value")};
+       const std::string problem = check_parameter_value(type, v.value);
+       if (!problem.empty()) e.fail_attribute("value", fmt::format("{} ({} variable {})", problem, type, name));
+       return v;
      }},
 };
 
 using EntityCondition = decltype(ByEntityCondition::condition);
 
+// direction (1.2): the speed and acceleration the runtime measures are along the entity's
+// path, i.e. longitudinal; lateral and vertical components are not measured.
 void no_direction(Element& e) {
-  if (e.has("direction")) e.fail_attribute("direction", "a direction is not supported");
+  if (e.has("direction") && e.choice<std::string>("direction", {{"longitudinal", "longitudinal"},
+                                                                  {"lateral", "lateral"},
+                                                                  {"vertical", "vertical"}}) != "longitudinal")
+    e.fail_attribute("direction", "only direction=\"longitudinal\" is supported");
 }
 
 void no_along_route(Element& e) {
@@ -182,23 +196,24 @@ const std::vector<std::pair<std::string, EntityReader>> kEntityConditions = {
     {"CollisionCondition", read_collision},
 };
 
-template <class Reader>
-auto read_from_table(Element& holder, const std::vector<std::pair<std::string, Reader>>& table) {
+// `read(reader, element)` calls the table's reader (the value readers also take the context).
+template <class Reader, class Call>
+auto read_from_table(Element& holder, const std::vector<std::pair<std::string, Reader>>& table, const Call& read) {
   std::vector<std::string> names;
-  for (const auto& [name, read] : table) names.push_back(name);
+  for (const auto& [name, reader] : table) names.push_back(name);
   Element e = holder.one_of(names);  // a condition of the standard not listed: "not supported"
   holder.finish();
-  for (const auto& [name, read] : table)
+  for (const auto& [name, reader] : table)
     if (name == e.name()) {
-      auto result = read(e);
+      auto result = read(reader, e);
       e.finish();
       return result;
     }
   e.fail("unreachable: one_of returned an element outside the table");
 }
 
-Condition read_by_value(Element& holder, Condition c) {
-  c.kind = read_from_table(holder, kValueConditions);
+Condition read_by_value(Element& holder, Condition c, const Context& context) {
+  c.kind = read_from_table(holder, kValueConditions, [&](ValueReader r, Element& e) { return r(e, context); });
   return c;
 }
 
@@ -214,12 +229,12 @@ Condition read_by_entity(Element& holder, Condition c) {
   triggering.finish();
   Element wrapper = holder.child("EntityCondition");
   holder.finish();
-  by.condition = read_from_table(wrapper, kEntityConditions);
+  by.condition = read_from_table(wrapper, kEntityConditions, [](EntityReader r, Element& e) { return r(e); });
   c.kind = by;
   return c;
 }
 
-Condition read_condition(Element& e) {
+Condition read_condition(Element& e, const Context& context) {
   Condition c;
   c.name = e.text("name");
   c.delay = e.number("delay");
@@ -231,16 +246,17 @@ Condition read_condition(Element& e) {
   c.place = e.place();
   Element kind = e.one_of({"ByValueCondition", "ByEntityCondition"});
   e.finish();
-  return kind.name() == "ByValueCondition" ? read_by_value(kind, std::move(c)) : read_by_entity(kind, std::move(c));
+  return kind.name() == "ByValueCondition" ? read_by_value(kind, std::move(c), context)
+                                            : read_by_entity(kind, std::move(c));
 }
 
 }  // namespace
 
-Trigger read_trigger(Element& trigger) {
+Trigger read_trigger(Element& trigger, const Context& context) {
   Trigger t;
   for (Element group : trigger.children("ConditionGroup")) {
     std::vector<Condition> conditions;
-    for (Element condition : group.children("Condition")) conditions.push_back(read_condition(condition));
+    for (Element condition : group.children("Condition")) conditions.push_back(read_condition(condition, context));
     if (conditions.empty()) group.fail("a ConditionGroup needs at least one Condition");
     group.finish();
     t.groups.push_back(std::move(conditions));

@@ -158,10 +158,16 @@ void Element::ignore_children(const std::vector<std::string>& names) {
   children_asked_.insert(names.begin(), names.end());
 }
 
+namespace {
+bool is_xml_attribute(std::string_view name) {
+  return name == "xmlns" || name.starts_with("xmlns:") || name.starts_with("xsi:");
+}
+}  // namespace
+
 void Element::finish() {
   const std::vector<std::string> known_attributes(attributes_asked_.begin(), attributes_asked_.end());
   for (const pugi::xml_attribute a : node_.attributes()) {
-    if (attributes_asked_.contains(a.name())) continue;
+    if (attributes_asked_.contains(a.name()) || is_xml_attribute(a.name())) continue;
     fail_attribute(a.name(), fmt::format("unknown attribute {} of {}{}", a.name(), name(),
                                          did_you_mean(a.name(), known_attributes)));
   }

@@ -29,6 +29,13 @@ class Element {
   [[nodiscard]] const ParameterScope& scope() const { return *scope_; }
   [[nodiscard]] Place place() const { return {xml::XmlSource::path_of(node_), source_->line_of(node_)}; }
   [[nodiscard]] bool has(const char* attribute) const { return static_cast<bool>(node_.attribute(attribute)); }
+  // This element read in another parameter scope (one its own ParameterDeclarations open:
+  // Story, Maneuver, catalog entries); what was asked so far stays asked.
+  [[nodiscard]] Element scoped(const ParameterScope& scope) const {
+    Element e = *this;
+    e.scope_ = &scope;
+    return e;
+  }
 
   // Attribute values, substituted. Optional ones return nullopt when absent.
   std::string text(const char* attribute);
@@ -55,6 +62,9 @@ class Element {
   void ignore_children(const std::vector<std::string>& names);
 
   // Reports attributes and child elements present but not read. Call once after reading.
+  // Namespace declarations and XML Schema instance attributes (xmlns, xmlns:xsi,
+  // xsi:noNamespaceSchemaLocation, as the standard's own examples carry on the root) are
+  // XML's, not OpenSCENARIO's, and allowed on any element.
   void finish();
 
   [[noreturn]] void fail(const std::string& message) const;

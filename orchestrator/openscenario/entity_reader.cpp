@@ -1,11 +1,15 @@
 // Entities: ScenarioObject with a Vehicle, Pedestrian or MiscObject (inline or from a
-// catalog) and its ObjectController.
+// catalog) and its ObjectController; a vehicle's trailer coupling (1.3).
 #include <fmt/format.h>
 
 #include "openscenario/reader_context.hpp"
 
 namespace orch::openscenario::reading {
 namespace {
+
+// One ScenarioObject (or an inline Trailer): the entity `name`, then the trailers written
+// inline in it.
+std::vector<Entity> read_scenario_object(Element& scenario_object, Context& context, const std::string& name);
 
 std::map<std::string, std::string> read_properties(Element& owner) {
   std::map<std::string, std::string> properties;
@@ -40,11 +44,31 @@ Axle read_axle(Element& axle) {
   return a;
 }
 
-void read_object(Element& object, Entity& entity) {
+// Trailer (1.3): an entity named by TrailerRef, or one written inline (a ScenarioObject of
+// its own, named "<tractor>+" as the peer player esmini names it; "" in a TrailerRef, the
+// catalogs' default, is no trailer).
+void read_trailer(Element& vehicle, Entity& entity, Context& context, std::vector<Entity>& inline_trailers) {
+  auto holder = vehicle.optional_child("Trailer");
+  if (!holder) return;
+  Element trailer = holder->one_of({"TrailerRef", "Trailer", "EntityRef"});
+  holder->finish();
+  if (trailer.name() == "Trailer") {
+    trailer.ignore_attributes({"name"});  // the ScenarioObject's own name; the entity is "<tractor>+"
+    std::vector<Entity> towed = read_scenario_object(trailer, context, entity.name + "+");
+    entity.trailer = towed.front().name;
+    for (Entity& t : towed) inline_trailers.push_back(std::move(t));
+  } else {
+    entity.trailer = trailer.text("entityRef");
+    trailer.finish();
+  }
+}
+
+// `object` is read in its own parameter scope (catalog entries: resolve(); inline objects:
+// open_scope()), which took its ParameterDeclarations.
+void read_object(Element& object, Entity& entity, Context& context, std::vector<Entity>& inline_trailers) {
   entity.object_name = object.text("name");
   entity.properties = read_properties(object);
   entity.box = read_box(object);
-  object.ignore_children({"ParameterDeclarations"});
   object.ignore_attributes({"model3d", "model", "role"});
   if (object.name() == "Vehicle") {
     entity.kind = EntityKind::Vehicle;
@@ -59,12 +83,20 @@ void read_object(Element& object, Entity& entity) {
     performance.ignore_attributes({"mass", "maxAccelerationRate", "maxDecelerationRate"});
     performance.finish();
     Element axles = object.child("Axles");
-    Element front = axles.child("FrontAxle");
+    if (auto front = axles.optional_child("FrontAxle")) entity.front_axle = read_axle(*front);  // optional since 1.1 (trailers)
     Element rear = axles.child("RearAxle");
-    entity.front_axle = read_axle(front);
     entity.rear_axle = read_axle(rear);
     axles.ignore_children({"AdditionalAxle"});
     axles.finish();
+    if (auto hitch = object.optional_child("TrailerHitch")) {
+      entity.trailer_hitch_dx = hitch->number("dx");
+      hitch->finish();
+    }
+    if (auto coupler = object.optional_child("TrailerCoupler")) {
+      entity.trailer_coupler_dx = coupler->number("dx");
+      coupler->finish();
+    }
+    read_trailer(object, entity, context, inline_trailers);
   } else if (object.name() == "Pedestrian") {
     entity.kind = EntityKind::Pedestrian;
     entity.category = object.choice<std::string>(
@@ -88,18 +120,27 @@ Controller read_controller(Element& controller) {
   return c;
 }
 
-Entity read_entity(Element& scenario_object, Context& context) {
+namespace {
+std::vector<Entity> read_scenario_object(Element& scenario_object, Context& context, const std::string& name) {
   static const std::vector<std::string> kObjects = {"Vehicle", "Pedestrian", "MiscObject"};
-  Entity entity;
-  entity.name = scenario_object.text("name");
+  std::vector<Entity> out(1);
+  std::vector<Entity> inline_trailers;
+  Entity& entity = out.front();
+  entity.name = name;
   Element object = scenario_object.one_of({"CatalogReference", "Vehicle", "Pedestrian", "MiscObject"});
   if (object.name() == "CatalogReference") {
     Element entry = context.resolve(object, kObjects);
-    read_object(entry, entity);
+    read_object(entry, entity, context, inline_trailers);
   } else {
-    read_object(object, entity);
+    Element scoped = open_scope(object, context, "");
+    read_object(scoped, entity, context, inline_trailers);
   }
+  const std::vector<Element> controllers = scenario_object.children("ObjectController");
+  if (controllers.size() > 1)
+    controllers[1].fail("several ObjectControllers per entity (1.3, chosen by ActivateControllerAction's "
+                        "objectControllerRef) are not supported");
   if (auto controller_holder = scenario_object.optional_child("ObjectController")) {
+    controller_holder->ignore_attributes({"name"});  // 1.3: names one of several controllers
     Element controller = controller_holder->one_of({"CatalogReference", "Controller"});
     if (controller.name() == "CatalogReference") {
       Element entry = context.resolve(controller, {"Controller"});
@@ -110,7 +151,14 @@ Entity read_entity(Element& scenario_object, Context& context) {
     controller_holder->finish();
   }
   scenario_object.finish();
-  return entity;
+  for (Entity& t : inline_trailers) out.push_back(std::move(t));
+  return out;
+}
+}  // namespace
+
+std::vector<Entity> read_entity(Element& scenario_object, Context& context) {
+  const std::string name = scenario_object.text("name");
+  return read_scenario_object(scenario_object, context, name);
 }
 
 }  // namespace orch::openscenario::reading

@@ -1,9 +1,11 @@
 #include "openscenario/expression.hpp"
 
+#include <algorithm>
 #include <cctype>
 #include <charconv>
 #include <cmath>
 #include <map>
+#include <numbers>
 #include <vector>
 
 #include <fmt/format.h>
@@ -139,6 +141,8 @@ class Parser {
         {"floor", {1, [](double a, double) { return std::floor(a); }}},
         {"ceil", {1, [](double a, double) { return std::ceil(a); }}},
         {"abs", {1, [](double a, double) { return std::abs(a); }}},
+        // -1 below zero, else 1 (sign(0) = 1), as the peer player esmini computes it.
+        {"sign", {1, [](double a, double) { return a < 0 ? -1.0 : 1.0; }}},
         {"sin", {1, [](double a, double) { return std::sin(a); }}},
         {"cos", {1, [](double a, double) { return std::cos(a); }}},
         {"tan", {1, [](double a, double) { return std::tan(a); }}},
@@ -195,6 +199,8 @@ class Parser {
       if (name == "true") return 1.0;
       if (name == "false") return 0.0;
       skip_space();
+      // Not in the standard; real files use it and the peer player esmini defines it.
+      if (name == "pi" && (pos_ >= text_.size() || text_[pos_] != '(')) return std::numbers::pi;
       if (pos_ < text_.size() && text_[pos_] == '(') return call(name);
       pos_ = start;
       fail(fmt::format("unexpected word \"{}\" (parameters are written $name)", name));
@@ -211,6 +217,38 @@ class Parser {
 
 double evaluate_expression(std::string_view expression, const ParameterLookup& lookup) {
   return Parser(expression, lookup).parse();
+}
+
+std::optional<std::string> concatenate_expression(std::string_view expression, const ParameterLookup& lookup) {
+  const auto trim = [](std::string_view t) {
+    while (!t.empty() && std::isspace(static_cast<unsigned char>(t.front()))) t.remove_prefix(1);
+    while (!t.empty() && std::isspace(static_cast<unsigned char>(t.back()))) t.remove_suffix(1);
+    return t;
+  };
+  const auto is_word_char = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '.'; };
+  std::string out;
+  bool bare_word = false;
+  std::size_t start = 0;
+  for (;;) {
+    const std::size_t plus = expression.find('+', start);
+    const std::string_view term = trim(expression.substr(start, plus == std::string_view::npos ? plus : plus - start));
+    if (term.empty()) return std::nullopt;
+    if (term.front() == '$') {
+      const std::string_view name = term.substr(1);
+      if (name.empty() || !std::all_of(name.begin(), name.end(), is_word_char)) return std::nullopt;
+      const auto value = lookup(name);
+      if (!value) throw ExpressionError(fmt::format("in expression \"{}\": unknown parameter \"{}\"", expression, name));
+      out += *value;
+    } else {
+      if (!std::all_of(term.begin(), term.end(), is_word_char)) return std::nullopt;
+      if (!parse_whole<double>(term) && term != "true" && term != "false") bare_word = true;
+      out += term;
+    }
+    if (plus == std::string_view::npos) break;
+    start = plus + 1;
+  }
+  // One term alone is no concatenation ("${Speed}" is a parameter without its '$').
+  return bare_word && start > 0 ? std::optional(out) : std::nullopt;
 }
 
 std::string format_number(double value) {

@@ -1,8 +1,10 @@
 #pragma once
 // OpenSCENARIO 1.x parameter expressions: the text inside "${...}". Numbers, parameter
 // references ($name), + - * / %, parentheses, unary minus, comparisons (== != < <= > >=),
-// not / and / or, true / false, and the functions sqrt, round, floor, ceil, pow, abs, min,
-// max, sin, cos, tan, asin, acos, atan, exp, log. Booleans are 1 / 0 in arithmetic.
+// not / and / or, true / false, and the functions of the standard: round, floor, ceil, sqrt,
+// pow (1.1), sin, cos, tan, asin, acos, atan, sign, abs, min, max (1.2); exp and log besides.
+// Booleans are 1 / 0 in arithmetic. Not in the standard, as the peer player esmini reads
+// real files: the constant pi, and sign(0) = 1.
 #include <functional>
 #include <optional>
 #include <stdexcept>
@@ -23,6 +25,12 @@ using ParameterLookup = std::function<std::optional<std::string>(std::string_vie
 
 // Evaluates `expression` (the text between "${" and "}"). Throws ExpressionError.
 double evaluate_expression(std::string_view expression, const ParameterLookup& lookup);
+
+// The peer player esmini's reading of an expression that is no number: terms joined by '+'
+// of which some are bare words ("${Brake_ + $Time}" -> "Brake_0.7", parameters by their
+// text). nullopt when `expression` is not of that form. Not in the standard; real files
+// use it for names.
+std::optional<std::string> concatenate_expression(std::string_view expression, const ParameterLookup& lookup);
 
 // Formats a number as the value of a parameter: integers without a fraction, others with
 // the shortest text that reads back as the same double.

@@ -9,6 +9,7 @@
 #include <variant>
 #include <vector>
 
+#include "core/diagnostics.hpp"
 #include "map/position.hpp"
 
 namespace orch::openscenario {
@@ -52,6 +53,11 @@ struct Entity {
   double mass = 0;
   std::map<std::string, std::string> properties;
   std::optional<Controller> controller;
+  // Trailers (1.3): where a trailer couples on this vehicle (hitch) and where this vehicle,
+  // as a trailer, couples on its tractor (coupler), as x offsets from the reference point;
+  // `trailer` names the entity connected at the start ("" none).
+  std::optional<double> trailer_hitch_dx, trailer_coupler_dx;
+  std::string trailer;
 };
 
 // ---- Positions ----------------------------------------------------------------------
@@ -165,15 +171,34 @@ struct ParameterModifyAction {
   bool multiply = false;  // ParameterMultiplyByValueRule, else ParameterAddValueRule
   double value = 0;
 };
+// Variables (1.2): declared like parameters, but only actions and conditions use them.
+struct VariableSetAction { std::string variable; std::string value; };
+struct VariableModifyAction {
+  std::string variable;
+  bool multiply = false;  // VariableMultiplyByValueRule, else VariableAddValueRule
+  double value = 0;
+};
+// Actions read and run as instant ones with no effect on any entity's motion: a vehicle's
+// lights (AppearanceAction / LightStateAction) and the environment (EnvironmentAction:
+// time of day, weather, road condition). SUMO runs render neither; `element` names which.
+struct AppearanceAction { std::string element; };
+struct EnvironmentAction { std::string name; };
+// Trailers (1.3): the actor tows `trailer` from now on / no trailer any more.
+struct ConnectTrailerAction { std::string entity; };  // the trailer (checked like every `entity`)
+struct DisconnectTrailerAction {};
 using PrivateAction = std::variant<TeleportAction, SpeedAction, LaneChangeAction, LaneOffsetAction,
                                    LongitudinalDistanceAction, ActivateControllerAction, AssignControllerAction,
                                    VisibilityAction, FollowTrajectoryAction, AssignRouteAction, AcquirePositionAction,
-                                   AddEntityAction, DeleteEntityAction, ParameterSetAction, ParameterModifyAction>;
+                                   AddEntityAction, DeleteEntityAction, ParameterSetAction, ParameterModifyAction,
+                                   VariableSetAction, VariableModifyAction, ConnectTrailerAction,
+                                   DisconnectTrailerAction, AppearanceAction, EnvironmentAction>;
 // Which alternatives are global actions (they take no actors).
 template <class T>
 inline constexpr bool kIsGlobalAction =
     std::is_same_v<T, AddEntityAction> || std::is_same_v<T, DeleteEntityAction> ||
-    std::is_same_v<T, ParameterSetAction> || std::is_same_v<T, ParameterModifyAction>;
+    std::is_same_v<T, ParameterSetAction> || std::is_same_v<T, ParameterModifyAction> ||
+    std::is_same_v<T, VariableSetAction> || std::is_same_v<T, VariableModifyAction> ||
+    std::is_same_v<T, EnvironmentAction>;
 
 // ---- Conditions and triggers --------------------------------------------------------
 enum class Rule { EqualTo, GreaterThan, LessThan, GreaterOrEqual, LessOrEqual, NotEqualTo };
@@ -185,6 +210,7 @@ struct StoryboardElementStateCondition {
   std::string state;  // startTransition, endTransition, ..., runningState, completeState
 };
 struct ParameterCondition { std::string parameter; Rule rule = Rule::EqualTo; std::string value; };
+struct VariableCondition { std::string variable; Rule rule = Rule::EqualTo; std::string value; };
 struct SpeedCondition { Rule rule = Rule::GreaterThan; double value = 0; };
 struct RelativeDistanceCondition {
   std::string entity;
@@ -246,7 +272,9 @@ struct Condition {
   std::string name;
   double delay = 0;
   Edge edge = Edge::None;
-  std::variant<SimulationTimeCondition, StoryboardElementStateCondition, ParameterCondition, ByEntityCondition> kind;
+  std::variant<SimulationTimeCondition, StoryboardElementStateCondition, ParameterCondition, VariableCondition,
+               ByEntityCondition>
+      kind;
   Place place;
 };
 // OR over groups, AND within a group; an absent trigger is nullopt.
@@ -307,9 +335,14 @@ struct Scenario {
   int rev_minor = 0;
   std::string description;
   std::vector<Parameter> parameters;
+  // Parameters of Stories and Maneuvers, named "<Story or Maneuver>/<name>" (their key in
+  // ParameterSetAction, ParameterModifyAction and ParameterCondition).
+  std::vector<Parameter> local_parameters;
+  std::vector<Parameter> variables;  // VariableDeclarations (1.2); `type` as for parameters
   std::string road_file;  // absolute path of the .xodr ("" when none)
   std::vector<Entity> entities;
   Storyboard storyboard;
+  Diagnostics warnings;  // what the reader accepted but the user may want to know (missing catalog folders)
   [[nodiscard]] const Entity* entity(const std::string& name) const {
     for (const Entity& e : entities)
       if (e.name == name) return &e;

@@ -10,23 +10,46 @@
 
 namespace orch::openscenario {
 
+const ParameterScope::Entry* ParameterScope::find(std::string_view name) const {
+  for (const ParameterScope* s = this; s != nullptr; s = s->parent_) {
+    const auto it = s->values_.find(name);
+    if (it != s->values_.end()) return &it->second;
+  }
+  return nullptr;
+}
+
 std::optional<std::string> ParameterScope::value(std::string_view name) const {
-  const auto it = values_.find(name);
-  if (it != values_.end()) return it->second.value;
-  return parent_ != nullptr ? parent_->value(name) : std::nullopt;
+  const Entry* e = find(name);
+  return e != nullptr ? std::optional(e->value) : std::nullopt;
 }
 
 std::optional<std::string> ParameterScope::type(std::string_view name) const {
-  const auto it = values_.find(name);
-  if (it != values_.end()) return it->second.type;
-  return parent_ != nullptr ? parent_->type(name) : std::nullopt;
+  const Entry* e = find(name);
+  return e != nullptr ? std::optional(e->type) : std::nullopt;
+}
+
+std::optional<std::string> ParameterScope::key(std::string_view name) const {
+  const Entry* e = find(name);
+  return e != nullptr ? std::optional(e->key) : std::nullopt;
+}
+
+std::optional<std::string> parameter_type(std::string_view word) {
+  if (word == "int") return "integer";
+  for (const char* known : kParameterTypeWords)
+    if (word == known) return std::string(word);
+  return std::nullopt;
 }
 
 std::string substitute(std::string_view raw, const ParameterScope& scope) {
   if (raw.size() >= 3 && raw.substr(0, 2) == "${" && raw.back() == '}') {
-    const double value =
-        evaluate_expression(raw.substr(2, raw.size() - 3), [&](std::string_view name) { return scope.value(name); });
-    return format_number(value);
+    const std::string_view inner = raw.substr(2, raw.size() - 3);
+    const ParameterLookup lookup = [&](std::string_view name) { return scope.value(name); };
+    try {
+      return format_number(evaluate_expression(inner, lookup));
+    } catch (const ExpressionError&) {
+      if (auto text = concatenate_expression(inner, lookup)) return *text;  // esmini's names ("${A_ + $x}")
+      throw;
+    }
   }
   if (!raw.empty() && raw.front() == '$') {
     const std::string_view name = raw.substr(1);
@@ -44,7 +67,7 @@ std::string check_parameter_value(const std::string& type, const std::string& va
     if (n < low || n > high) return fmt::format("{} is outside [{}, {}]", value, low, high);
     return "";
   };
-  if (type == "integer") return whole_number(-2147483648LL, 2147483647LL);
+  if (type == "integer" || type == "int") return whole_number(-2147483648LL, 2147483647LL);
   if (type == "unsignedInt") return whole_number(0, 4294967295LL);
   if (type == "unsignedShort") return whole_number(0, 65535);
   if (type == "double") {

@@ -12,10 +12,10 @@ std::optional<Orientation> read_orientation(Element& owner) {
   Orientation o;
   o.relative = element->optional_choice<bool>("type", {{"relative", true}, {"absolute", false}}).value_or(true);
   o.h = element->optional_number("h").value_or(0.0);
-  // Pitch and roll do not exist on a flat road; accept them only as zero.
-  for (const char* angle : {"p", "r"})
-    if (element->optional_number(angle).value_or(0.0) != 0.0)
-      element->fail_attribute(angle, "only flat roads are run: pitch and roll must be 0");
+  // Pitch and roll are read (they must be numbers) but not used: positions are resolved in
+  // the road plane (x, y, heading); a road's elevation and superelevation give them where
+  // the map resolves z, pitch and roll (docs/openscenario.md).
+  for (const char* angle : {"p", "r"}) (void)element->optional_number(angle);
   element->finish();
   return o;
 }

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "core/diagnostics.hpp"
 #include "openscenario/element_reader.hpp"
 #include "openscenario/model.hpp"
 
@@ -23,7 +24,14 @@ class Context {
   std::vector<std::unique_ptr<xml::XmlSource>> catalog_files;
   // catalog name -> entry name -> entry
   std::map<std::string, std::map<std::string, CatalogEntry>> catalogs;
-  std::deque<ParameterScope> entry_scopes;
+  std::deque<ParameterScope> entry_scopes;  // of catalog entries, Stories, Maneuvers, inline objects
+  // Parameters of Stories and Maneuvers, named by their runtime key ("<owner>/<name>").
+  std::vector<Parameter> local_parameters;
+  std::vector<Parameter> variables;  // VariableDeclarations (1.2)
+  // Catalog kinds whose Directory does not exist: kind -> directory (a reference into it is
+  // the error, the missing directory only a warning).
+  std::map<std::string, std::string> missing_catalog_directories;
+  Diagnostics warnings;
 
   // The catalog entry a CatalogReference names, as an Element whose scope holds the
   // entry's parameters with the reference's assignments. `kind` is the element expected
@@ -31,16 +39,28 @@ class Context {
   Element resolve(Element& reference, const std::vector<std::string>& kinds);
 };
 
+// One ParameterDeclaration ("parameterType") or VariableDeclaration ("variableType").
+Parameter read_declaration(Element& declaration, const char* type_attribute = "parameterType");
+// `owner` read in a new scope holding its ParameterDeclarations (owner itself when it has
+// none). With a `key_prefix` the parameters are the storyboard's too (Story, Maneuver):
+// they join context.local_parameters as "<key_prefix>/<name>".
+Element open_scope(Element& owner, Context& context, const std::string& key_prefix);
+// The runtime key of the parameter `name` visible at `at` (a ParameterAction's or
+// ParameterCondition's), with its type; fails when none is declared or the runtime does not
+// hold it (a catalog entry's).
+std::pair<std::string, std::string> runtime_parameter(Element& at, const char* attribute);
+
 void read_catalog_locations(Element& locations, const std::string& scenario_dir, Context& context);
 
-Entity read_entity(Element& scenario_object, Context& context);
+// The entity, then the trailers written inline in it (named "<entity>+", "<entity>++", ...).
+std::vector<Entity> read_entity(Element& scenario_object, Context& context);
 Controller read_controller(Element& controller);
 
 Position read_position(Element& position);
 // The action in a PrivateAction or GlobalAction element (action_reader.cpp's tables).
 PrivateAction read_private_action(Element& private_action, Context& context);
 PrivateAction read_global_action(Element& global_action, Context& context);
-Trigger read_trigger(Element& trigger);
+Trigger read_trigger(Element& trigger, const Context& context);
 Storyboard read_storyboard(Element& storyboard, const Scenario& scenario, Context& context);
 
 // Readers of single actions used by the tables (routing_reader.cpp, global_action_reader.cpp).
@@ -48,6 +68,12 @@ AssignRouteAction read_assign_route(Element& e, Context& context);
 FollowTrajectoryAction read_follow_trajectory(Element& e, Context& context);
 ParameterSetAction read_parameter_set(Element& parameter_action, Element& set);
 ParameterModifyAction read_parameter_modify(Element& parameter_action, Element& modify);
+AppearanceAction read_light_state(Element& light_state_action);
+EnvironmentAction read_environment_action(Element& environment_action, Context& context);
+VariableSetAction read_variable_set(Element& variable_action, Element& set, const Context& context);
+VariableModifyAction read_variable_modify(Element& variable_action, Element& modify, const Context& context);
+// The declared variable `variableRef` names, with its type (VariableAction, VariableCondition).
+std::pair<std::string, std::string> declared_variable(Element& at, const Context& context);
 
 // Closed sets shared by several readers.
 Rule read_rule(Element& e);

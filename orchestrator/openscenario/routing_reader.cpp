@@ -12,7 +12,7 @@ AssignRouteAction read_route(Element& route) {
   AssignRouteAction a;
   a.name = route.text("name");
   a.closed = route.optional_boolean("closed").value_or(false);
-  route.ignore_children({"ParameterDeclarations"});  // catalog entries: read by Context::resolve
+  route.ignore_children({"ParameterDeclarations"});  // read by Context::resolve or open_scope
   for (Element waypoint : route.children("Waypoint")) {
     a.strategies.push_back(waypoint.choice<std::string>("routeStrategy", {{"fastest", "fastest"},
                                                                           {"shortest", "shortest"},
@@ -77,7 +77,7 @@ Trajectory read_trajectory(Element& e) {
   t.name = e.text("name");
   t.closed = e.boolean("closed");
   if (t.closed) e.fail_attribute("closed", "closed trajectories are not supported");
-  e.ignore_children({"ParameterDeclarations"});
+  e.ignore_children({"ParameterDeclarations"});  // read by Context::resolve or open_scope
   Element holder = e.child("Shape");
   Element shape = holder.one_of({"Polyline", "Clothoid"});  // Nurbs, ClothoidSpline: "not supported"
   holder.finish();
@@ -94,7 +94,8 @@ Trajectory read_trajectory_or_reference(Element& e, Context& context) {
     e.finish();
     return read_trajectory(entry);
   }
-  return read_trajectory(e);
+  Element scoped = open_scope(e, context, "");  // an inline Trajectory's own ParameterDeclarations
+  return read_trajectory(scoped);
 }
 
 }  // namespace
@@ -107,7 +108,8 @@ AssignRouteAction read_assign_route(Element& e, Context& context) {
     source.finish();
     a = read_route(entry);
   } else {
-    a = read_route(source);
+    Element scoped = open_scope(source, context, "");  // an inline Route's own ParameterDeclarations
+    a = read_route(scoped);
   }
   e.finish();
   return a;

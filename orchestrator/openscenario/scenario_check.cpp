@@ -45,6 +45,7 @@ Diagnostics check_scenario_file(const std::string& path, const LoadOptions& opti
   Diagnostics diags;
   try {
     const Scenario scenario = load_scenario(path, options);
+    diags.append(scenario.warnings);
     if (scenario.road_file.empty()) return diags;
     const opendrive::RoadNetwork roads = opendrive::read_xodr_file(scenario.road_file);
     std::vector<std::pair<const Position*, Place>> positions;

@@ -6,7 +6,7 @@
 namespace orch::openscenario {
 namespace {
 
-// The schema's element names (1.0 to 1.2).
+// The schema's element names (1.0 to 1.3).
 constexpr std::array kStandardElements = std::to_array<std::string_view>({
     "AbsoluteSpeed", "AbsoluteTargetLane", "AbsoluteTargetLaneOffset", "AbsoluteTargetSpeed",
     "AccelerationCondition", "AcquirePositionAction", "Act", "Action", "ActivateControllerAction", "Actions",
@@ -64,6 +64,12 @@ constexpr std::array kStandardElements = std::to_array<std::string_view>({
     "VariableMultiplyByValueRule", "VariableSetAction", "Vehicle", "VehicleCatalog", "VehicleCategoryDistribution",
     "VehicleCategoryDistributionEntry", "VehicleComponent", "VehicleLight", "VehicleRoleDistribution",
     "VehicleRoleDistributionEntry", "Vertex", "VisibilityAction", "Waypoint", "Weather", "Wind", "WorldPosition",
+    // Element names (not type names) the list above missed, and 1.3's.
+    "AddValue", "CentralObject", "DirectionOfTravelDistribution", "FinalSpeed", "FromLaneCoordinates",
+    "FromRoadCoordinates", "InRoutePosition", "ModifyAction", "MultiplyByValue", "None", "PositionStart",
+    "RelativeAngleCondition", "Rule", "SensorReference", "SensorReferenceSet", "SetAction", "StartTrigger",
+    "TargetPosition", "TargetPositionMaster", "Trailer", "TrailerAction", "TrailerCoupler", "TrailerHitch",
+    "TrailerRef", "VariableAction",
 });
 
 }  // namespace

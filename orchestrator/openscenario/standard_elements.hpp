@@ -1,5 +1,5 @@
 #pragma once
-// Element names of the OpenSCENARIO 1.0-1.2 schema. An element found where the orchestrator
+// Element names of the OpenSCENARIO 1.0-1.3 schema. An element found where the orchestrator
 // does not read it is reported as "not supported" when it is one of these, and as unknown
 // (with "did you mean") when it is not: misspellings and unsupported features never pass
 // silently.

@@ -73,7 +73,7 @@ class StoryboardReader {
     actions.finish();
     for (Element story : storyboard.children("Story")) board.stories.push_back(read_story(story));
     Element stop = storyboard.child("StopTrigger");
-    board.stop_trigger = read_trigger(stop);
+    board.stop_trigger = read_trigger(stop, context_);
     storyboard.finish();
     check_state_references(board);
     return board;
@@ -98,14 +98,13 @@ class StoryboardReader {
   std::optional<Trigger> trigger(Element& owner, const char* name) {
     auto t = owner.optional_child(name);
     if (!t) return std::nullopt;
-    return read_trigger(*t);
+    return read_trigger(*t, context_);
   }
 
-  Story read_story(Element& e) {
-    Story story{e.text("name"), {}};
-    declare("story", e, story.name);
-    if (e.optional_child("ParameterDeclarations"))
-      e.fail("ParameterDeclarations in a Story are not supported (declare them at the top)");
+  Story read_story(Element& outer) {
+    Story story{outer.text("name"), {}};
+    declare("story", outer, story.name);
+    Element e = open_scope(outer, context_, story.name);  // its parameters: "<story>/<name>"
     for (Element act : e.children("Act")) story.acts.push_back(read_act(act));
     if (story.acts.empty()) e.fail("a Story needs at least one Act");
     e.finish();
@@ -119,7 +118,8 @@ class StoryboardReader {
     for (Element g : e.children("ManeuverGroup")) act.groups.push_back(read_group(g));
     if (act.groups.empty()) e.fail("an Act needs at least one ManeuverGroup");
     act.start_trigger = trigger(e, "StartTrigger");
-    if (!act.start_trigger) e.fail("an Act needs a StartTrigger");
+    // Optional since 1.1: an Act without one starts with its Story (the runtime's fires()).
+    if (!act.start_trigger && scenario_.rev_minor == 0) e.fail("an Act needs a StartTrigger (OpenSCENARIO 1.0)");
     act.stop_trigger = trigger(e, "StopTrigger");
     e.finish();
     return act;
@@ -140,18 +140,27 @@ class StoryboardReader {
       ref.finish();
     }
     actors.finish();
-    for (Element c : e.children("CatalogReference"))
-      c.fail("maneuvers from a catalog (CatalogReference in a ManeuverGroup) are not supported");
-    for (Element m : e.children("Maneuver")) g.maneuvers.push_back(read_maneuver(m, g.actors));
+    // Maneuvers inline and from a ManeuverCatalog, in the order written.
+    for (const pugi::xml_node n : e.node().children()) {
+      if (n.type() != pugi::node_element) continue;
+      Element m(e.source(), n, e.scope());
+      if (m.name() == "Maneuver") {
+        g.maneuvers.push_back(read_maneuver(m, g.actors, true));
+      } else if (m.name() == "CatalogReference") {
+        Element entry = context_.resolve(m, {"Maneuver"});
+        g.maneuvers.push_back(read_maneuver(entry, g.actors, false));  // resolve() read its declarations
+      }
+    }
+    e.ignore_children({"Maneuver", "CatalogReference"});
     e.finish();
     return g;
   }
 
-  Maneuver read_maneuver(Element& e, const std::vector<std::string>& actors) {
-    Maneuver m{e.text("name"), {}};
-    declare("maneuver", e, m.name);
-    if (e.optional_child("ParameterDeclarations"))
-      e.fail("ParameterDeclarations in a Maneuver are not supported (declare them at the top)");
+  Maneuver read_maneuver(Element& outer, const std::vector<std::string>& actors, bool own_declarations) {
+    Maneuver m{outer.text("name"), {}};
+    declare("maneuver", outer, m.name);
+    // Its parameters: "<maneuver>/<name>".
+    Element e = own_declarations ? open_scope(outer, context_, m.name) : outer;
     for (Element ev : e.children("Event")) m.events.push_back(read_event(ev, actors));
     if (m.events.empty()) e.fail("a Maneuver needs at least one Event");
     e.finish();

@@ -66,15 +66,22 @@ struct StoryboardRuntime::Impl {
   std::map<std::pair<std::string, std::string>, Record> records;
   std::map<const Condition*, ConditionMemory> memory;
   std::vector<RunningAction> running;
-  std::map<std::string, Parameter> parameters;  // values as the parameter actions set them
+  std::map<std::string, Parameter> parameters;  // values as the parameter actions set them (by key)
+  std::map<std::string, Parameter> variables;   // values as the variable actions set them
+  TrailerLinks trailers;                        // tractor -> trailer towed now
 
-  Impl(const Scenario& s, const opendrive::RoadNetwork& r) : scenario(s), roads(r), resolver(r) {
+  Impl(const Scenario& s, const opendrive::RoadNetwork& r)
+      : scenario(s), roads(r), resolver(r), trailers(initial_trailer_links(s)) {
     for (const Parameter& p : s.parameters) parameters[p.name] = p;
+    for (const Parameter& p : s.local_parameters) parameters[p.name] = p;  // "<owner>/<name>"
+    for (const Parameter& v : s.variables) variables[v.name] = v;
   }
 
   double last_dt = 0;  // the last step's
 
-  ActionContext context() { return ActionContext{scenario, roads, resolver, entities, parameters, t, last_dt}; }
+  ActionContext context() {
+    return ActionContext{scenario, roads, resolver, entities, parameters, variables, trailers, t, last_dt};
+  }
 
   Record& record(const std::string& type, const std::string& name) { return records[{type, name}]; }
 
@@ -109,12 +116,9 @@ struct StoryboardRuntime::Impl {
               }
             return false;
           } else if constexpr (std::is_same_v<T, ParameterCondition>) {
-            const Parameter& p = parameters.at(kind.parameter);  // declared: checked at load
-            if (p.type == "string" || p.type == "boolean" || p.type == "dateTime")
-              return satisfies(kind.rule, p.value, kind.value);
-            // Both texts were checked as numbers of the parameter's type at load.
-            return satisfies(kind.rule, parse_whole<double>(p.value).value_or(0.0),
-                             parse_whole<double>(kind.value).value_or(0.0));
+            return compare(parameters.at(kind.parameter), kind.rule, kind.value);  // declared: checked at load
+          } else if constexpr (std::is_same_v<T, VariableCondition>) {
+            return compare(variables.at(kind.variable), kind.rule, kind.value);
           } else if constexpr (std::is_same_v<T, ByEntityCondition>) {
             return by_entity(kind, m);
           } else {
@@ -122,6 +126,13 @@ struct StoryboardRuntime::Impl {
           }
         },
         c.kind);
+  }
+
+  // A parameter's or variable's value now against a condition's.
+  static bool compare(const Parameter& p, Rule rule, const std::string& value) {
+    if (p.type == "string" || p.type == "boolean" || p.type == "dateTime") return satisfies(rule, p.value, value);
+    // Both texts were checked as numbers of the type at load.
+    return satisfies(rule, parse_whole<double>(p.value).value_or(0.0), parse_whole<double>(value).value_or(0.0));
   }
 
   // Whether `now` has held for `duration` seconds (per entity).
@@ -409,6 +420,9 @@ struct StoryboardRuntime::Impl {
       ActionContext ctx = context();
       (void)start_action(a.action, a.entity, "", ctx, running);
     }
+    // Trailers connected from the start: towed from here on (placed behind their tractors).
+    for (const auto& [tractor, trailer] : TrailerLinks(trailers))
+      connect_trailer(scenario, entities, trailers, tractor, trailer, roads);
     for (const Story& story : scenario.storyboard.stories)
       transition("story", story.name, "startTransition", ElementState::Running);
   }
@@ -419,6 +433,7 @@ struct StoryboardRuntime::Impl {
     last_dt = dt;
     t = static_cast<double>(step_index) * dt;
     for (auto& [name, state] : entities) advance(state, roads, t, dt);
+    pull_trailers(scenario, entities, trailers, roads, dt);
     ActionContext ctx = context();
     for (const std::string& ended : update_running_actions(ctx, running))
       if (!ended.empty()) transition("action", ended, "endTransition", ElementState::Complete);
@@ -451,6 +466,8 @@ void StoryboardRuntime::observe(const std::string& name, const opendrive::Pose2&
 }
 
 const std::map<std::string, Parameter>& StoryboardRuntime::parameters() const { return impl_->parameters; }
+const std::map<std::string, Parameter>& StoryboardRuntime::variables() const { return impl_->variables; }
+const std::map<std::string, std::string>& StoryboardRuntime::trailers() const { return impl_->trailers; }
 
 double StoryboardRuntime::time() const { return impl_->t; }
 bool StoryboardRuntime::finished() const { return impl_->finished; }

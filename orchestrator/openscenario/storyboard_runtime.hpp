@@ -52,7 +52,12 @@ class StoryboardRuntime {
   [[nodiscard]] const std::vector<TransitionLog>& log() const;
   [[nodiscard]] ElementState state(const std::string& type, const std::string& name) const;
   // Parameter values now (ParameterSetAction / ParameterModifyAction change them).
+  // Parameters by key: the scenario's by name, a Story's or Maneuver's as "<owner>/<name>".
   [[nodiscard]] const std::map<std::string, Parameter>& parameters() const;
+  // Variable values now (VariableSetAction / VariableModifyAction change them).
+  [[nodiscard]] const std::map<std::string, Parameter>& variables() const;
+  // Which trailer each tractor tows now (tractor -> trailer).
+  [[nodiscard]] const std::map<std::string, std::string>& trailers() const;
 
  private:
   struct Impl;

@@ -22,10 +22,10 @@ void read_header(Element& root, Scenario& scenario) {
   scenario.rev_major = header.integer("revMajor");
   scenario.rev_minor = header.integer("revMinor");
   if (scenario.rev_major != 1)
-    header.fail_attribute("revMajor", fmt::format("OpenSCENARIO {}.{} is not supported: this reads 1.0 to 1.2",
+    header.fail_attribute("revMajor", fmt::format("OpenSCENARIO {}.{} is not supported: this reads 1.0 to 1.3",
                                                   scenario.rev_major, scenario.rev_minor));
-  if (scenario.rev_minor < 0 || scenario.rev_minor > 2)
-    header.fail_attribute("revMinor", fmt::format("OpenSCENARIO 1.{} is not supported: this reads 1.0 to 1.2",
+  if (scenario.rev_minor < 0 || scenario.rev_minor > 3)
+    header.fail_attribute("revMinor", fmt::format("OpenSCENARIO 1.{} is not supported: this reads 1.0 to 1.3",
                                                   scenario.rev_minor));
   scenario.description = header.optional_text("description").value_or("");
   header.ignore_attributes({"date", "author"});
@@ -48,18 +48,10 @@ std::vector<Parameter> read_parameters(Element& root, const LoadOptions& options
   std::vector<Element> elements = declarations ? declarations->children("ParameterDeclaration") : std::vector<Element>{};
   if (declarations) declarations->finish();
   for (Element& d : elements) {
-    Parameter p;
-    p.name = d.text("name");
-    p.type = d.choice<std::string>("parameterType", {{"integer", "integer"}, {"double", "double"},
-                                                     {"string", "string"}, {"unsignedInt", "unsignedInt"},
-                                                     {"unsignedShort", "unsignedShort"}, {"boolean", "boolean"},
-                                                     {"dateTime", "dateTime"}});
-    p.value = d.text("value");
-    const std::string problem = check_parameter_value(p.type, p.value);
-    if (!problem.empty()) d.fail_attribute("value", problem);
+    Parameter p = reading::read_declaration(d);
     for (const Parameter& other : parameters)
       if (other.name == p.name) d.fail_attribute("name", fmt::format("parameter \"{}\" is declared twice", p.name));
-    scope.set(p.name, p.type, p.value);
+    scope.set(p.name, p.type, p.value, p.name);
     parameters.push_back(p);
   }
   std::vector<std::string> names;
@@ -74,7 +66,7 @@ std::vector<Parameter> read_parameters(Element& root, const LoadOptions& options
       throw ScenarioError(SourceLocation{"--param", name, 0}, fmt::format("{} ({} parameter)", problem, it->type));
     it->value = value;
     it->overridden = true;
-    scope.set(name, it->type, value);
+    scope.assign(name, value);
   }
   for (std::size_t i = 0; i < elements.size(); ++i) {
     Element& d = elements[i];
@@ -106,6 +98,41 @@ std::vector<Parameter> read_parameters(Element& root, const LoadOptions& options
   return parameters;
 }
 
+// Every trailer an entity tows from the start is another entity, towed by no other.
+void check_trailers(const Scenario& scenario, const std::vector<std::pair<std::string, Place>>& tractors) {
+  std::vector<std::string> names;
+  for (const Entity& e : scenario.entities) names.push_back(e.name);
+  std::map<std::string, std::string> towed_by;
+  for (const auto& [tractor, place] : tractors) {
+    const std::string& trailer = scenario.entity(tractor)->trailer;
+    const SourceLocation where{scenario.file, place.path + "/Trailer", place.line};
+    if (scenario.entity(trailer) == nullptr)
+      throw ScenarioError(where, fmt::format("the trailer of \"{}\" is no entity: \"{}\"{}", tractor, trailer,
+                                             did_you_mean(trailer, names)));
+    if (trailer == tractor) throw ScenarioError(where, fmt::format("\"{}\" cannot tow itself", tractor));
+    if (!towed_by.emplace(trailer, tractor).second)
+      throw ScenarioError(where, fmt::format("\"{}\" is the trailer of both \"{}\" and \"{}\"", trailer,
+                                             towed_by[trailer], tractor));
+  }
+}
+
+// VariableDeclarations (1.2): like parameters, but changed only by VariableActions and read
+// only by VariableConditions (a "$name" in an attribute is always a parameter).
+std::vector<Parameter> read_variables(Element& root) {
+  std::vector<Parameter> variables;
+  auto declarations = root.optional_child("VariableDeclarations");
+  if (!declarations) return variables;
+  for (Element d : declarations->children("VariableDeclaration")) {
+    Parameter v = reading::read_declaration(d, "variableType");
+    for (const Parameter& other : variables)
+      if (other.name == v.name) d.fail_attribute("name", fmt::format("variable \"{}\" is declared twice", v.name));
+    variables.push_back(v);
+    d.finish();
+  }
+  declarations->finish();
+  return variables;
+}
+
 }  // namespace
 
 std::map<std::string, std::string> parse_parameter_overrides(const std::vector<std::string>& texts) {
@@ -134,6 +161,8 @@ Scenario load_scenario(const std::string& path, const LoadOptions& options) {
               "check it with `orchestrator validate`, run it with `orchestrator batch` or `sample`");
   if (root.optional_child("Catalog")) root.fail("this is a catalog file, not a scenario");
   scenario.parameters = read_parameters(root, options, context.global);
+  scenario.variables = read_variables(root);
+  context.variables = scenario.variables;
   const std::string dir = fs::path(path).parent_path().string();
   if (auto locations = root.optional_child("CatalogLocations")) reading::read_catalog_locations(*locations, dir, context);
   Element network = root.child("RoadNetwork");
@@ -149,15 +178,22 @@ Scenario load_scenario(const std::string& path, const LoadOptions& options) {
   network.ignore_children({"SceneGraphFile", "UsedArea"});
   network.finish();
   Element entities = root.child("Entities");
+  std::vector<std::pair<std::string, Place>> trailer_places;  // tractor -> where its Trailer is written
   for (Element object : entities.children("ScenarioObject")) {
-    Entity entity = reading::read_entity(object, context);
-    if (scenario.entity(entity.name) != nullptr) object.fail(fmt::format("a second entity named \"{}\"", entity.name));
-    scenario.entities.push_back(std::move(entity));
+    for (Entity& entity : reading::read_entity(object, context)) {
+      if (scenario.entity(entity.name) != nullptr)
+        object.fail(fmt::format("a second entity named \"{}\"", entity.name));
+      if (!entity.trailer.empty()) trailer_places.emplace_back(entity.name, object.place());
+      scenario.entities.push_back(std::move(entity));
+    }
   }
   entities.finish();
+  check_trailers(scenario, trailer_places);
   Element storyboard = root.child("Storyboard");
   scenario.storyboard = reading::read_storyboard(storyboard, scenario, context);
   root.finish();
+  scenario.local_parameters = context.local_parameters;
+  scenario.warnings = context.warnings;
   return scenario;
 }
 

@@ -1,5 +1,5 @@
 #pragma once
-// Loads an OpenSCENARIO 1.0-1.2 scenario file (.xosc) into plain values (model.hpp):
+// Loads an OpenSCENARIO 1.0-1.3 scenario file (.xosc) into plain values (model.hpp):
 // parameters with --param overrides and constraint checks, catalogs, entities, the road
 // file and the storyboard. Throws ScenarioError naming file, line and element path.
 #include <map>

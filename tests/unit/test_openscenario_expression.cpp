@@ -50,6 +50,30 @@ TEST(OpenScenarioExpression, FunctionsComparisonsAndLogic) {
   EXPECT_DOUBLE_EQ(eval("true + true"), 2.0);
 }
 
+TEST(OpenScenarioExpression, EveryFunctionOfTheStandardAndWhatThePeerAdds) {
+  // 1.2's functions, from real files: sign, abs, min, max with parameters.
+  EXPECT_DOUBLE_EQ(eval("sign(-$speed)"), -1.0);
+  EXPECT_DOUBLE_EQ(eval("sign(0.5)"), 1.0);
+  EXPECT_DOUBLE_EQ(eval("sign(0)"), 1.0);  // as the peer player esmini: -1 below zero, else 1
+  EXPECT_DOUBLE_EQ(eval("abs($lane) * max(2, 3) - min(1, -1)"), 4.0);
+  EXPECT_NEAR(eval("sin(0) + cos(0) + tan(0) + asin(1) + acos(1) + atan(0)"), 1.0 + std::acos(0.0), 1e-12);
+  // pi: not in the standard; the peer defines it and parking_demo.xosc uses ${pi}.
+  EXPECT_DOUBLE_EQ(eval("pi"), std::acos(-1.0));
+  EXPECT_DOUBLE_EQ(eval("2 * pi / pi"), 2.0);
+}
+
+TEST(OpenScenarioParameters, TheNamesThePeerJoinsWithPlus) {
+  // cut-in.xosc names a condition "${BrakeCondition_HWT + _ + $HeadwayTime_Brake}"; the peer
+  // player esmini joins the terms as text (parameters by their value).
+  ParameterScope scope;
+  scope.set("HeadwayTime_Brake", "double", "0.7");
+  EXPECT_EQ(substitute("${BrakeCondition_HWT + _ + $HeadwayTime_Brake}", scope), "BrakeCondition_HWT_0.7");
+  EXPECT_EQ(substitute("${1 + 2}", scope), "3");  // numbers still add
+  EXPECT_THROW((void)substitute("${Speed}", scope), ExpressionError);  // a lone word is a parameter without '$'
+  EXPECT_THROW((void)substitute("${a + b * 2}", scope), ExpressionError);
+  EXPECT_THROW((void)substitute("${a + $missing}", scope), ExpressionError);
+}
+
 TEST(OpenScenarioExpression, ErrorsSayWhatAndWhere) {
   const auto message = [](std::string_view text) {
     try {
@@ -84,6 +108,11 @@ TEST(OpenScenarioParameters, SubstitutionOfReferencesAndExpressions) {
 
 TEST(OpenScenarioParameters, ValuesAreCheckedAgainstTheirType) {
   EXPECT_EQ(check_parameter_value("integer", "-4"), "");
+  EXPECT_EQ(check_parameter_value("int", "-4"), "");  // 1.2's name of the type
+  EXPECT_EQ(parameter_type("int"), "integer");
+  EXPECT_EQ(parameter_type("unsignedInt"), "unsignedInt");
+  EXPECT_EQ(parameter_type("float"), std::nullopt);
+  EXPECT_NE(check_parameter_value("unsignedInt", "-1"), "");
   EXPECT_NE(check_parameter_value("integer", "4.5"), "");
   EXPECT_NE(check_parameter_value("unsignedShort", "70000"), "");
   EXPECT_EQ(check_parameter_value("double", "1e3"), "");

@@ -417,8 +417,12 @@ TEST_F(StoryboardActions, ElementsNotRunAreErrorsNamingThem) {
                              by_entity("A", R"(<RelativeClearanceCondition oppositeLanes="false" distanceForward="5" distanceBackward="5" freeSpace="true"/>)")))
                 .find("RelativeClearanceCondition in EntityCondition is an OpenSCENARIO element the orchestrator does not run"),
             std::string::npos);
+  EXPECT_NE(load_error(event("Signals", R"(<InfrastructureAction/>)", at_time(1), "GlobalAction"))
+                .find("InfrastructureAction in GlobalAction is an OpenSCENARIO element the orchestrator does not run"),
+            std::string::npos);
+  // EnvironmentAction is read (and runs with no effect): an empty one misses its Environment.
   EXPECT_NE(load_error(event("Env", R"(<EnvironmentAction/>)", at_time(1), "GlobalAction"))
-                .find("EnvironmentAction in GlobalAction is an OpenSCENARIO element the orchestrator does not run"),
+                .find("expected one of the elements"),
             std::string::npos);
   // A misspelt action: "did you mean".
   EXPECT_NE(load_error(event("Typo", R"(<RoutingAction><AcquirePositonAction/></RoutingAction>)", at_time(1)))

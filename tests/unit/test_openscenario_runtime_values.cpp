@@ -1,0 +1,141 @@
+// The storyboard runtime's variables (1.2) and trailers (1.3): VariableActions change a
+// variable, a VariableCondition starts an event on it; a connected trailer follows its
+// tractor, a disconnected one stays behind at rest.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "opendrive/xodr_reader.hpp"
+#include "openscenario/storyboard_runtime.hpp"
+#include "openscenario/xosc_reader.hpp"
+#include "support/cli_runner.hpp"
+#include "unit/openscenario_snippets.hpp"
+
+namespace orch::openscenario {
+namespace {
+
+using test::kStraightTwoLaneRoad;
+using test::place;
+using test::run_until;
+using test::transition_times;
+using test::vehicle;
+
+std::string at_time(const std::string& name, double at) {
+  return R"(<StartTrigger><ConditionGroup><Condition name=")" + name +
+         R"(" delay="0" conditionEdge="none"><ByValueCondition><SimulationTimeCondition value=")" +
+         std::to_string(at) + R"(" rule="greaterOrEqual"/></ByValueCondition></Condition></ConditionGroup></StartTrigger>)";
+}
+
+class RuntimeValues : public ::testing::Test {
+ protected:
+  void load(const std::string& entities, const std::string& init, const std::string& events,
+            const std::string& declarations = "") {
+    const std::string text = R"(<?xml version="1.0"?><OpenSCENARIO>
+<FileHeader revMajor="1" revMinor="3" date="2024-01-01T00:00:00" author="t" description="values"/>)" + declarations +
+                             R"(<RoadNetwork><LogicFile filepath="road.xodr"/></RoadNetwork>
+<Entities>)" + entities + R"(</Entities>
+<Storyboard><Init><Actions>)" + init + R"(</Actions></Init>
+<Story name="S"><Act name="Act"><ManeuverGroup name="G" maximumExecutionCount="1">
+<Actors selectTriggeringEntities="false"><EntityRef entityRef="A"/></Actors><Maneuver name="M">)" + events +
+                             R"(</Maneuver></ManeuverGroup>)" + at_time("ActStart", 0) + R"(</Act></Story>
+<StopTrigger/></Storyboard></OpenSCENARIO>)";
+    dir_.write("road.xodr", kStraightTwoLaneRoad);
+    scenario_ = load_scenario(dir_.write("s.xosc", text).string());
+    roads_ = opendrive::read_xodr_file((dir_ / "road.xodr").string());
+    runtime_ = std::make_unique<StoryboardRuntime>(scenario_, roads_);
+  }
+  test::TempDir dir_;
+  Scenario scenario_;
+  opendrive::RoadNetwork roads_;
+  std::unique_ptr<StoryboardRuntime> runtime_;
+};
+
+TEST_F(RuntimeValues, VariableActionsChangeTheValueAVariableConditionReads) {
+  const std::string declarations = R"(<VariableDeclarations>
+    <VariableDeclaration name="Laps" variableType="integer" value="1"/>
+    <VariableDeclaration name="Phase" variableType="string" value="start"/></VariableDeclarations>)";
+  const std::string events = R"(<Event name="Count" priority="parallel" maximumExecutionCount="3">
+      <Action name="Add"><GlobalAction><VariableAction variableRef="Laps"><ModifyAction><Rule><MultiplyByValue value="2"/></Rule></ModifyAction></VariableAction></GlobalAction></Action>
+      <StartTrigger><ConditionGroup><Condition name="Tick" delay="0" conditionEdge="rising"><ByValueCondition>
+        <SimulationTimeCondition value="1" rule="greaterOrEqual"/></ByValueCondition></Condition></ConditionGroup></StartTrigger></Event>
+    <Event name="Name" priority="parallel">
+      <Action name="Rename"><GlobalAction><VariableAction variableRef="Phase"><SetAction value="end"/></VariableAction></GlobalAction></Action>)" +
+                             at_time("NameStart", 2) + R"(</Event>
+    <Event name="Stop" priority="parallel"><Action name="Brake"><PrivateAction><LongitudinalAction><SpeedAction>
+      <SpeedActionDynamics dynamicsShape="step" dynamicsDimension="time" value="0"/>
+      <SpeedActionTarget><AbsoluteTargetSpeed value="0"/></SpeedActionTarget></SpeedAction></LongitudinalAction></PrivateAction></Action>
+      <StartTrigger><ConditionGroup>
+        <Condition name="Doubled" delay="0" conditionEdge="none"><ByValueCondition><VariableCondition variableRef="Laps" rule="equalTo" value="2"/></ByValueCondition></Condition>
+        <Condition name="Ended" delay="0" conditionEdge="none"><ByValueCondition><VariableCondition variableRef="Phase" rule="equalTo" value="end"/></ByValueCondition></Condition>
+      </ConditionGroup></StartTrigger></Event>)";
+  load(vehicle("A"), place("A", 10, -1, 10), events, declarations);
+  EXPECT_EQ(runtime_->variables().at("Laps").value, "1");
+  run_until(*runtime_, 1.5);
+  EXPECT_EQ(runtime_->variables().at("Laps").value, "2");  // once: the rising edge of t >= 1
+  EXPECT_EQ(runtime_->variables().at("Phase").value, "start");
+  EXPECT_TRUE(transition_times(*runtime_, "Brake", "startTransition").empty());  // Phase is not "end" yet
+  run_until(*runtime_, 3);
+  EXPECT_EQ(runtime_->variables().at("Phase").value, "end");
+  const auto braked = transition_times(*runtime_, "Brake", "startTransition");
+  ASSERT_EQ(braked.size(), 1u);
+  EXPECT_NEAR(braked[0], 2.0, 1e-9);  // both conditions of the group hold from t = 2
+  EXPECT_DOUBLE_EQ(runtime_->entities().at("A").speed, 0.0);
+  EXPECT_TRUE(runtime_->parameters().empty());  // variables are no parameters
+}
+
+// A tractor A with a hitch 1 m behind its reference point; a trailer T whose coupler is 7 m
+// ahead of its reference point.
+std::string tractor_and_trailer(const std::string& trailer_element) {
+  std::string a = vehicle("A");
+  a.replace(a.find("</Vehicle>"), 0, "<TrailerHitch dx=\"-1.0\"/>" + trailer_element);
+  std::string t = vehicle("T");
+  t.replace(t.find("</Vehicle>"), 0, "<TrailerCoupler dx=\"7.0\"/>");
+  return t + a;
+}
+
+TEST_F(RuntimeValues, AConnectedTrailerFollowsItsTractorAndStaysWhenDisconnected) {
+  const std::string events = R"(<Event name="Off" priority="parallel"><Action name="Disconnect"><PrivateAction><TrailerAction><DisconnectTrailerAction/></TrailerAction></PrivateAction></Action>)" +
+                             at_time("OffStart", 3) + "</Event>";
+  // T is not placed by Init: it is towed from the start, so placed behind A.
+  load(tractor_and_trailer("<Trailer><TrailerRef entityRef=\"T\"/></Trailer>"), place("A", 100, -1, 10), events);
+  ASSERT_EQ(runtime_->trailers().at("A"), "T");
+  const auto coupling_gap = [&] {
+    const EntityState& a = runtime_->entities().at("A");
+    const EntityState& t = runtime_->entities().at("T");
+    const double hx = a.pose.x - 1.0 * std::cos(a.pose.heading), hy = a.pose.y - 1.0 * std::sin(a.pose.heading);
+    const double cx = t.pose.x + 7.0 * std::cos(t.pose.heading), cy = t.pose.y + 7.0 * std::sin(t.pose.heading);
+    return std::hypot(hx - cx, hy - cy);
+  };
+  const EntityState& t0 = runtime_->entities().at("T");
+  ASSERT_TRUE(t0.placed);
+  EXPECT_NEAR(t0.pose.x, runtime_->entities().at("A").pose.x - 8.0, 1e-9);  // straight behind: 1 m + 7 m
+  EXPECT_NEAR(coupling_gap(), 0.0, 1e-9);
+  run_until(*runtime_, 2.0);
+  EXPECT_NEAR(coupling_gap(), 0.0, 1e-9);
+  EXPECT_NEAR(runtime_->entities().at("T").speed, 10.0, 1e-9);
+  EXPECT_NEAR(runtime_->entities().at("A").pose.x - runtime_->entities().at("T").pose.x, 8.0, 1e-6);
+  run_until(*runtime_, 5.0);
+  EXPECT_TRUE(runtime_->trailers().empty());
+  const double left_at = runtime_->entities().at("T").pose.x;
+  EXPECT_NEAR(left_at, runtime_->entities().at("A").pose.x - 8.0 - 2 * 10.0, 0.51);  // stopped at t = 3
+  EXPECT_DOUBLE_EQ(runtime_->entities().at("T").speed, 0.0);
+}
+
+TEST_F(RuntimeValues, AConnectTrailerActionCouplesAnEntityPlacedApart) {
+  const std::string events = R"(<Event name="On" priority="parallel"><Action name="Connect"><PrivateAction><TrailerAction><ConnectTrailerAction trailerRef="T"/></TrailerAction></PrivateAction></Action>)" +
+                             at_time("OnStart", 1) + "</Event>";
+  load(tractor_and_trailer(""), place("A", 100, -1, 10) + place("T", 50, -1, 0), events);
+  EXPECT_TRUE(runtime_->trailers().empty());
+  run_until(*runtime_, 0.5);
+  EXPECT_NEAR(runtime_->entities().at("T").pose.x, 50.0, 1e-9);  // not towed yet: stands
+  run_until(*runtime_, 1.5);
+  ASSERT_EQ(runtime_->trailers().at("A"), "T");
+  const EntityState& a = runtime_->entities().at("A");
+  const EntityState& t = runtime_->entities().at("T");
+  // Coupled: the coupler is on the hitch, the trailer in line behind on the straight road.
+  EXPECT_NEAR(a.pose.x - t.pose.x, 8.0, 1e-6);
+  EXPECT_NEAR(a.pose.y, t.pose.y, 1e-6);
+}
+
+}  // namespace
+}  // namespace orch::openscenario
