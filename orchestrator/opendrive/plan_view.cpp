@@ -33,37 +33,65 @@ double integrate(F&& f, double a, double b, double piece) {
   return 0.5 * h * sum;
 }
 
+// Samples of the reference line for projections: about one per metre, both ends included.
+std::size_t sample_count_for(double length) {
+  return static_cast<std::size_t>(pieces_covering(length, 1.0, 1, 1 << 30)) + 1;
+}
+
 Pose2 local_to_world(const Pose2& start, double u, double v, double local_heading) {
   const double c = std::cos(start.heading);
   const double s = std::sin(start.heading);
   return {start.x + c * u - s * v, start.y + s * u + c * v, start.heading + local_heading};
 }
 
+// The table's knot at or below x (0 <= x), and the knot's position.
+std::size_t knot_below(const GeometryTable& table, double x) {
+  const auto last = table.a.size() - 1;
+  return std::min(last, static_cast<std::size_t>(std::max(x, 0.0) / table.piece));
+}
+
+// Integral of f from 0 to x: the table's value at the knot below x plus one piece (at most
+// `piece` metres, as accurate as a piece of the direct integration), or the direct
+// integration without a table. `knots` holds the integral at the knots.
+template <class F>
+double integral_to(F&& f, const GeometryTable* table, const std::vector<double>& knots, double x) {
+  if (table == nullptr || table->piece <= 0) return integrate(f, 0.0, x, kPieceLength);
+  if (x <= 0) return 0.0;
+  const std::size_t k = knot_below(*table, x);
+  const double from = static_cast<double>(k) * table->piece;
+  return knots[k] + integrate(f, from, x, table->piece + 1e-9 * (1.0 + from));
+}
+
+double poly3_speed(const Poly3& p, double u) {
+  const double dv = p.b + 2 * p.c * u + 3 * p.d * u * u;
+  return std::sqrt(1.0 + dv * dv);
+}
+
 // Arc length of the poly3 curve (u, v(u)) from 0 to u.
-double poly3_arc_length(const Poly3& p, double u) {
-  return integrate(
-      [&](double x) {
-        const double dv = p.b + 2 * p.c * x + 3 * p.d * x * x;
-        return std::sqrt(1.0 + dv * dv);
-      },
-      0.0, u, kPieceLength);
+double poly3_arc_length(const Poly3& p, const GeometryTable* table, double u) {
+  const auto speed = [&](double x) { return poly3_speed(p, x); };
+  return table == nullptr ? integrate(speed, 0.0, u, kPieceLength) : integral_to(speed, table, table->a, u);
 }
 
 // The u at which the poly3 curve has run `ds` metres (Newton; ds' = sqrt(1 + v'^2) >= 1).
-double poly3_u_at(const Poly3& p, double ds) {
+double poly3_u_at(const Poly3& p, const GeometryTable* table, double ds) {
   double u = ds;
   for (int i = 0; i < 50; ++i) {
-    const double dv = p.b + 2 * p.c * u + 3 * p.d * u * u;
-    const double step = (poly3_arc_length(p, u) - ds) / std::sqrt(1.0 + dv * dv);
+    const double step = (poly3_arc_length(p, table, u) - ds) / poly3_speed(p, u);
     u -= step;
     if (std::abs(step) < 1e-12) break;
   }
   return u;
 }
 
+double spiral_rate(const Geometry& g, const Spiral& sp) {
+  return g.length > 0 ? (sp.curv_end - sp.curv_start) / g.length : 0.0;
+}
+
 struct Evaluator {
   double ds;
   const Geometry& g;
+  const GeometryTable* table;  // nullptr: integrate from the record's start
   Pose2 operator()(const Line&) const { return local_to_world(g.start, ds, 0.0, 0.0); }
   Pose2 operator()(const Arc& a) const {
     if (std::abs(a.curvature) < 1e-15) return local_to_world(g.start, ds, 0.0, 0.0);
@@ -73,14 +101,17 @@ struct Evaluator {
   }
   Pose2 operator()(const Spiral& sp) const {
     // heading(s) = k0 s + (k1 - k0) s^2 / (2 L); position = integral of (cos, sin) heading.
-    const double rate = g.length > 0 ? (sp.curv_end - sp.curv_start) / g.length : 0.0;
+    const double rate = spiral_rate(g, sp);
     const auto heading = [&](double s) { return sp.curv_start * s + 0.5 * rate * s * s; };
-    const double u = integrate([&](double s) { return std::cos(heading(s)); }, 0.0, ds, kPieceLength);
-    const double v = integrate([&](double s) { return std::sin(heading(s)); }, 0.0, ds, kPieceLength);
+    const auto cos_h = [&](double s) { return std::cos(heading(s)); };
+    const auto sin_h = [&](double s) { return std::sin(heading(s)); };
+    const bool cached = table != nullptr && table->piece > 0;
+    const double u = cached ? integral_to(cos_h, table, table->a, ds) : integrate(cos_h, 0.0, ds, kPieceLength);
+    const double v = cached ? integral_to(sin_h, table, table->b, ds) : integrate(sin_h, 0.0, ds, kPieceLength);
     return local_to_world(g.start, u, v, heading(ds));
   }
   Pose2 operator()(const Poly3& p) const {
-    const double u = poly3_u_at(p, ds);
+    const double u = poly3_u_at(p, table, ds);
     const double v = p.a + p.b * u + p.c * u * u + p.d * u * u * u;
     const double dv = p.b + 2 * p.c * u + 3 * p.d * u * u;
     return local_to_world(g.start, u, v, std::atan(dv));
@@ -99,13 +130,14 @@ struct Evaluator {
 struct CurvatureOf {
   double ds;
   const Geometry& g;
+  const GeometryTable* table;
   double operator()(const Line&) const { return 0.0; }
   double operator()(const Arc& a) const { return a.curvature; }
   double operator()(const Spiral& sp) const {
     return g.length > 0 ? sp.curv_start + (sp.curv_end - sp.curv_start) * ds / g.length : sp.curv_start;
   }
   double operator()(const Poly3& p) const {
-    const double u = poly3_u_at(p, ds);
+    const double u = poly3_u_at(p, table, ds);
     const double dv = p.b + 2 * p.c * u + 3 * p.d * u * u;
     const double ddv = 2 * p.c + 6 * p.d * u;
     return ddv / std::pow(1.0 + dv * dv, 1.5);
@@ -124,16 +156,61 @@ struct CurvatureOf {
 }  // namespace
 
 Pose2 evaluate(const Geometry& geometry, double ds) {
-  return std::visit(Evaluator{std::clamp(ds, 0.0, geometry.length), geometry}, geometry.shape);
+  return std::visit(Evaluator{std::clamp(ds, 0.0, geometry.length), geometry, nullptr}, geometry.shape);
 }
 
 double curvature(const Geometry& geometry, double ds) {
-  return std::visit(CurvatureOf{std::clamp(ds, 0.0, geometry.length), geometry}, geometry.shape);
+  return std::visit(CurvatureOf{std::clamp(ds, 0.0, geometry.length), geometry, nullptr}, geometry.shape);
+}
+
+Pose2 evaluate(const Geometry& geometry, const GeometryTable& table, double ds) {
+  return std::visit(Evaluator{std::clamp(ds, 0.0, geometry.length), geometry, &table}, geometry.shape);
+}
+
+double curvature(const Geometry& geometry, const GeometryTable& table, double ds) {
+  return std::visit(CurvatureOf{std::clamp(ds, 0.0, geometry.length), geometry, &table}, geometry.shape);
+}
+
+GeometryTable make_table(const Geometry& g) {
+  GeometryTable table;
+  if (!(g.length > 0) || !std::isfinite(g.length)) return table;
+  // Knots every <= 2 m, each piece integrated as one piece of the direct integration is.
+  const auto pieces = static_cast<std::size_t>(pieces_covering(g.length, kPieceLength, 1, 1 << 30));
+  const double piece = g.length / static_cast<double>(pieces);
+  const auto fill = [&](std::vector<double>& knots, auto&& f) {
+    knots.assign(pieces + 1, 0.0);
+    for (std::size_t k = 0; k < pieces; ++k) {
+      const double from = static_cast<double>(k) * piece;
+      knots[k + 1] = knots[k] + integrate(f, from, static_cast<double>(k + 1) * piece, piece + 1e-9 * (1.0 + from));
+    }
+  };
+  if (const auto* sp = std::get_if<Spiral>(&g.shape)) {
+    const double rate = spiral_rate(g, *sp);
+    const auto heading = [&](double s) { return sp->curv_start * s + 0.5 * rate * s * s; };
+    table.piece = piece;
+    fill(table.a, [&](double s) { return std::cos(heading(s)); });
+    fill(table.b, [&](double s) { return std::sin(heading(s)); });
+  } else if (const auto* p = std::get_if<Poly3>(&g.shape)) {
+    // u runs at most as far as s (ds/du >= 1), so knots over u in [0, length] cover the record.
+    table.piece = piece;
+    fill(table.a, [&](double u) { return poly3_speed(*p, u); });
+  }
+  return table;
 }
 
 PlanView::PlanView(std::vector<Geometry> geometries) : geometries_(std::move(geometries)) {
   std::stable_sort(geometries_.begin(), geometries_.end(),
                    [](const Geometry& a, const Geometry& b) { return a.s < b.s; });
+  tables_.reserve(geometries_.size());
+  for (const Geometry& g : geometries_) tables_.push_back(make_table(g));
+  const std::size_t n = sample_count_for(length());
+  std::vector<double> xs(n), ys(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const Pose2 p = pose(length() * static_cast<double>(i) / static_cast<double>(n - 1));
+    xs[i] = p.x;
+    ys[i] = p.y;
+  }
+  samples_ = PointTree(std::move(xs), std::move(ys));
 }
 
 double PlanView::length() const {
@@ -141,24 +218,28 @@ double PlanView::length() const {
   return geometries_.back().s + geometries_.back().length;
 }
 
-const Geometry& PlanView::record_at(double s) const {
+double PlanView::sample_s(std::size_t i) const {
+  return length() * static_cast<double>(i) / static_cast<double>(samples_.size() - 1);
+}
+
+std::size_t PlanView::record_at(double s) const {
   // The last record starting at or before s.
   auto it = std::upper_bound(geometries_.begin(), geometries_.end(), s,
                              [](double value, const Geometry& g) { return value < g.s; });
   if (it != geometries_.begin()) --it;
-  return *it;
+  return static_cast<std::size_t>(it - geometries_.begin());
 }
 
 Pose2 PlanView::pose(double s) const {
   if (geometries_.empty()) return {};
-  const Geometry& g = record_at(s);
-  return evaluate(g, s - g.s);
+  const std::size_t i = record_at(s);
+  return evaluate(geometries_[i], tables_[i], s - geometries_[i].s);
 }
 
 double PlanView::curvature(double s) const {
   if (geometries_.empty()) return 0.0;
-  const Geometry& g = record_at(s);
-  return opendrive::curvature(g, s - g.s);
+  const std::size_t i = record_at(s);
+  return opendrive::curvature(geometries_[i], tables_[i], s - geometries_[i].s);
 }
 
 }  // namespace orch::opendrive

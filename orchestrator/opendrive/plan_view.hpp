@@ -2,8 +2,17 @@
 // The OpenDRIVE reference line (planView): a sequence of geometry records, each a line,
 // arc, spiral (clothoid), cubic polynomial or parametric cubic, evaluated in the
 // OpenDRIVE inertial frame. Elevation and superelevation are ignored (2D).
+//
+// A PlanView answers pose(s) and curvature(s) in O(log g) for g records: the record by
+// binary search on s, and a spiral's or cubic polynomial's integral from a table of the
+// record's integrals at knots every <= 2 m, built once, plus one quadrature piece. It also
+// keeps the reference line sampled about every metre in a PointTree, so projecting a point
+// onto the road finds its nearest sample without walking the road.
+#include <cstddef>
 #include <variant>
 #include <vector>
+
+#include "opendrive/point_tree.hpp"
 
 namespace orch::opendrive {
 
@@ -38,10 +47,23 @@ struct Geometry {
   Shape shape;
 };
 
-// Pose at `ds` metres along one geometry record (0 <= ds <= length).
+// Pose at `ds` metres along one geometry record (0 <= ds <= length), integrated from the
+// record's start (O(ds) for spirals and cubic polynomials; PlanView caches instead).
 Pose2 evaluate(const Geometry& geometry, double ds);
 // Signed curvature (1/m) at `ds` along one geometry record.
 double curvature(const Geometry& geometry, double ds);
+
+// A record's integrals at knots `piece` metres apart (spiral: along s, the offsets u and v
+// from its start; poly3: along u, the arc length), so an evaluation integrates one piece.
+struct GeometryTable {
+  double piece = 0.0;      // 0: no table (lines, arcs, parametric cubics: closed forms)
+  std::vector<double> a;   // spiral: u at the knots; poly3: arc length at the knots
+  std::vector<double> b;   // spiral: v at the knots
+};
+GeometryTable make_table(const Geometry& geometry);
+// evaluate() / curvature() with the record's table.
+Pose2 evaluate(const Geometry& geometry, const GeometryTable& table, double ds);
+double curvature(const Geometry& geometry, const GeometryTable& table, double ds);
 
 class PlanView {
  public:
@@ -53,9 +75,17 @@ class PlanView {
   [[nodiscard]] Pose2 pose(double s) const;
   [[nodiscard]] double curvature(double s) const;
 
+  // The reference line sampled at s_i = length * i / (n - 1), n = max(2, ceil(length) + 1):
+  // the coarse stage of a projection onto the road.
+  [[nodiscard]] std::size_t sample_count() const { return samples_.size(); }
+  [[nodiscard]] double sample_s(std::size_t i) const;
+  [[nodiscard]] const PointTree& samples() const { return samples_; }
+
  private:
-  [[nodiscard]] const Geometry& record_at(double s) const;
+  [[nodiscard]] std::size_t record_at(double s) const;
   std::vector<Geometry> geometries_;
+  std::vector<GeometryTable> tables_;  // one per record
+  PointTree samples_;
 };
 
 }  // namespace orch::opendrive

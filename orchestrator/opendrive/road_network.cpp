@@ -93,6 +93,7 @@ Pose2 Road::world(double s, double t) const {
 RoadNetwork::RoadNetwork(std::vector<Road> roads, std::vector<Junction> junctions)
     : roads_(std::move(roads)), junctions_(std::move(junctions)) {
   for (std::size_t i = 0; i < roads_.size(); ++i) index_.emplace(roads_[i].id, i);
+  grid_ = RoadGrid(roads_);
 }
 
 const Junction* RoadNetwork::junction(const std::string& junction_id) const {
@@ -118,18 +119,11 @@ Pose2 RoadNetwork::lane_pose(const std::string& road_id, int lane_id, double s, 
 }
 
 RoadCoordinate project(const Road& road, double x, double y) {
-  // Coarse: the nearest of samples every ~1 m; fine: Newton on (q - p(s)) . T(s) = 0.
+  // Coarse: the nearest of samples every ~1 m (from the plan view's tree of them); fine:
+  // Newton on (q - p(s)) . T(s) = 0.
   const double length = road.plan_view.length();
-  const int samples = pieces_covering(length, 1.0, 1, 1 << 30) + 1;
-  double best_s = 0.0;
-  double best_d2 = std::numeric_limits<double>::infinity();
-  for (int i = 0; i < samples; ++i) {
-    const double s = length * i / (samples - 1);
-    const Pose2 p = road.plan_view.pose(s);
-    const double d2 = (x - p.x) * (x - p.x) + (y - p.y) * (y - p.y);
-    if (d2 < best_d2) best_d2 = d2, best_s = s;
-  }
-  double s = best_s;
+  const PointTree& samples = road.plan_view.samples();
+  double s = samples.size() < 2 ? 0.0 : road.plan_view.sample_s(samples.nearest(x, y));
   for (int i = 0; i < 30; ++i) {
     const Pose2 p = road.plan_view.pose(s);
     const double along = (x - p.x) * std::cos(p.heading) + (y - p.y) * std::sin(p.heading);
@@ -145,11 +139,16 @@ RoadCoordinate project(const Road& road, double x, double y) {
   return {road.id, s, t, p.heading};
 }
 
-std::optional<RoadCoordinate> RoadNetwork::to_road(double x, double y) const {
+namespace {
+
+// to_road's choice: a road holding the point on a lane beats one that does not; then the
+// nearer one; on a tie the earlier road.
+struct NearestRoad {
   std::optional<RoadCoordinate> best;
   bool best_on_lane = false;
   double best_distance = std::numeric_limits<double>::infinity();
-  for (const Road& r : roads_) {
+
+  void consider(const Road& r, double x, double y) {
     const RoadCoordinate c = project(r, x, y);
     const Pose2 ref = r.world(c.s, c.t);
     const double distance = std::hypot(ref.x - x, ref.y - y) + std::abs(c.t) * 1e-9;
@@ -160,7 +159,19 @@ std::optional<RoadCoordinate> RoadNetwork::to_road(double x, double y) const {
       best_distance = distance;
     }
   }
-  return best;
+};
+
+}  // namespace
+
+std::optional<RoadCoordinate> RoadNetwork::to_road(double x, double y) const {
+  // Every road that can hold (x, y) on a lane is a candidate, in road order, so when one
+  // does, the choice over the candidates is the choice over all roads.
+  NearestRoad near;
+  for (const std::uint32_t i : grid_.candidates(x, y)) near.consider(roads_[i], x, y);
+  if (near.best_on_lane) return near.best;
+  NearestRoad all;  // off every lane: the nearest of all roads
+  for (const Road& r : roads_) all.consider(r, x, y);
+  return all.best;
 }
 
 }  // namespace orch::opendrive

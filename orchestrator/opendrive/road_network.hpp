@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "opendrive/plan_view.hpp"
+#include "opendrive/road_grid.hpp"
 #include "opendrive/road_links.hpp"
 
 namespace orch::opendrive {
@@ -90,16 +91,19 @@ class RoadNetwork {
   // Inertial pose of the centre of `lane_id` at s, moved `offset` metres to the left of it.
   [[nodiscard]] Pose2 lane_pose(const std::string& road_id, int lane_id, double s, double offset) const;
   // The road point nearest to (x, y): the road whose reference line is closest and on whose
-  // lanes the point lies (any road when none holds it), s and t on it.
+  // lanes the point lies (any road when none holds it), s and t on it. Only the roads the
+  // grid lists near (x, y) are projected onto, every road only when none holds the point.
   [[nodiscard]] std::optional<RoadCoordinate> to_road(double x, double y) const;
 
  private:
   std::vector<Road> roads_;
   std::map<std::string, std::size_t> index_;
+  RoadGrid grid_;
   std::vector<Junction> junctions_;
 };
 
-// Projection of (x, y) onto one road's reference line: nearest s in [0, length] and signed t.
+// Projection of (x, y) onto one road's reference line: nearest s in [0, length] and signed t
+// (from the nearest of the reference line's samples, then Newton; O(log length)).
 RoadCoordinate project(const Road& road, double x, double y);
 
 }  // namespace orch::opendrive
