@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "core/checked_numeric.hpp"
 #include "opendrive/road_network.hpp"
 
 namespace orch::opendrive {
