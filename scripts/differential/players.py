@@ -1,0 +1,103 @@
+"""Runs one OpenSCENARIO file in each player: the orchestrator (on SUMO, no background traffic)
+and the peer, esmini (headless), both at a fixed step; each writes into its own folder.
+
+What each run leaves for the comparison (compare.py):
+- ours: trace.csv (every entity every step, its reference point; `driver` says who drove
+  it), result.json (verdict, reason, the storyboard transitions as `events`), run.log;
+- peer: sim.csv (dat2csv of the recording: every entity every step, its reference point),
+  log.txt (every storyboard transition with its time).
+"""
+import dataclasses
+import json
+import pathlib
+import subprocess
+import time
+
+STEP = 0.05  # s, both players
+
+
+@dataclasses.dataclass
+class Run:
+    """How a player's run went: `ok` when it ran (its outputs are there), else `error` says why."""
+    folder: pathlib.Path
+    ok: bool
+    error: str = ""
+    end_time: float = 0.0      # last simulated time it recorded
+    seconds: float = 0.0       # wall-clock time the run took
+    timed_out: bool = False
+
+
+def _first_line(text: str, prefix: str = "") -> str:
+    for line in text.splitlines():
+        if line.strip() and (not prefix or prefix in line):
+            return line.strip()
+    return ""
+
+
+def _last_time(csv_file: pathlib.Path) -> float:
+    """Time of the last row of a csv whose first column is the time (0 when there are none)."""
+    last = 0.0
+    with csv_file.open() as f:
+        next(f, None)
+        for line in f:
+            head = line.split(",", 1)[0]
+            try:
+                last = float(head)
+            except ValueError:
+                continue
+    return last
+
+
+def run_peer(esmini_bin: pathlib.Path, xosc: pathlib.Path, folder: pathlib.Path, timeout: float) -> Run:
+    """esmini --headless at STEP; its recording converted to sim.csv. A file with no
+    StopTrigger would run forever: the run is stopped after `timeout` s of wall-clock time
+    (what it recorded until then is compared)."""
+    folder.mkdir(parents=True, exist_ok=True)
+    start = time.monotonic()
+    cmd = [str(esmini_bin / "esmini"), "--headless", "--fixed_timestep", str(STEP), "--osc", str(xosc),
+           "--record", "sim.dat", "--disable_stdout", "--logfile_path", "log.txt", "--seed", "1"]
+    timed_out = False
+    try:
+        proc = subprocess.run(cmd, cwd=folder, capture_output=True, text=True, timeout=timeout)
+        rc = proc.returncode
+    except subprocess.TimeoutExpired:
+        rc, timed_out = 0, True
+    log = folder / "log.txt"
+    log_text = log.read_text(errors="replace") if log.exists() else ""
+    if rc != 0 or not (folder / "sim.dat").exists():
+        reason = _first_line(log_text, "[error]") or f"esmini exit status {rc}"
+        return Run(folder, False, reason.replace("[] [error] ", ""), seconds=time.monotonic() - start)
+    subprocess.run([str(esmini_bin / "dat2csv"), "--file", "sim.dat"], cwd=folder, capture_output=True, text=True,
+                   timeout=120)
+    sim = folder / "sim.csv"
+    if not sim.exists():
+        return Run(folder, False, "dat2csv wrote no sim.csv", seconds=time.monotonic() - start)
+    return Run(folder, True, end_time=_last_time(sim), seconds=time.monotonic() - start, timed_out=timed_out)
+
+
+def run_ours(orchestrator: pathlib.Path, xosc: pathlib.Path, folder: pathlib.Path, max_time: float,
+             timeout: float) -> Run:
+    """orchestrator run at STEP without background traffic, until the StopTrigger or
+    `max_time` s of simulated time. `ok` when it recorded steps (verdict success or failure,
+    or an error after the start: the comparison shows how far it went); an error before the
+    first step (the file cannot be read or placed) is `error` with the program's reason."""
+    folder.mkdir(parents=True, exist_ok=True)
+    start = time.monotonic()
+    cmd = [str(orchestrator), "run", str(xosc), "--out", str(folder), "--step", str(STEP), "--traffic", "none",
+           "--max-time", f"{max_time:g}", "--no-report", "-q"]
+    try:
+        proc = subprocess.run(cmd, capture_output=True, text=True, timeout=timeout)
+    except subprocess.TimeoutExpired:
+        return Run(folder, False, f"no result after {timeout:g} s of wall-clock time", seconds=timeout)
+    seconds = time.monotonic() - start
+    result_file, trace = folder / "result.json", folder / "trace.csv"
+    result = json.loads(result_file.read_text()) if result_file.exists() else {}
+    reason = result.get("reason", "") or _first_line(proc.stderr, "error") or _first_line(proc.stderr)
+    end = _last_time(trace) if trace.exists() else 0.0
+    has_rows = trace.exists() and trace.stat().st_size > 0 and sum(1 for _ in trace.open()) > 1
+    if not has_rows:
+        return Run(folder, False, reason or f"exit status {proc.returncode}", seconds=seconds)
+    run = Run(folder, True, end_time=end, seconds=seconds)
+    if result.get("verdict") == "error":
+        run.error = reason  # ran, then stopped with an error: compared up to there, the error reported
+    return run
