@@ -10,6 +10,7 @@ What each run leaves for the comparison (compare.py):
 import dataclasses
 import json
 import pathlib
+import signal
 import subprocess
 import time
 
@@ -57,15 +58,25 @@ def run_peer(esmini_bin: pathlib.Path, xosc: pathlib.Path, folder: pathlib.Path,
     cmd = [str(esmini_bin / "esmini"), "--headless", "--fixed_timestep", str(STEP), "--osc", str(xosc),
            "--record", "sim.dat", "--disable_stdout", "--logfile_path", "log.txt", "--seed", "1"]
     timed_out = False
+    proc = subprocess.Popen(cmd, cwd=folder, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
     try:
-        proc = subprocess.run(cmd, cwd=folder, capture_output=True, text=True, timeout=timeout)
-        rc = proc.returncode
+        rc = proc.wait(timeout=timeout)
     except subprocess.TimeoutExpired:
+        # SIGINT: esmini closes its recording (a SIGKILL would leave it empty).
+        proc.send_signal(signal.SIGINT)
+        try:
+            proc.wait(timeout=30)
+        except subprocess.TimeoutExpired:
+            proc.kill()
+            proc.wait()
         rc, timed_out = 0, True
     log = folder / "log.txt"
     log_text = log.read_text(errors="replace") if log.exists() else ""
     if rc != 0 or not (folder / "sim.dat").exists():
-        reason = _first_line(log_text, "[error]") or f"esmini exit status {rc}"
+        variations = sorted(folder.glob("sim_*_of_*.dat"))
+        reason = (_first_line(log_text, "[error]") or
+                  (f"a parameter distribution: esmini ran {variations[0].stem.split('_of_')[1]} variations"
+                   if variations else f"esmini exit status {rc}, no recording"))
         return Run(folder, False, reason.replace("[] [error] ", ""), seconds=time.monotonic() - start)
     subprocess.run([str(esmini_bin / "dat2csv"), "--file", "sim.dat"], cwd=folder, capture_output=True, text=True,
                    timeout=120)
