@@ -73,6 +73,8 @@ def run_file(xosc: pathlib.Path, work: pathlib.Path, orchestrator: pathlib.Path,
                 out.update(status="differs", detail=f"{first.what} {first.text()}{more}")
             else:
                 out.update(status="match", detail="")
+    # Paths in messages relative to the checkout, as in the table of expected differences.
+    out["detail"] = out["detail"].replace(str(ROOT.parent.resolve()) + "/", "../").replace("invalid scenario: ", "")
     out["seconds"] = time.monotonic() - start
     return out
 

@@ -133,10 +133,17 @@ def compare_positions(ours, drivers, peer, end_time: float):
             a, b = ours[name].get(k), peer.get(name, {}).get(k)
             if a is None and b is None:
                 continue
-            count += 1
             if a is None or b is None:
+                # Added or deleted in a step next to this one by the other player (esmini records
+                # an entity an AddEntityAction adds from the step after): within one step, as
+                # the transitions.
+                missing = ours[name] if a is None else peer.get(name, {})
+                if any(_key(t + d) in missing for d in (-STEP, STEP)):
+                    continue
+                count += 1
                 differences.append(Difference("position", name, t, _fmt_point(a), _fmt_point(b)))
                 break
+            count += 1
             gap = math.hypot(a[0] - b[0], a[1] - b[1])
             if gap > TOLERANCE:
                 differences.append(Difference("position", name, t, _fmt_point(a), f"{_fmt_point(b)}, {gap:.3f} m apart"))

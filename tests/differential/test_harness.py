@@ -93,6 +93,20 @@ class Comparison(unittest.TestCase):
         self.assertEqual([d.text() for d in c.differences], ["GoAction endTransition at 1.55 s: ours none, peer 1.55 s"])
 
 
+    def test_an_entity_added_one_step_apart_is_not_a_difference_two_steps_is(self):
+        for peer_from, differs in ((1.05, False), (1.1, True)):
+            folder = self.root / f"added_{peer_from}"
+            folder.mkdir()
+            o = Outputs(folder)
+            with (o.ours / "trace.csv").open("a") as f:
+                f.writelines(our_row(i * 0.05, "B", 330, -5.25) for i in range(20, 41))
+            with (o.peer / "sim.csv").open("a") as f:
+                f.writelines(peer_row(i * 0.05, "B", 330, -5.25) for i in range(int(round(peer_from / 0.05)), 41))
+            c = o.compare()
+            self.assertEqual([d.text() for d in c.differences],
+                             ["B at 1.00 s: ours (330.000, -5.250), peer absent"] if differs else [])
+
+
 class Judgement(unittest.TestCase):
     def result(self, status, detail=""):
         return {"file": "f.xosc", "status": status, "detail": detail, "comparison": None}
