@@ -49,10 +49,27 @@ def _last_time(csv_file: pathlib.Path) -> float:
     return last
 
 
-def run_peer(esmini_bin: pathlib.Path, xosc: pathlib.Path, folder: pathlib.Path, timeout: float) -> Run:
-    """esmini --headless at STEP; its recording converted to sim.csv. A file with no
-    StopTrigger would run forever: the run is stopped after `timeout` s of wall-clock time
-    (what it recorded until then is compared)."""
+def _write_csv(esmini_bin: pathlib.Path, folder: pathlib.Path, sim: pathlib.Path, max_time: float) -> None:
+    """dat2csv's rows up to `max_time` into sim.csv. esmini records only what changes, and
+    dat2csv writes every step: a file whose StopTrigger never fires (entities standing at
+    the road's end for hours of simulated time) would give gigabytes."""
+    proc = subprocess.Popen([str(esmini_bin / "dat2csv"), "--file", "sim.dat", "--print_csv"], cwd=folder,
+                            stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, text=True)
+    with sim.open("w") as out:
+        for line in proc.stdout:
+            head = line.split(",", 1)[0]
+            if head.replace(".", "", 1).isdigit() and float(head) > max_time + 1e-6:
+                break
+            out.write(line)
+    proc.kill()
+    proc.wait()
+
+
+def run_peer(esmini_bin: pathlib.Path, xosc: pathlib.Path, folder: pathlib.Path, timeout: float,
+             max_time: float) -> Run:
+    """esmini --headless at STEP; its recording converted to sim.csv up to `max_time` s. A
+    file whose StopTrigger never fires would run forever: the run is stopped after `timeout` s
+    of wall-clock time (what it recorded until then is compared)."""
     folder.mkdir(parents=True, exist_ok=True)
     start = time.monotonic()
     cmd = [str(esmini_bin / "esmini"), "--headless", "--fixed_timestep", str(STEP), "--osc", str(xosc),
@@ -78,11 +95,10 @@ def run_peer(esmini_bin: pathlib.Path, xosc: pathlib.Path, folder: pathlib.Path,
                   (f"a parameter distribution: esmini ran {variations[0].stem.split('_of_')[1]} variations"
                    if variations else f"esmini exit status {rc}, no recording"))
         return Run(folder, False, reason.replace("[] [error] ", ""), seconds=time.monotonic() - start)
-    subprocess.run([str(esmini_bin / "dat2csv"), "--file", "sim.dat"], cwd=folder, capture_output=True, text=True,
-                   timeout=120)
     sim = folder / "sim.csv"
-    if not sim.exists():
-        return Run(folder, False, "dat2csv wrote no sim.csv", seconds=time.monotonic() - start)
+    _write_csv(esmini_bin, folder, sim, max_time)
+    if not sim.exists() or sim.stat().st_size == 0:
+        return Run(folder, False, "dat2csv wrote no rows", seconds=time.monotonic() - start)
     return Run(folder, True, end_time=_last_time(sim), seconds=time.monotonic() - start, timed_out=timed_out)
 
 
@@ -104,7 +120,8 @@ def run_ours(orchestrator: pathlib.Path, xosc: pathlib.Path, folder: pathlib.Pat
     result_file, trace = folder / "result.json", folder / "trace.csv"
     result = json.loads(result_file.read_text()) if result_file.exists() else {}
     reason = result.get("reason", "") or _first_line(proc.stderr, "error") or _first_line(proc.stderr)
-    end = _last_time(trace) if trace.exists() else 0.0
+    # The simulated time it reached (the trace ends earlier when every entity has left the road).
+    end = float(result.get("sim_time") or (_last_time(trace) if trace.exists() else 0.0))
     has_rows = trace.exists() and trace.stat().st_size > 0 and sum(1 for _ in trace.open()) > 1
     if not has_rows:
         return Run(folder, False, reason or f"exit status {proc.returncode}", seconds=seconds)
