@@ -11,7 +11,7 @@ that now matches, or now fails in another way, is a failure too (the list only s
 knowingly). Exit status 0 when every file is as expected, 1 otherwise.
 
 Usage: scripts/osc_differential.py [--orchestrator build/bin/orchestrator] [--jobs N]
-           [--work DIR] [--update] [--extra FILE.xosc...] [FILE.xosc...]
+           [--work DIR] [--update] [--extra FILE.xosc]... [FILE.xosc...]
        scripts/osc_differential.py --check-doc | --write-doc
 """
 import argparse
@@ -129,8 +129,9 @@ def main() -> int:
     parser.add_argument("--esmini", type=pathlib.Path, default=SHARED / "tools" / "esmini" / "bin")
     parser.add_argument("--jobs", type=int, default=os.cpu_count() or 2)
     parser.add_argument("--work", type=pathlib.Path, help="keep both players' outputs here (default: a temporary folder)")
-    parser.add_argument("--extra", nargs="*", type=pathlib.Path, default=[],
-                        help="files outside the corpus (e.g. the OSC-ALKS templates not in shared/): reported, not judged")
+    parser.add_argument("--extra", action="append", type=pathlib.Path, default=[], metavar="FILE.xosc",
+                        help="a file outside the corpus (e.g. an OSC-ALKS template not in shared/): reported, not "
+                             "judged; with only --extra files, only they run (repeat the option for more)")
     parser.add_argument("--update", action="store_true",
                         help="rewrite the table from this run (reasons kept where the category stays) and the doc")
     parser.add_argument("--check-doc", action="store_true", help="only check docs/differential.md's table")
@@ -147,7 +148,7 @@ def main() -> int:
             print(f"differential: {needed} is missing")
             return 1
     corpus = corpus_files()
-    files = [f.resolve() for f in args.files] if args.files else corpus
+    files = [f.resolve() for f in args.files] if args.files or args.extra else corpus
     extra = [f.resolve() for f in args.extra]
     status = 0
     known = {relative(f) for f in corpus}
