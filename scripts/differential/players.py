@@ -115,7 +115,7 @@ def run_ours(orchestrator: pathlib.Path, xosc: pathlib.Path, folder: pathlib.Pat
     try:
         proc = subprocess.run(cmd, capture_output=True, text=True, timeout=timeout)
     except subprocess.TimeoutExpired:
-        return Run(folder, False, f"no result after {timeout:g} s of wall-clock time", seconds=timeout)
+        return Run(folder, False, f"no result after {timeout:g} s of wall-clock time", seconds=timeout, timed_out=True)
     seconds = time.monotonic() - start
     result_file, trace = folder / "result.json", folder / "trace.csv"
     result = json.loads(result_file.read_text()) if result_file.exists() else {}
