@@ -56,7 +56,12 @@ def _write_csv(esmini_bin: pathlib.Path, folder: pathlib.Path, sim: pathlib.Path
     proc = subprocess.Popen([str(esmini_bin / "dat2csv"), "--file", "sim.dat", "--print_csv"], cwd=folder,
                             stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, text=True)
     with sim.open("w") as out:
+        header = False
         for line in proc.stdout:
+            if not header:  # dat2csv prints esmini's version banner first
+                header = line.startswith("time,")
+                if not header:
+                    continue
             head = line.split(",", 1)[0]
             if head.replace(".", "", 1).isdigit() and float(head) > max_time + 1e-6:
                 break

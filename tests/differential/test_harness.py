@@ -9,7 +9,7 @@ import unittest
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT / "scripts"))
-from differential import compare, expected  # noqa: E402
+from differential import compare, expected, players  # noqa: E402
 import osc_differential  # noqa: E402
 
 OUR_HEADER = "time,scene_id,actor_id,x,y,heading,speed,accel,edge,lane,lane_pos,lat_offset,signals,siren,driver\n"
@@ -105,6 +105,21 @@ class Comparison(unittest.TestCase):
             c = o.compare()
             self.assertEqual([d.text() for d in c.differences],
                              ["B at 1.00 s: ours (330.000, -5.250), peer absent"] if differs else [])
+
+
+class PeerCsv(unittest.TestCase):
+    def test_dat2csv_rows_without_its_banner_and_only_up_to_the_compared_time(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            root = pathlib.Path(tmp)
+            fake = root / "dat2csv"  # prints as the real one does with --print_csv
+            fake.write_text("#!/bin/sh\necho 'esmini GIT REV: v3.6.0'\necho 'time, id, name, x, y'\n"
+                            "for t in 0.000 0.050 0.100 0.150; do echo \"$t, 0, A, 1.000, 2.000\"; done\n")
+            fake.chmod(0o755)
+            sim = root / "sim.csv"
+            players._write_csv(root, root, sim, 0.1)
+            self.assertEqual(sim.read_text().splitlines(),
+                             ["time, id, name, x, y", "0.000, 0, A, 1.000, 2.000", "0.050, 0, A, 1.000, 2.000",
+                              "0.100, 0, A, 1.000, 2.000"])
 
 
 class Judgement(unittest.TestCase):
