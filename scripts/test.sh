@@ -13,13 +13,14 @@ root=$(cd "$(dirname "$0")/.." && pwd)
 build="$root/build-test"
 rm -rf "$build"
 # The main stage builds and runs what needs the release build: integration tests on real
-# SUMO, the real user files, the reports in a browser and the libFuzzer targets. The unit
+# SUMO, the real user files, the reports in a browser, the libFuzzer targets and the
+# differential test against esmini. The unit
 # and end-to-end tests and the random fuzz drivers run in the sanitizer stage (stricter, and
 # each test is compiled once): ORCH_SANITIZE_STAGE=0 builds and runs them here instead.
 # -g1: line tables are all a failing test's backtrace needs, and full debug information
 # costs a fifth of the compile time.
-sets="integration;shared_data;browser;libfuzzer"
-[ "${ORCH_SANITIZE_STAGE:-1}" = 1 ] || sets="unit;integration;e2e;shared_data;browser;fuzz_random;libfuzzer"
+sets="integration;shared_data;browser;libfuzzer;differential"
+[ "${ORCH_SANITIZE_STAGE:-1}" = 1 ] || sets="unit;integration;e2e;shared_data;browser;fuzz_random;libfuzzer;differential"
 "$root/scripts/build.sh" "$build" -DORCH_WERROR=ON -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O2 -g1 -DNDEBUG" \
   -DORCH_TEST_SETS="$sets"
 cd "$build"

@@ -9,6 +9,7 @@
 #include "core/errors.hpp"
 #include "core/exhaustive.hpp"
 #include "openscenario/expression.hpp"
+#include "openscenario/lane_offset.hpp"
 #include "openscenario/route_plan.hpp"
 #include "openscenario/text_number.hpp"
 #include "openscenario/trajectory_follow.hpp"
@@ -256,7 +257,8 @@ std::vector<std::string> start_action(const PrivateAction& action, const std::st
           update_pose(state, ctx.roads);
         } else if constexpr (std::is_same_v<T, LaneOffsetAction>) {
           if (!state.placed) throw MapError(fmt::format("entity \"{}\" has no position yet", entity));
-          const double to = a.relative_to ? placed(ctx, *a.relative_to).offset + a.value : a.value;
+          const double to =
+              a.relative_to ? relative_lane_offset(state, placed(ctx, *a.relative_to), a.value, ctx.roads) : a.value;
           state.path.reset();
           const double duration =
               a.max_lateral_acc ? duration_for_lateral_acceleration(a.shape, to - state.offset, *a.max_lateral_acc) : 0.0;

@@ -1,0 +1,191 @@
+"""Compares a run of the orchestrator with the peer's run of the same file.
+
+Positions: every entity that follows the storyboard in our run (trace.csv `driver` is
+`script` in every row: SUMO, the reference driver and a plug-in drive the others), every
+SAMPLE s from 0 to the end both runs reached, by its reference point. Both players record
+the OpenSCENARIO reference point in the OpenDRIVE frame: esmini its entity's origin (the
+rear axle centre of a vehicle), our trace the same point (SUMO's vehicle centre moved back
+by the bounding box centre, openscenario_runner.cpp), so the points compare as they are.
+
+Transitions: every start, end, stop and skip transition of a storyboard element (its name,
+the transition, the time): ours from result.json `events`, the peer's from log.txt
+(`[t] [info] NAME fromState -> xTransition -> toState`), within one step.
+"""
+import collections
+import csv
+import dataclasses
+import json
+import math
+import pathlib
+import re
+
+SAMPLE = 0.5        # s between compared positions
+TOLERANCE = 0.10    # m
+STEP = 0.05         # s: transitions agree within one step
+TRANSITIONS = ("startTransition", "endTransition", "stopTransition", "skipTransition")
+# esmini logs its Init actions as "Init <entity> <ActionType>" (the standard gives them no
+# names and no transitions; we do not log them).
+PEER_INIT = re.compile(r"^Init \S+ \w+Action$")
+PEER_LINE = re.compile(r"^\[(\d+\.\d+)\] \[info\] (.+) (\w+State) -> (\w+Transition) -> (\w+State)\s*$")
+# esmini calls the Storyboard element "storyBoard"; our log gives it no name (type storyboard).
+# Its start (at 0 s in both) is not in our log: only its stop is compared.
+PEER_NAMES = {"storyBoard": "Storyboard"}
+STORYBOARD = "Storyboard"
+
+
+@dataclasses.dataclass
+class Difference:
+    what: str       # "position" or "transition"
+    subject: str    # entity or "element transition"
+    time: float
+    ours: str
+    peer: str
+
+    def text(self) -> str:
+        return f"{self.subject} at {self.time:.2f} s: ours {self.ours}, peer {self.peer}"
+
+
+@dataclasses.dataclass
+class Comparison:
+    compared_entities: list
+    not_compared: dict          # entity -> why (who drove it)
+    end_time: float             # compared up to
+    positions: int              # compared points
+    transitions: int            # compared transitions
+    differences: list           # Difference, the first of each entity / element first, by time
+
+    @property
+    def matches(self) -> bool:
+        return not self.differences
+
+
+def _key(t: float) -> int:
+    return int(round(t * 1000))
+
+
+def read_our_trace(trace: pathlib.Path):
+    """{entity: {time_ms: (x, y)}} and {entity: set of drivers}."""
+    points, drivers = collections.defaultdict(dict), collections.defaultdict(set)
+    with trace.open(newline="") as f:
+        for row in csv.DictReader(f):
+            name = row["actor_id"]
+            points[name][_key(float(row["time"]))] = (float(row["x"]), float(row["y"]))
+            drivers[name].add(row["driver"])
+    return points, drivers
+
+
+def read_peer_trace(sim_csv: pathlib.Path):
+    """{entity: {time_ms: (x, y)}} from esmini's dat2csv output (columns with spaces)."""
+    points = collections.defaultdict(dict)
+    with sim_csv.open(newline="") as f:
+        reader = csv.reader(f, skipinitialspace=True)
+        header = [h.strip() for h in next(reader)]
+        col = {h: i for i, h in enumerate(header)}
+        for row in reader:
+            if len(row) < len(header):
+                continue
+            points[row[col["name"]]][_key(float(row[col["time"]]))] = (float(row[col["x"]]), float(row[col["y"]]))
+    return points
+
+
+def read_our_transitions(result_json: pathlib.Path) -> list:
+    """[(time, name, transition)] from result.json events ("<type> <name> <transition>")."""
+    result = json.loads(result_json.read_text())
+    out = []
+    for e in result.get("events", []):
+        if e.get("kind") not in ("storyboard", "action"):
+            continue
+        parts = e["text"].split(" ")
+        if len(parts) < 3 or parts[-1] not in TRANSITIONS:
+            continue
+        name = " ".join(parts[1:-1]).strip() or (STORYBOARD if parts[0] == "storyboard" else "")
+        out.append((float(e["time"]), name, parts[-1]))
+    return out
+
+
+def read_peer_transitions(log_txt: pathlib.Path) -> list:
+    out = []
+    for line in log_txt.read_text(errors="replace").splitlines():
+        m = PEER_LINE.match(line)
+        if not m or m.group(4) not in TRANSITIONS or PEER_INIT.match(m.group(2)):
+            continue
+        name = PEER_NAMES.get(m.group(2), m.group(2))
+        if name == STORYBOARD and m.group(4) == "startTransition":
+            continue
+        out.append((float(m.group(1)), name, m.group(4)))
+    return out
+
+
+def _fmt_point(p) -> str:
+    return f"({p[0]:.3f}, {p[1]:.3f})" if p else "absent"
+
+
+def compare_positions(ours, drivers, peer, end_time: float):
+    """Differences (the first per entity), the entities compared, those not compared, count."""
+    compared = sorted(n for n, d in drivers.items() if d == {"script"})
+    not_compared = {n: "driven by " + "/".join(sorted(d - {"script"})) for n, d in drivers.items()
+                    if d != {"script"}}
+    differences, count = [], 0
+    samples = [i * SAMPLE for i in range(int(math.floor(end_time / SAMPLE + 1e-9)) + 1)]
+    for name in compared:
+        for t in samples:
+            k = _key(t)
+            a, b = ours[name].get(k), peer.get(name, {}).get(k)
+            if a is None and b is None:
+                continue
+            if a is None or b is None:
+                # Added or deleted in a step next to this one by the other player (esmini records
+                # an entity an AddEntityAction adds from the step after): within one step, as
+                # the transitions.
+                missing = ours[name] if a is None else peer.get(name, {})
+                if any(_key(t + d) in missing for d in (-STEP, STEP)):
+                    continue
+                count += 1
+                differences.append(Difference("position", name, t, _fmt_point(a), _fmt_point(b)))
+                break
+            count += 1
+            gap = math.hypot(a[0] - b[0], a[1] - b[1])
+            if gap > TOLERANCE:
+                differences.append(Difference("position", name, t, _fmt_point(a), f"{_fmt_point(b)}, {gap:.3f} m apart"))
+                break
+    return differences, compared, not_compared, count
+
+
+def compare_transitions(ours: list, peer: list, end_time: float):
+    """Pairs the k-th occurrence of each (element, transition) in both runs; a time off by
+    more than one step, or an occurrence in one run only (before end_time), is a difference."""
+    def grouped(items):
+        g = collections.defaultdict(list)
+        for t, name, transition in items:
+            if t <= end_time + 1e-6:
+                g[(name, transition)].append(t)
+        return g
+    a, b = grouped(ours), grouped(peer)
+    differences, count = [], 0
+    for key in sorted(set(a) | set(b)):
+        ta, tb = sorted(a.get(key, [])), sorted(b.get(key, []))
+        subject = f"{key[0]} {key[1]}"
+        for i in range(max(len(ta), len(tb))):
+            count += 1
+            x = ta[i] if i < len(ta) else None
+            y = tb[i] if i < len(tb) else None
+            if x is None or y is None:
+                t = x if x is not None else y
+                differences.append(Difference("transition", subject, t, f"{x:.2f} s" if x is not None else "none",
+                                              f"{y:.2f} s" if y is not None else "none"))
+                break
+            if abs(x - y) > STEP + 1e-6:
+                differences.append(Difference("transition", subject, min(x, y), f"{x:.2f} s", f"{y:.2f} s"))
+                break
+    return differences, count
+
+
+def compare_runs(our_folder: pathlib.Path, peer_folder: pathlib.Path, our_end: float, peer_end: float) -> Comparison:
+    ours, drivers = read_our_trace(our_folder / "trace.csv")
+    peer = read_peer_trace(peer_folder / "sim.csv")
+    end = min(our_end, peer_end)
+    pos_diff, compared, not_compared, positions = compare_positions(ours, drivers, peer, end)
+    tr_diff, transitions = compare_transitions(read_our_transitions(our_folder / "result.json"),
+                                               read_peer_transitions(peer_folder / "log.txt"), end)
+    differences = sorted(pos_diff + tr_diff, key=lambda d: (d.time, d.what, d.subject))
+    return Comparison(compared, not_compared, end, positions, transitions, differences)

@@ -1,0 +1,195 @@
+#!/usr/bin/env python3
+"""Differential test of the OpenSCENARIO runtime against a peer player (esmini, headless,
+../shared/tools/esmini): every file of the corpus runs in both at a 0.05 s step; every
+entity that follows the storyboard is compared every 0.5 s by its reference point (0.10 m)
+and every storyboard element transition by its time (one step). See docs/differential.md.
+
+Corpus: ../shared/data/openscenario/*.xosc (OSC-ALKS), ../shared/data/esmini_examples/xosc/
+*.xosc and scenarios/openscenario/*.xosc. A file that does not match is a failure unless
+tests/differential/expected_differences.txt lists it with the right category; a listed file
+that now matches, or now fails in another way, is a failure too (the list only shrinks
+knowingly). Exit status 0 when every file is as expected, 1 otherwise.
+
+Usage: scripts/osc_differential.py [--orchestrator build/bin/orchestrator] [--jobs N]
+           [--work DIR] [--update] [--extra FILE.xosc]... [FILE.xosc...]
+       scripts/osc_differential.py --check-doc | --write-doc
+"""
+import argparse
+import concurrent.futures
+import os
+import pathlib
+import sys
+import tempfile
+import time
+
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
+from differential import compare, expected, players  # noqa: E402
+from doc_tables import write_between  # noqa: E402
+
+ROOT = pathlib.Path(__file__).resolve().parent.parent
+SHARED = ROOT.parent / "shared"
+EXPECTED = ROOT / "tests" / "differential" / "expected_differences.txt"
+DOC = ROOT / "docs" / "differential.md"
+BEGIN, END = "<!-- expected-differences:begin -->", "<!-- expected-differences:end -->"
+CORPUS = [SHARED / "data" / "openscenario", SHARED / "data" / "esmini_examples" / "xosc",
+          ROOT / "scenarios" / "openscenario"]
+# Simulated seconds compared at most: files whose StopTrigger comes later (OSC-ALKS 4.1_1 at
+# 300 s, whose steps cost ~15 times 4.1_2's on its curved roads; esmini's examples that stop
+# at 1200 s) are compared over their first MAX_TIME s (the test's time budget on 2 cores).
+MAX_TIME = 60.0
+PEER_TIMEOUT = 60.0      # s wall-clock: a file whose StopTrigger never fires
+OURS_TIMEOUT = 900.0
+
+
+def corpus_files() -> list:
+    return sorted(f for d in CORPUS for f in d.glob("*.xosc"))
+
+
+def relative(path: pathlib.Path) -> str:
+    return os.path.relpath(path.resolve(), ROOT)
+
+
+def run_file(xosc: pathlib.Path, work: pathlib.Path, orchestrator: pathlib.Path, esmini: pathlib.Path) -> dict:
+    """Both players on one file; {'file', 'status', 'detail', 'comparison', 'seconds'}."""
+    folder = work / relative(xosc).replace("../", "").replace("/", "__")
+    start = time.monotonic()
+    peer = players.run_peer(esmini, xosc, folder / "peer", PEER_TIMEOUT, MAX_TIME)
+    out = {"file": relative(xosc), "comparison": None}
+    if not peer.ok:
+        out.update(status="peer-error", detail=peer.error)
+    else:
+        max_time = min(peer.end_time + 1.0, MAX_TIME)
+        ours = players.run_ours(orchestrator, xosc, folder / "ours", max_time, OURS_TIMEOUT)
+        if not ours.ok:
+            out.update(status="ours-error" if ours.timed_out else "unreadable", detail=ours.error)
+        else:
+            c = compare.compare_runs(ours.folder, peer.folder, ours.end_time, min(peer.end_time, MAX_TIME))
+            out["comparison"] = c
+            if ours.error:
+                out.update(status="ours-error", detail=f"stopped at {ours.end_time:.2f} s: {ours.error}")
+            elif c.differences:
+                first = c.differences[0]
+                more = f" (+{len(c.differences) - 1} more)" if len(c.differences) > 1 else ""
+                out.update(status="differs", detail=f"{first.what} {first.text()}{more}")
+            else:
+                out.update(status="match", detail="")
+    # Paths in messages relative to the checkout, as in the table of expected differences.
+    out["detail"] = out["detail"].replace(str(ROOT.parent.resolve()) + "/", "../").replace("invalid scenario: ", "")
+    out["seconds"] = time.monotonic() - start
+    return out
+
+
+def run_guarded(xosc: pathlib.Path, work: pathlib.Path, orchestrator: pathlib.Path, esmini: pathlib.Path) -> dict:
+    """run_file; a failure of the harness itself on one file is that file's result."""
+    try:
+        return run_file(xosc, work, orchestrator, esmini)
+    except Exception as e:  # noqa: BLE001 (reported per file, the other files go on)
+        return {"file": relative(xosc), "status": "harness-error", "detail": f"{type(e).__name__}: {e}",
+                "comparison": None, "seconds": 0.0}
+
+
+def summary_of(c) -> str:
+    if c is None:
+        return ""
+    skipped = ", ".join(f"{n} {why}" for n, why in sorted(c.not_compared.items()))
+    return (f"{len(c.compared_entities)} entities, {c.positions} points, {c.transitions} transitions up to "
+            f"{c.end_time:.2f} s" + (f"; not compared: {skipped}" if skipped else ""))
+
+
+def judge(result: dict, listed) -> tuple:
+    """(ok, line) for one file against its entry in the table (or none)."""
+    file, status, detail = result["file"], result["status"], result["detail"]
+    summary = summary_of(result["comparison"])
+    if status == "match":
+        if listed:
+            return False, f"FAIL {file}: listed as {listed.category} but now matches the peer ({summary}): remove its line"
+        return True, f"match {file} ({summary})"
+    if not listed:
+        return False, f"FAIL {file}: {status}: {detail}" + (f" [{summary}]" if summary else "")
+    if listed.category != status:
+        return False, f"FAIL {file}: listed as {listed.category}, now {status}: {detail}: update its line"
+    return True, f"expected {file} [{status}: {listed.reason}] now: {detail}"
+
+
+def check_doc(entries: dict) -> int:
+    text = DOC.read_text()
+    begin, end = text.index(BEGIN) + len(BEGIN), text.index(END)
+    if text[begin:end].strip() != expected.doc_table(entries).strip():
+        print(f"{relative(DOC)}: the table of expected differences is not {relative(EXPECTED)}'s: "
+              "run scripts/osc_differential.py --write-doc")
+        return 1
+    print(f"{relative(DOC)}: table in step with {relative(EXPECTED)} ({len(entries)} files)")
+    return 0
+
+
+def main() -> int:
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("files", nargs="*", type=pathlib.Path, help="only these files of the corpus")
+    parser.add_argument("--orchestrator", type=pathlib.Path, default=ROOT / "build" / "bin" / "orchestrator")
+    parser.add_argument("--esmini", type=pathlib.Path, default=SHARED / "tools" / "esmini" / "bin")
+    parser.add_argument("--jobs", type=int, default=os.cpu_count() or 2)
+    parser.add_argument("--work", type=pathlib.Path, help="keep both players' outputs here (default: a temporary folder)")
+    parser.add_argument("--extra", action="append", type=pathlib.Path, default=[], metavar="FILE.xosc",
+                        help="a file outside the corpus (e.g. an OSC-ALKS template not in shared/): reported, not "
+                             "judged; with only --extra files, only they run (repeat the option for more)")
+    parser.add_argument("--update", action="store_true",
+                        help="rewrite the table from this run (reasons kept where the category stays) and the doc")
+    parser.add_argument("--check-doc", action="store_true", help="only check docs/differential.md's table")
+    parser.add_argument("--write-doc", action="store_true", help="only rewrite docs/differential.md's table")
+    args = parser.parse_args()
+    entries = expected.read(EXPECTED)
+    if args.check_doc:
+        return check_doc(entries)
+    if args.write_doc:
+        write_between(DOC, BEGIN, END, expected.doc_table(entries))
+        return 0
+    for needed in (args.orchestrator, args.esmini / "esmini", args.esmini / "dat2csv"):
+        if not needed.exists():
+            print(f"differential: {needed} is missing")
+            return 1
+    corpus = corpus_files()
+    files = [f.resolve() for f in args.files] if args.files or args.extra else corpus
+    extra = [f.resolve() for f in args.extra]
+    status = 0
+    known = {relative(f) for f in corpus}
+    for stale in sorted(set(entries) - known):
+        print(f"FAIL {stale}: listed in {relative(EXPECTED)} but not in the corpus: remove its line")
+        status = 1
+    start = time.monotonic()
+    counts, results = {}, []
+    extra_names = {relative(f) for f in extra}
+    with tempfile.TemporaryDirectory() as tmp, concurrent.futures.ThreadPoolExecutor(args.jobs) as pool:
+        work = args.work or pathlib.Path(tmp)
+        futures = [pool.submit(run_guarded, f, work, args.orchestrator, args.esmini) for f in files + extra]
+        for future in concurrent.futures.as_completed(futures):  # each file's line as soon as it is done
+            r = future.result()
+            results.append(r)
+            counts[r["status"]] = counts.get(r["status"], 0) + 1
+            if r["file"] in extra_names:
+                print(f"extra {r['file']}: {r['status']} {r['detail']} ({summary_of(r['comparison'])})", flush=True)
+                continue
+            ok, line = judge(r, entries.get(r["file"]))
+            print(line, flush=True)
+            status |= 0 if ok else 1
+    elapsed = time.monotonic() - start
+    slowest = sorted(results, key=lambda r: -r["seconds"])[:3]
+    print(f"differential: {len(results)} files in {elapsed:.1f} s with {args.jobs} jobs: " +
+          ", ".join(f"{n} {k}" for k, n in sorted(counts.items())) +
+          "; slowest: " + ", ".join(f"{pathlib.Path(r['file']).name} {r['seconds']:.1f} s" for r in slowest))
+    if args.update:
+        for r in results:
+            if r["file"] in extra_names:
+                continue
+            old = entries.get(r["file"])
+            if r["status"] == "match":
+                entries.pop(r["file"], None)
+            elif not old or old.category != r["status"]:
+                entries[r["file"]] = expected.Entry(r["file"], r["status"], r["detail"])
+        expected.write(EXPECTED, entries)
+        write_between(DOC, BEGIN, END, expected.doc_table(entries))
+        print(f"differential: wrote {relative(EXPECTED)} ({len(entries)} files) and {relative(DOC)}")
+    return status
+
+
+if __name__ == "__main__":
+    sys.exit(main())

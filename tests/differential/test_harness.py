@@ -1,0 +1,159 @@
+"""The differential harness's own logic (scripts/differential, scripts/osc_differential.py) on
+small outputs written here, in both players' formats: what is compared, what is a
+difference, and how a file is judged against the table of expected differences."""
+import json
+import pathlib
+import sys
+import tempfile
+import unittest
+
+ROOT = pathlib.Path(__file__).resolve().parents[2]
+sys.path.insert(0, str(ROOT / "scripts"))
+from differential import compare, expected, players  # noqa: E402
+import osc_differential  # noqa: E402
+
+OUR_HEADER = "time,scene_id,actor_id,x,y,heading,speed,accel,edge,lane,lane_pos,lat_offset,signals,siren,driver\n"
+
+
+def our_row(t, name, x, y, driver="script"):
+    return f"{t:.3f},,{name},{x:.3f},{y:.3f},0,10,0,e,0,0,0,0,0,{driver}\n"
+
+
+def peer_row(t, name, x, y):
+    return f"{t:.3f}, 0, {name}, {x:.3f}, {y:.3f}, 0.000, 0.000, 0.000, 0.000, 10.000, 0.000, 0.000\n"
+
+
+class Outputs:
+    """Both players' output folders with a car A (scripted) and an ego (SUMO-driven) moving
+    along x at 10 m/s for 2 s; `shift(t)` moves our A sideways."""
+
+    def __init__(self, root: pathlib.Path, shift=lambda t: 0.0, ours_events=(), peer_log=""):
+        self.ours, self.peer = root / "ours", root / "peer"
+        self.ours.mkdir()
+        self.peer.mkdir()
+        trace, sim = [OUR_HEADER], ["time, id, name, x, y, z, h, p, r, speed, wheel_angle, wheel_rot\n"]
+        for i in range(41):
+            t = i * 0.05
+            trace += [our_row(t, "A", 10 * t, -1.75 + shift(t)), our_row(t, "Ego", 10 * t + 50, -5.0, "sumo")]
+            sim += [peer_row(t, "A", 10 * t, -1.75), peer_row(t, "Ego", 10 * t + 60, -5.0)]
+        (self.ours / "trace.csv").write_text("".join(trace))
+        (self.peer / "sim.csv").write_text("".join(sim))
+        events = [{"time": t, "kind": k, "text": text} for t, k, text in ours_events]
+        (self.ours / "result.json").write_text(json.dumps({"verdict": "success", "events": events}))
+        (self.peer / "log.txt").write_text(peer_log)
+
+    def compare(self):
+        return compare.compare_runs(self.ours, self.peer, 2.0, 2.0)
+
+
+PEER_LOG = """[0.000] [info] Init A TeleportAction initState -> startTransition -> runningState
+[0.000] [info] storyBoard initState -> startTransition -> runningState
+[0.000] [info] Act initState -> initToStandbyTransition -> standbyState
+[1.000] [info] Go standbyState -> startTransition -> runningState
+[1.000] [info] GoAction initState -> startTransition -> runningState
+[1.550] [info] GoAction runningState -> endTransition -> completeState
+[2.000] [info] storyBoard runningState -> stopTransition -> completeState
+"""
+OUR_EVENTS = [(1.0, "storyboard", "event Go startTransition"), (1.0, "action", "action GoAction startTransition"),
+              (1.5, "action", "action GoAction endTransition"), (2.0, "storyboard", "storyboard  stopTransition")]
+
+
+class Comparison(unittest.TestCase):
+    def setUp(self):
+        self.tmp = tempfile.TemporaryDirectory()
+        self.root = pathlib.Path(self.tmp.name)
+
+    def tearDown(self):
+        self.tmp.cleanup()
+
+    def test_same_motion_and_transitions_match_and_sumo_driven_entities_are_not_compared(self):
+        c = Outputs(self.root, ours_events=OUR_EVENTS, peer_log=PEER_LOG).compare()
+        self.assertTrue(c.matches, [d.text() for d in c.differences])
+        self.assertEqual(c.compared_entities, ["A"])          # the ego is 10 m off, but SUMO drove it
+        self.assertEqual(c.not_compared, {"Ego": "driven by sumo"})
+        self.assertEqual(c.positions, 5)                       # 0, 0.5, ... 2.0 s
+        self.assertEqual(c.transitions, 4)                     # Init and standby transitions left out
+
+    def test_a_position_beyond_the_tolerance_names_entity_time_and_both_points(self):
+        c = Outputs(self.root, shift=lambda t: 0.11 if t >= 1.0 else 0.09).compare()
+        self.assertEqual(len(c.differences), 1)
+        d = c.differences[0]
+        self.assertEqual((d.what, d.subject, d.time), ("position", "A", 1.0))
+        self.assertIn("(10.000, -1.640)", d.ours)
+        self.assertIn("(10.000, -1.750), 0.110 m apart", d.peer)
+
+    def test_a_transition_two_steps_late_or_missing_is_a_difference(self):
+        events = [e for e in OUR_EVENTS if "GoAction endTransition" not in e[2]]
+        (self.root / "late").mkdir()
+        (self.root / "missing").mkdir()
+        c = Outputs(self.root / "late", ours_events=events + [(1.65, "action", "action GoAction endTransition")],
+                    peer_log=PEER_LOG).compare()
+        self.assertEqual([d.text() for d in c.differences], ["GoAction endTransition at 1.55 s: ours 1.65 s, peer 1.55 s"])
+        c = Outputs(self.root / "missing", ours_events=events, peer_log=PEER_LOG).compare()
+        self.assertEqual([d.text() for d in c.differences], ["GoAction endTransition at 1.55 s: ours none, peer 1.55 s"])
+
+
+    def test_an_entity_added_one_step_apart_is_not_a_difference_two_steps_is(self):
+        for peer_from, differs in ((1.05, False), (1.1, True)):
+            folder = self.root / f"added_{peer_from}"
+            folder.mkdir()
+            o = Outputs(folder)
+            with (o.ours / "trace.csv").open("a") as f:
+                f.writelines(our_row(i * 0.05, "B", 330, -5.25) for i in range(20, 41))
+            with (o.peer / "sim.csv").open("a") as f:
+                f.writelines(peer_row(i * 0.05, "B", 330, -5.25) for i in range(int(round(peer_from / 0.05)), 41))
+            c = o.compare()
+            self.assertEqual([d.text() for d in c.differences],
+                             ["B at 1.00 s: ours (330.000, -5.250), peer absent"] if differs else [])
+
+
+class PeerCsv(unittest.TestCase):
+    def test_dat2csv_rows_without_its_banner_and_only_up_to_the_compared_time(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            root = pathlib.Path(tmp)
+            fake = root / "dat2csv"  # prints as the real one does with --print_csv
+            fake.write_text("#!/bin/sh\necho 'esmini GIT REV: v3.6.0'\necho 'time, id, name, x, y'\n"
+                            "for t in 0.000 0.050 0.100 0.150; do echo \"$t, 0, A, 1.000, 2.000\"; done\n")
+            fake.chmod(0o755)
+            sim = root / "sim.csv"
+            players._write_csv(root, root, sim, 0.1)
+            self.assertEqual(sim.read_text().splitlines(),
+                             ["time, id, name, x, y", "0.000, 0, A, 1.000, 2.000", "0.050, 0, A, 1.000, 2.000",
+                              "0.100, 0, A, 1.000, 2.000"])
+
+
+class Judgement(unittest.TestCase):
+    def result(self, status, detail=""):
+        return {"file": "f.xosc", "status": status, "detail": detail, "comparison": None}
+
+    def test_the_table_only_shrinks_knowingly(self):
+        listed = expected.Entry("f.xosc", "unreadable", "1.3 trailers")
+        self.assertTrue(osc_differential.judge(self.result("match"), None)[0])
+        ok, line = osc_differential.judge(self.result("match"), listed)
+        self.assertFalse(ok)
+        self.assertIn("now matches the peer", line)
+        ok, line = osc_differential.judge(self.result("differs", "position A at 1.00 s"), listed)
+        self.assertFalse(ok)
+        self.assertIn("listed as unreadable, now differs", line)
+        self.assertTrue(osc_differential.judge(self.result("unreadable", "error"), listed)[0])
+        ok, line = osc_differential.judge(self.result("differs", "position A at 1.00 s"), None)
+        self.assertFalse(ok)
+        self.assertIn("position A at 1.00 s", line)
+
+    def test_the_table_file_is_checked(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            path = pathlib.Path(tmp) / "t.txt"
+            path.write_text("# comment\na.xosc | unreadable | why\n")
+            self.assertEqual(expected.read(path)["a.xosc"].reason, "why")
+            path.write_text("a.xosc | sometimes | why\n")
+            with self.assertRaises(SystemExit) as e:
+                expected.read(path)
+            self.assertIn("t.txt:1: unknown category 'sometimes'", str(e.exception))
+            path.write_text("a.xosc | unreadable | why\na.xosc | differs | why\n")
+            with self.assertRaises(SystemExit) as e:
+                expected.read(path)
+            self.assertIn("t.txt:2: a.xosc is listed twice", str(e.exception))
+
+
+if __name__ == "__main__":
+    unittest.main()
