@@ -61,10 +61,16 @@ bool build_map(const MapManifest& m) {
     }
   }
   fmt::print("map \"{}\": built {}\n", m.id, m.net_path().string());
-  fmt::print("  {} routes -> {} corridors, {} edges, {} lanes; largest waypoint-to-lane-centre distance {:.4f} m "
-             "(route {} wp_idx {})\n",
-             waypoints.routes.size(), report.corridors, report.edges, report.lanes, worst.distance, worst_route,
-             worst.wp_idx);
+  std::string per_edge;
+  for (std::size_t n = 1; n < report.edges_by_lanes.size(); ++n)
+    if (report.edges_by_lanes[n] > 0)
+      per_edge += fmt::format("{}{} with {} lane{}", per_edge.empty() ? "" : ", ", report.edges_by_lanes[n], n,
+                              n == 1 ? "" : "s");
+  fmt::print("  {} routes -> {} corridors, {} junctions, {} edges ({}), {} lanes; largest waypoint-to-lane-centre "
+             "distance {:.4f} m (route {} wp_idx {})\n",
+             waypoints.routes.size(), report.corridors, report.junctions, report.edges, per_edge, report.lanes,
+             worst.distance, worst_route, worst.wp_idx);
+  fmt::print("  picture of the net with the routes over it: {}\n", report.picture.string());
   for (const std::string& note : report.notes) fmt::print("  note: {}\n", note);
   // The background traffic is made from the net: a new net needs new traffic files.
   const auto traffic = write_map_traffic(m);
@@ -91,8 +97,24 @@ MapManifest create_map_folder(const MapBuildOptions& o, const MapRegistry& regis
   const std::filesystem::path dir = o.out.empty() ? first_map_dir(o.common) / id : std::filesystem::path(o.out);
   std::error_code ec;
   const auto same_folder = [&](const MapManifest& other) { return std::filesystem::equivalent(other.dir, dir, ec); };
-  if (const MapManifest* other = registry.find(id); other && !same_folder(*other))
-    throw MapError(fmt::format("a map named \"{}\" already exists in {}; choose another --id", id, other->dir.string()));
+  // Another map of that id matters only where both would be loaded together: when the new
+  // folder lies in one of the folders searched for maps (--maps, else $ORCH_MAPS and sumo_nets/).
+  std::vector<std::filesystem::path> search(o.common.map_dirs.begin(), o.common.map_dirs.end());
+  if (search.empty()) search = MapRegistry::default_search_dirs();
+  const auto searched = [&] {
+    for (const auto& d : search)
+      if (std::filesystem::equivalent(d, dir.parent_path().empty() ? "." : dir.parent_path(), ec)) return true;
+    return false;
+  };
+  if (const MapManifest* other = registry.find(id); other && !same_folder(*other) && searched())
+    throw MapError(fmt::format("a map named \"{}\" already exists in {}, and {} would be loaded beside it; choose "
+                               "another --id, or give --out a folder outside the maps folders ({}) and name its "
+                               "parent with --maps when running",
+                               id, other->dir.string(), dir.string(), [&] {
+                                 std::string list;
+                                 for (const auto& d : search) list += (list.empty() ? "" : ", ") + d.string();
+                                 return list;
+                               }()));
 
   MapManifest m;
   m.max_edge_length = kDefaultMaxEdgeLength;

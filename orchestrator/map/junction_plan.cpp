@@ -17,6 +17,9 @@ namespace {
 constexpr double kConnectionSimplify = 0.02;  // m, as the lane shapes
 constexpr int kOverridePriority = 100;
 constexpr double kParallelCos = 0.9848;  // cos 10 deg
+// m: a second route through a junction between the same lanes may lie this far from the
+// first one's path (drawing noise; `map check` holds every waypoint to 0.10 m).
+constexpr double kMaxSharedPathMiss = 0.25;
 
 std::string junction_id(int zone) { return fmt::format("J{}", zone); }
 
@@ -131,7 +134,8 @@ class JunctionPlanner {
   }
 
   void connect(NetPlan& plan) {
-    std::map<std::tuple<std::string, int, std::string, int>, bool> seen;
+    // (from edge, lane, to edge, lane) -> (its connection, the route whose points shape it)
+    std::map<std::tuple<std::string, int, std::string, int>, std::pair<std::size_t, std::size_t>> seen;
     for (const JunctionPassage& p : pieces_.passages) {
       const WaypointRoute& route = wf_.routes[p.route];
       if (p.before < 0 || p.after < 0) {
@@ -145,12 +149,35 @@ class JunctionPlanner {
       const PlannedEdge& fe = plan.edges[from->second.edge];
       const PlannedEdge& te = plan.edges[to->second.edge];
       const auto key = std::make_tuple(fe.id, from->second.lane, te.id, to->second.lane);
-      if (seen.count(key)) continue;
-      seen[key] = true;
+      if (const auto it = seen.find(key); it != seen.end()) {
+        check_same_path(plan.connections[it->second.first], wf_.routes[it->second.second], route, p);
+        continue;
+      }
+      seen[key] = {plan.connections.size(), p.route};
       const Vec2 a = fe.lanes[static_cast<std::size_t>(from->second.lane)].shape.points().back();
       const Vec2 b = te.lanes[static_cast<std::size_t>(to->second.lane)].shape.point(0);
       plan.connections.push_back({fe.id, te.id, from->second.lane, to->second.lane, passage_shape(route, p, a, b)});
       zone_used_[p.zone] = true;
+    }
+  }
+
+  // SUMO has one connection per pair of lanes: a second route between the same lanes must
+  // drive the first one's path through the junction, or the map cannot carry both.
+  void check_same_path(const PlannedConnection& c, const WaypointRoute& first, const WaypointRoute& route,
+                       const JunctionPassage& p) const {
+    const Polyline path(c.shape);
+    const double length = route.line.length();
+    for (std::size_t i = 0; i < route.points.size(); ++i) {
+      const double s = route.line.s_at_index(i);
+      if (!(s >= p.s0 && s <= p.s1) && !(s + length >= p.s0 && s + length <= p.s1)) continue;
+      const double d = path.project(route.line.point(i)).distance;
+      if (d > kMaxSharedPathMiss)
+        throw MapError(fmt::format(
+            "routes \"{}\" and \"{}\" both drive from lane {}_{} to lane {}_{} through junction {}, but along different "
+            "paths: route \"{}\" wp_idx {} ({:.2f}, {:.2f}) lies {:.2f} m from \"{}\"'s path. SUMO has one connection "
+            "per pair of lanes; draw both turns along the same line",
+            first.id, route.id, c.from, c.from_lane, c.to, c.to_lane, junction_id(p.zone), route.id, i,
+            route.line.point(i).x(), route.line.point(i).y(), d, first.id));
     }
   }
 

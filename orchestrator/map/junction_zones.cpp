@@ -20,6 +20,7 @@ constexpr double kMaxNeighbourSpacing = 6.0;   // m (route_corridors.hpp: kMaxLa
 constexpr double kCell = 6.0;                  // m, grid cell >= every query radius
 constexpr double kProbe = 0.5;                 // m before an entry / after an exit
 constexpr int kMaxAlignRounds = 20;
+constexpr double kMaxReturnGap = 30.0;         // m: a shorter stretch from a junction back to it joins it
 
 struct SegmentRef {
   std::size_t route;
@@ -309,7 +310,27 @@ class ZoneFinder {
     return std::fmod(std::fmod(s, length) + length, length);
   }
 
+  // A short stretch between two passages of one zone would become a lane from a junction
+  // back to itself, inside the junction's own shape (netconvert cuts it to nothing): the
+  // stretch joins the junction instead.
+  void absorb_returns() {
+    for (std::size_t r = 0; r < routes_.size(); ++r) {
+      auto& iv = intervals_[r];
+      std::vector<Interval> merged;
+      for (const Interval& x : iv) {
+        if (!merged.empty() && comp_.root(merged.back().id) == comp_.root(x.id) &&
+            x.s0 - merged.back().s1 < kMaxReturnGap) {
+          merged.back().s1 = std::max(merged.back().s1, x.s1);
+          continue;
+        }
+        merged.push_back(x);
+      }
+      iv = std::move(merged);
+    }
+  }
+
   JunctionZones result() {
+    absorb_returns();
     JunctionZones out;
     out.passages.resize(routes_.size());
     std::map<std::size_t, int> zone_of_root;

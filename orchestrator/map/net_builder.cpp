@@ -13,6 +13,7 @@
 #include "core/process.hpp"
 #include "core/sumo_output.hpp"
 #include "map/junction_plan.hpp"
+#include "map/net_picture.hpp"
 #include "map/net_plan.hpp"
 
 namespace orch {
@@ -132,7 +133,13 @@ NetBuildReport build_net(const MapManifest& manifest, const WaypointFile& waypoi
   report.corridors = plan.corridors;
   report.junctions = plan.junctions;
   report.edges = static_cast<int>(plan.edges.size());
-  for (const PlannedEdge& e : plan.edges) report.lanes += static_cast<int>(e.lanes.size());
+  for (const PlannedEdge& e : plan.edges) {
+    report.lanes += static_cast<int>(e.lanes.size());
+    if (report.edges_by_lanes.size() <= e.lanes.size()) report.edges_by_lanes.resize(e.lanes.size() + 1, 0);
+    ++report.edges_by_lanes[e.lanes.size()];
+  }
+  report.picture = manifest.dir / "map.svg";
+  write_file_atomically(report.picture, net_picture_svg(plan, waypoints));
   report.notes = plan.notes;
   const auto warnings = lines_starting_with(result.output, "Warning:");
   for (std::size_t i = 0; i < warnings.size() && i < kMaxReportedWarnings; ++i)

@@ -19,6 +19,8 @@ struct NetBuildReport {
   int junctions = 0;
   int edges = 0;
   int lanes = 0;
+  std::vector<int> edges_by_lanes;  // [n] = edges with n lanes
+  std::filesystem::path picture;    // map.svg: the net with the routes over it
   std::vector<std::string> notes;  // human-readable remarks (routes left alone, ...)
 };
 

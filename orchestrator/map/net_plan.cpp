@@ -227,10 +227,13 @@ class CorridorPlanner {
     std::vector<bool> open(members_.size(), false);  // lanes running at the current cut
     for (std::size_t first = 0; first < events.size();) {
       std::size_t last = first;
-      // Lane ends at one junction are one cut; they never merge with other lane ends.
+      // Lane ends at one junction are one cut; they never merge with other lane ends, nor
+      // with the other end of a lane in the group (a short lane that leaves a junction and
+      // comes back to it keeps both its ends).
+      std::set<std::size_t> in_group{events[first].member};
       while (last + 1 < events.size() && events[last + 1].key - events[first].key <= merge_ &&
-             events[last + 1].node == events[first].node)
-        ++last;
+             events[last + 1].node == events[first].node && !in_group.count(events[last + 1].member))
+        in_group.insert(events[++last].member);
       bool all_start = true;
       bool all_end = true;
       for (std::size_t k = first; k <= last; ++k) {
@@ -238,7 +241,8 @@ class CorridorPlanner {
         all_end = all_end && !events[k].is_start;
       }
       const Event& rep = all_start ? events[first] : all_end ? events[last] : events[(first + last) / 2];
-      add_length_cuts(rep.key, open);
+      // An edge cannot lead from a junction back to itself: such a stretch gets a cut of its own in the middle.
+      add_length_cuts(rep.key, open, !rep.node.empty() && !cuts_.empty() && cuts_.back().node == rep.node);
       for (std::size_t k = first; k <= last; ++k) {
         Member& m = members_[events[k].member];
         (events[k].is_start ? m.start_cut : m.end_cut) = cuts_.size();
@@ -254,13 +258,16 @@ class CorridorPlanner {
   // Cuts that split the stretch from the last cut to `key` into equal pieces no longer than
   // max_edge_length, placed on the first lane running there (the other lanes are cut at
   // the feet of that point, like at any cut). None across a gap without lanes.
-  void add_length_cuts(double key, const std::vector<bool>& open) {
-    if (settings_.max_edge_length <= 0 || cuts_.empty()) return;
+  void add_length_cuts(double key, const std::vector<bool>& open, bool split = false) {
+    if ((settings_.max_edge_length <= 0 && !split) || cuts_.empty()) return;
     const auto on = std::find(open.begin(), open.end(), true);
     if (on == open.end()) return;
     const std::size_t ref = static_cast<std::size_t>(on - open.begin());
     const double from = cuts_.back().key;
-    const auto pieces = clamped_ceil<int>((key - from) / settings_.max_edge_length - 1e-9, 0, 1 << 30);
+    int pieces = settings_.max_edge_length <= 0
+                     ? 1
+                     : clamped_ceil<int>((key - from) / settings_.max_edge_length - 1e-9, 0, 1 << 30);
+    if (split) pieces = std::max(pieces, 2);
     for (int j = 1; j < pieces; ++j) {
       const double k = from + (key - from) * j / pieces;
       const double s = members_[ref].s_of_key(k);

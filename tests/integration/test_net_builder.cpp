@@ -239,7 +239,7 @@ TEST(NetBuilder, SameInputsGiveByteIdenticalNets) {
 }
 
 TEST(NetBuilder, ShippedNetsEqualAFreshBuild) {
-  for (const char* id : {"highway", "ALKS_Road", "ALKS_Road_Different_Curvatures"}) {
+  for (const char* id : {"highway", "ALKS_Road", "ALKS_Road_Different_Curvatures", "urban"}) {
     SCOPED_TRACE(id);
     const MapManifest shipped = load_map_manifest(test::shipped_map_dir(id));
     TempDir dir("netbuild_shipped");

@@ -1,0 +1,181 @@
+// The map builder's property test (docs/maps.md, "Generated maps"): city-like RoadEditor
+// waypoint files drawn at random by scripts/city_waypoints.py, one per seed of a fixed set.
+// For every map: `map build` succeeds (or names the waypoint that makes the map impossible);
+// every waypoint lies within 0.10 m of the lane its route drives, junction interiors
+// included; every route is one connected path through SUMO's lane graph in drawn order; a
+// SUMO vehicle drives each route end to end without teleport; rebuilding gives the same
+// bytes. ORCH_CITY_SEEDS ("7", "1-50", "3,9,12") replaces the fixed set (scripts/map_soak.py).
+#include <gtest/gtest.h>
+#include <pugixml.hpp>
+
+#include <fmt/format.h>
+
+#include <cstdlib>
+#include <sstream>
+
+#include "core/errors.hpp"
+#include "core/process.hpp"
+#include "integration/map_fixtures.hpp"
+
+using namespace orch;
+using namespace orch::test;
+
+namespace {
+
+// The CI set. Only the seeds of 1-91 that pass today: most generated maps still fail (the
+// failing seeds and why are listed in docs/maps.md, "Generated maps"; they stay open until
+// the builder handles them, and then join this set as regression fixtures).
+constexpr int kCiSeeds[] = {17, 20, 26, 30, 36, 43, 59, 63, 72, 79, 81};
+
+constexpr double kTolerance = 0.10;  // m, as `map check`
+
+std::vector<int> parse_seeds(const std::string& text) {
+  std::vector<int> out;
+  std::stringstream in(text);
+  for (std::string item; std::getline(in, item, ',');) {
+    const auto dash = item.find('-', 1);
+    if (dash == std::string::npos) {
+      out.push_back(std::stoi(item));
+      continue;
+    }
+    for (int s = std::stoi(item.substr(0, dash)); s <= std::stoi(item.substr(dash + 1)); ++s) out.push_back(s);
+  }
+  return out;
+}
+
+std::vector<int> city_seeds() {
+  if (const char* env = std::getenv("ORCH_CITY_SEEDS"); env && *env) return parse_seeds(env);
+  return {std::begin(kCiSeeds), std::end(kCiSeeds)};
+}
+
+std::string reproduce(int seed) {
+  return fmt::format("reproduce: python3 scripts/city_waypoints.py --seed {0} --out /tmp/city_{0}.waypoint.json && "
+                     "build/bin/orchestrator map build --waypoints /tmp/city_{0}.waypoint.json --out /tmp/city_{0}",
+                     seed);
+}
+
+BuiltMap generate_and_build(const TempDir& dir, int seed) {
+  BuiltMap m;
+  m.manifest.id = fmt::format("city_{}", seed);
+  m.manifest.dir = dir.path() / m.manifest.id;
+  m.manifest.max_edge_length = kDefaultMaxEdgeLength;
+  std::filesystem::create_directories(m.manifest.dir);
+  m.manifest.waypoint_file = m.manifest.id + ".waypoint.json";
+  m.manifest.net_file = m.manifest.id + ".net.xml";
+  const ProcessResult gen =
+      run_process("python3", {std::string(ORCH_SOURCE_DIR) + "/scripts/city_waypoints.py", "--seed",
+                              std::to_string(seed), "--out", m.manifest.waypoint_path().string()});
+  if (gen.exit_code != 0) throw OrchError("city_waypoints.py failed: " + gen.output);
+  save_map_manifest(m.manifest);
+  m.waypoints = load_waypoint_file(m.manifest.waypoint_path().string());
+  m.report = build_net(m.manifest, m.waypoints);
+  return m;
+}
+
+// One SUMO vehicle per route along its normal edges, from its first waypoint to its last,
+// departures 4 s apart; returns SUMO's statistics (pugixml) and its output.
+struct DriveResult {
+  int loaded = 0;
+  int inserted = 0;
+  int running = 0;
+  int waiting = 0;
+  int teleports = 0;
+  std::string output;
+};
+
+DriveResult drive_every_route(const BuiltMap& m, const LaneMap& lanes) {
+  std::string rou = "<routes>\n";
+  int n = 0;
+  for (const WaypointRoute& r : m.waypoints.routes) {
+    const RouteLanes& rl = *lanes.route(r.id);
+    std::vector<std::string> edges;
+    for (const int l : rl.lanes)
+      if (!lanes.lane(l).internal && (edges.empty() || edges.back() != lanes.lane(l).edge)) edges.push_back(lanes.lane(l).edge);
+    const LanePlace& first = rl.points.front();
+    const LanePlace& last = rl.points.back();
+    const bool first_normal = !lanes.lane(first.lane).internal;
+    const bool last_normal = !lanes.lane(last.lane).internal;
+    std::string route_edges;
+    for (const auto& e : edges) route_edges += (route_edges.empty() ? "" : " ") + e;
+    rou += fmt::format(
+        "  <vehicle id=\"v{}\" depart=\"{}\" departLane=\"{}\" departPos=\"{}\" arrivalPos=\"{}\">"
+        "<route edges=\"{}\"/></vehicle>\n",
+        n, 4 * n, first_normal ? std::to_string(lanes.lane(first.lane).index) : "best",
+        first_normal ? fmt::format("{:.2f}", first.lane_pos) : "base",
+        last_normal ? fmt::format("{:.2f}", last.lane_pos) : "max", route_edges);
+    ++n;
+  }
+  rou += "</routes>\n";
+  const auto rou_file = m.manifest.dir / "drive.rou.xml";
+  write_file_atomically(rou_file, rou);
+  const auto stats_file = m.manifest.dir / "drive.stats.xml";
+  const ProcessResult sumo =
+      run_process("sumo", {"-n", m.net(), "-r", rou_file.string(), "--end", "3600", "--time-to-teleport", "60",
+                           "--no-step-log", "true", "--statistic-output", stats_file.string(), "--seed", "1"});
+  DriveResult d;
+  d.output = sumo.output;
+  pugi::xml_document doc;
+  if (sumo.exit_code != 0 || !doc.load_file(stats_file.c_str())) return d;
+  const auto v = doc.child("statistics").child("vehicles");
+  d.loaded = v.attribute("loaded").as_int();
+  d.inserted = v.attribute("inserted").as_int();
+  d.running = v.attribute("running").as_int();
+  d.waiting = v.attribute("waiting").as_int();
+  d.teleports = doc.child("statistics").child("teleports").attribute("total").as_int();
+  return d;
+}
+
+}  // namespace
+
+class GeneratedCityMaps : public ::testing::TestWithParam<int> {};
+
+TEST_P(GeneratedCityMaps, BuildFitDriveAndRebuild) {
+  const int seed = GetParam();
+  SCOPED_TRACE(reproduce(seed));
+  TempDir dir("city");
+  BuiltMap m;
+  try {
+    m = generate_and_build(dir, seed);
+  } catch (const MapError& e) {
+    // A map may be impossible, but then the message must say which waypoint makes it so.
+    const std::string what = e.what();
+    EXPECT_NE(what.find("wp_idx"), std::string::npos) << "map build failed without naming a waypoint: " << what;
+    FAIL() << "seed " << seed << ": map build refused the map: " << what;
+  }
+  LaneMap lanes;
+  try {
+    lanes = m.lanes();  // throws when a route is not one connected path through the lane graph
+  } catch (const MapError& e) {
+    FAIL() << "seed " << seed << ": " << e.what();
+  }
+  for (const auto& r : m.waypoints.routes) {
+    const RouteLanes& rl = *lanes.route(r.id);
+    for (std::size_t i = 0; i < rl.points.size(); ++i)
+      if (rl.points[i].distance > kTolerance) {
+        ADD_FAILURE() << "seed " << seed << ": route " << r.id << " wp_idx " << i << " lies "
+                      << rl.points[i].distance << " m from lane " << lanes.lane(rl.points[i].lane).id;
+        break;
+      }
+    for (std::size_t i = 0; i + 1 < rl.lanes.size(); ++i) {
+      const auto& next = lanes.lane(rl.lanes[i]).next;
+      EXPECT_NE(std::find(next.begin(), next.end(), rl.lanes[i + 1]), next.end())
+          << "seed " << seed << ": " << r.id << ": " << lanes.lane(rl.lanes[i]).id << " -> "
+          << lanes.lane(rl.lanes[i + 1]).id;
+    }
+  }
+  for (const LaneInfo& l : lanes.lanes()) EXPECT_GT(l.length, 0.1) << "seed " << seed << ": lane " << l.id;
+
+  const DriveResult d = drive_every_route(m, lanes);
+  const int routes = static_cast<int>(m.waypoints.routes.size());
+  EXPECT_EQ(d.loaded, routes) << d.output;
+  EXPECT_EQ(d.inserted, routes) << d.output;
+  EXPECT_EQ(d.running + d.waiting, 0) << d.output;
+  EXPECT_EQ(d.teleports, 0) << d.output;
+
+  const std::string net = read_file(m.manifest.net_path());
+  build_net(m.manifest, m.waypoints);
+  EXPECT_EQ(read_file(m.manifest.net_path()), net) << "seed " << seed << ": rebuilding changed the net";
+}
+
+INSTANTIATE_TEST_SUITE_P(Seeds, GeneratedCityMaps, ::testing::ValuesIn(city_seeds()),
+                         [](const ::testing::TestParamInfo<int>& param) { return fmt::format("seed{}", param.param); });
