@@ -194,7 +194,14 @@ class Reader {
     lane.type = node.attribute("type").as_string("none");
     if (node.child("border"))
       src_.fail(node.child("border"), "lane border records are not supported (use width records)");
-    for (const pugi::xml_node w : node.children("width")) lane.widths.push_back(cubic(w, "sOffset"));
+    for (const pugi::xml_node w : node.children("width")) {
+      lane.widths.push_back(cubic(w, "sOffset"));
+      // A lane is at most a kilometre wide: the soak (a width of 3,000 km) made a run take
+      // minutes instead of a second.
+      if (std::abs(lane.widths.back().a) > 1000.0)
+        throw ScenarioError(src_.where(w, "a"),
+                            fmt::format("lane width {} m: a lane is at most 1000 m wide", w.attribute("a").value()));
+    }
     std::stable_sort(lane.widths.begin(), lane.widths.end(),
                      [](const CubicRecord& a, const CubicRecord& b) { return a.s < b.s; });
     for (const pugi::xml_node sp : node.children("speed"))

@@ -207,4 +207,20 @@ TEST(Plausible, TheOpenDriveReaderRefusesImplausibleLengthsAndLaneIds) {
   EXPECT_NE(read("-2000", "0", "-1").find("geometry length must be > 0 m, found -2000"), std::string::npos)
       << read("-2000", "0", "-1");
   EXPECT_NE(read("0", "0", "-1").find("geometry length must be > 0 m"), std::string::npos);
+  // And a lane 3,000 km wide (the soak: a run that took minutes).
+  std::string wide = road;
+  wide.replace(wide.find("a=\"3.5\""), 7, "a=\"3e6\"");
+  try {
+    (void)opendrive::read_xodr_text(
+        [&] {
+          std::string t = wide;
+          for (const auto& [from, to] : {std::pair{std::string("LENGTH"), std::string("100")}, {"X", "0"}, {"LINK", "-1"}})
+            for (auto at = t.find(from); at != std::string::npos; at = t.find(from)) t.replace(at, from.size(), to);
+          return t;
+        }(),
+        "r.xodr");
+    ADD_FAILURE() << "a lane 3,000 km wide was read";
+  } catch (const ScenarioError& e) {
+    EXPECT_NE(std::string(e.what()).find("lane width 3e6 m: a lane is at most 1000 m wide"), std::string::npos) << e.what();
+  }
 }
