@@ -6,33 +6,15 @@
 
 #include "reference_driver/r157_driver.hpp"
 #include "reference_driver/r157_parameters.hpp"
+#include "reference_driver_views.hpp"
 
 using namespace orch::reference_driver;
+using orch::reference_driver::test::car;
+using orch::reference_driver::test::straight_road;
 
 namespace {
 
 constexpr double kKmh60 = 60.0 / 3.6;
-
-DriverView straight_road(double time, double step, double ego_s, double ego_speed, double set_speed) {
-  DriverView v;
-  v.time = time;
-  v.step = step;
-  v.ego = {ego_s, 0.0, ego_speed, 4.5, 1.8};
-  v.lane_width = 3.5;
-  v.set_speed = set_speed;
-  return v;
-}
-
-PerceivedObject car(const std::string& id, double s, double d, double speed) {
-  PerceivedObject o;
-  o.id = id;
-  o.s = s;
-  o.d = d;
-  o.length = 4.5;
-  o.width = 1.8;
-  o.speed_s = speed;
-  return o;
-}
 
 }  // namespace
 
