@@ -20,6 +20,27 @@ const CubicRecord* record_at(const std::vector<CubicRecord>& records, double s) 
   return found;
 }
 
+double CubicRecord::largest_magnitude(double length) const {
+  for (const double k : {a, b, c, d, length})
+    if (!std::isfinite(k)) return std::numeric_limits<double>::quiet_NaN();
+  double largest = std::max(std::abs(value(0.0)), std::abs(value(length)));
+  // slope(x) = b + 2c x + 3d x^2 = 0
+  const auto consider = [&](double x) {
+    if (x > 0.0 && x < length) largest = std::max(largest, std::abs(value(x)));
+  };
+  if (d == 0.0) {
+    if (c != 0.0) consider(-b / (2.0 * c));
+  } else {
+    const double discriminant = 4.0 * c * c - 12.0 * d * b;
+    if (discriminant >= 0.0) {
+      const double root = std::sqrt(discriminant);
+      consider((-2.0 * c + root) / (6.0 * d));
+      consider((-2.0 * c - root) / (6.0 * d));
+    }
+  }
+  return largest;
+}
+
 double Lane::width(double ds_in_section) const {
   const CubicRecord* r = record_at(widths, ds_in_section);
   if (r == nullptr) return widths.empty() ? 0.0 : widths.front().value(0.0);

@@ -18,6 +18,9 @@ struct CubicRecord {
   double a = 0.0, b = 0.0, c = 0.0, d = 0.0;
   [[nodiscard]] double value(double ds) const { return a + ds * (b + ds * (c + ds * d)); }
   [[nodiscard]] double slope(double ds) const { return b + ds * (2 * c + ds * 3 * d); }
+  // The largest |value| over ds in [0, length]: at an end or where the slope is zero.
+  // NaN when a coefficient is not finite.
+  [[nodiscard]] double largest_magnitude(double length) const;
 };
 
 // The record in effect at `s` (the last starting at or before it), or nullptr.

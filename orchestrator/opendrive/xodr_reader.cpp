@@ -18,6 +18,9 @@ namespace {
 
 using xml::XmlSource;
 
+// A lane is at most a kilometre wide (docs/hardening.md).
+constexpr double kMaxLaneWidth = 1000.0;
+
 class Reader {
  public:
   explicit Reader(const XmlSource& source) : src_(source) {}
@@ -194,14 +197,7 @@ class Reader {
     lane.type = node.attribute("type").as_string("none");
     if (node.child("border"))
       src_.fail(node.child("border"), "lane border records are not supported (use width records)");
-    for (const pugi::xml_node w : node.children("width")) {
-      lane.widths.push_back(cubic(w, "sOffset"));
-      // A lane is at most a kilometre wide: the soak (a width of 3,000 km) made a run take
-      // minutes instead of a second.
-      if (std::abs(lane.widths.back().a) > 1000.0)
-        throw ScenarioError(src_.where(w, "a"),
-                            fmt::format("lane width {} m: a lane is at most 1000 m wide", w.attribute("a").value()));
-    }
+    for (const pugi::xml_node w : node.children("width")) lane.widths.push_back(cubic(w, "sOffset"));
     std::stable_sort(lane.widths.begin(), lane.widths.end(),
                      [](const CubicRecord& a, const CubicRecord& b) { return a.s < b.s; });
     for (const pugi::xml_node sp : node.children("speed"))
@@ -262,7 +258,38 @@ class Reader {
     if (road.sections.empty()) src_.fail(node, "road without a laneSection");
     std::stable_sort(road.sections.begin(), road.sections.end(),
                      [](const LaneSection& a, const LaneSection& b) { return a.s < b.s; });
+    for (const pugi::xml_node section : lanes.children("laneSection"))
+      check_lane_widths(section, section_length(road, number(section, "s")));
     return road;
+  }
+
+  // The length of the section starting at `s`: up to the next section, or the road's end.
+  static double section_length(const Road& road, double s) {
+    for (const LaneSection& next : road.sections)
+      if (next.s > s) return next.s - s;
+    return road.length - s;
+  }
+
+  // A lane is at most a kilometre wide anywhere along its width record, not only at its
+  // start: the soak found a width of 3,000 km (a run of minutes instead of a second) and a
+  // slope `b` of 9.2e18 (an abort).
+  void check_lane_widths(const pugi::xml_node& section, double section_length) const {
+    for (const char* side : {"left", "right"})
+      for (const pugi::xml_node lane : section.child(side).children("lane")) {
+        std::vector<std::pair<CubicRecord, pugi::xml_node>> records;
+        for (const pugi::xml_node w : lane.children("width")) records.emplace_back(cubic(w, "sOffset"), w);
+        std::stable_sort(records.begin(), records.end(),
+                         [](const auto& a, const auto& b) { return a.first.s < b.first.s; });
+        for (std::size_t i = 0; i < records.size(); ++i) {
+          const double end = i + 1 < records.size() ? records[i + 1].first.s : section_length;
+          const double widest = records[i].first.largest_magnitude( std::max(0.0, end - records[i].first.s));
+          if (!(widest <= kMaxLaneWidth))
+            throw ScenarioError(src_.where(records[i].second, "a"),
+                                fmt::format("lane width reaches {:g} m within its record: a lane is at most {:g} m "
+                                            "wide",
+                                            widest, kMaxLaneWidth));
+        }
+      }
   }
 
   const XmlSource& src_;

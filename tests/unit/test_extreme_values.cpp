@@ -207,20 +207,41 @@ TEST(Plausible, TheOpenDriveReaderRefusesImplausibleLengthsAndLaneIds) {
   EXPECT_NE(read("-2000", "0", "-1").find("geometry length must be > 0 m, found -2000"), std::string::npos)
       << read("-2000", "0", "-1");
   EXPECT_NE(read("0", "0", "-1").find("geometry length must be > 0 m"), std::string::npos);
-  // And a lane 3,000 km wide (the soak: a run that took minutes).
-  std::string wide = road;
-  wide.replace(wide.find("a=\"3.5\""), 7, "a=\"3e6\"");
-  try {
-    (void)opendrive::read_xodr_text(
-        [&] {
-          std::string t = wide;
-          for (const auto& [from, to] : {std::pair{std::string("LENGTH"), std::string("100")}, {"X", "0"}, {"LINK", "-1"}})
-            for (auto at = t.find(from); at != std::string::npos; at = t.find(from)) t.replace(at, from.size(), to);
-          return t;
-        }(),
-        "r.xodr");
-    ADD_FAILURE() << "a lane 3,000 km wide was read";
-  } catch (const ScenarioError& e) {
-    EXPECT_NE(std::string(e.what()).find("lane width 3e6 m: a lane is at most 1000 m wide"), std::string::npos) << e.what();
-  }
+  // A lane wider than a kilometre anywhere along its width record: 3,000 km at its start (the
+  // soak: a run of minutes), a slope of 9.2e18 (the soak: an abort), a cubic that bulges to
+  // 1.2 km in the middle of a 100 m road. A taper from 3.5 m to 0 m still reads.
+  const auto read_width = [&](const std::string& width) -> std::string {
+    std::string t = road;
+    t.replace(t.find(R"(a="3.5" b="0" c="0" d="0")"), 25, width);
+    for (const auto& [from, to] : {std::pair{std::string("LENGTH"), std::string("100")}, {"X", "0"}, {"LINK", "-1"}})
+      for (auto at = t.find(from); at != std::string::npos; at = t.find(from)) t.replace(at, from.size(), to);
+    try {
+      (void)opendrive::read_xodr_text(t, "r.xodr");
+    } catch (const ScenarioError& e) {
+      return e.what();
+    }
+    return "read";
+  };
+  EXPECT_NE(read_width(R"(a="3e6" b="0" c="0" d="0")").find("lane width reaches 3e+06 m within its record: a lane "
+                                                            "is at most 1000 m wide"),
+            std::string::npos)
+      << read_width(R"(a="3e6" b="0" c="0" d="0")");
+  EXPECT_NE(read_width(R"(a="3.5" b="9223372036854775808" c="0" d="0")").find("a lane is at most 1000 m wide"),
+            std::string::npos);
+  EXPECT_NE(read_width(R"(a="0" b="48" c="-0.48" d="0")").find("lane width reaches 1200 m"), std::string::npos)
+      << read_width(R"(a="0" b="48" c="-0.48" d="0")");
+  EXPECT_NE(read_width(R"(a="3.5" b="0" c="0" d="1e300")").find("at most 1000 m wide"), std::string::npos);
+  EXPECT_EQ(read_width(R"(a="3.5" b="-0.035" c="0" d="0")"), "read");
+}
+
+TEST(Plausible, TheLargestMagnitudeOfACubicIsAtAnEndOrWhereItsSlopeIsZero) {
+  using opendrive::CubicRecord;
+  EXPECT_DOUBLE_EQ((CubicRecord{0, 3.5, 0, 0, 0}).largest_magnitude(100), 3.5);
+  EXPECT_DOUBLE_EQ((CubicRecord{0, 0, 1, 0, 0}).largest_magnitude(10), 10.0);
+  EXPECT_DOUBLE_EQ((CubicRecord{0, 0, 48, -0.48, 0}).largest_magnitude(100), 1200.0);  // peak at 50 m
+  EXPECT_DOUBLE_EQ((CubicRecord{0, 0, 48, -0.48, 0}).largest_magnitude(20), 768.0);   // before the peak
+  // x^3 - 3x on [0, 3]: a dip to -2 at x = 1, but 18 at the end.
+  EXPECT_DOUBLE_EQ((CubicRecord{0, 0, -3, 0, 1}).largest_magnitude(3), 18.0);
+  EXPECT_DOUBLE_EQ((CubicRecord{0, 0, -3, 0, 1}).largest_magnitude(1.5), 2.0);
+  EXPECT_TRUE(std::isnan((CubicRecord{0, 0, 0, 0, std::numeric_limits<double>::infinity()}).largest_magnitude(1)));
 }
