@@ -21,7 +21,7 @@
 #include <unordered_map>
 #include <vector>
 
-#include "engine/world.hpp"
+#include "sim/world.hpp"
 #include "sumo_api.hpp"
 #include "sumo_contexts.hpp"
 
@@ -123,7 +123,7 @@ class WorldReader {
   }
 
   // A scenario actor SUMO is about to insert (spawned): followed once it departs.
-  void expect(const engine::TrackedActor& actor) {
+  void expect(const sim::TrackedActor& actor) {
     actor_kind_[actor.sumo_id] = actor.kind;
     if (actor.kind == ActorKind::Pedestrian) pending_persons_.push_back(actor.sumo_id);
   }
@@ -141,8 +141,8 @@ class WorldReader {
     std::erase(pending_persons_, id);
   }
 
-  engine::WorldSnapshot read(const std::vector<engine::TrackedActor>& actors) {
-    engine::WorldSnapshot snap;
+  sim::WorldSnapshot read(const std::vector<sim::TrackedActor>& actors) {
+    sim::WorldSnapshot snap;
     snap.time = time_;
     int vehicles_present = 0;
     for (const auto& a : actors) {
@@ -170,7 +170,7 @@ class WorldReader {
     for (const auto& e : edges_) {
       if (sumo::Edge::getLastStepHaltingNumber(e) == 0) continue;
       for (const auto& v : sumo::Edge::getLastStepVehicleIDs(e))
-        if (sumo::Vehicle::getWaitingTime(v) > engine::kLongWait) ++n;
+        if (sumo::Vehicle::getWaitingTime(v) > sim::kLongWait) ++n;
     }
     return n;
   }
@@ -202,8 +202,8 @@ class WorldReader {
     }
   }
 
-  engine::ActorState read_actor(const engine::TrackedActor& a) {
-    engine::ActorState s;
+  sim::ActorState read_actor(const sim::TrackedActor& a) {
+    sim::ActorState s;
     s.id = a.id;
     const auto it = followed_.find(a.sumo_id);
     if (it == followed_.end()) return s;  // not inserted yet
@@ -234,16 +234,16 @@ class WorldReader {
 
   // Background vehicles around any actor, once each, in id order (the same bytes on every
   // backend).
-  void read_nearby(const std::vector<engine::TrackedActor>& actors, engine::WorldSnapshot& snap) {
+  void read_nearby(const std::vector<sim::TrackedActor>& actors, sim::WorldSnapshot& snap) {
     if (contexts_off_) return;
-    std::map<std::string, engine::NearbyVehicle> found;
+    std::map<std::string, sim::NearbyVehicle> found;
     for (const auto& a : actors) {
       const auto it = followed_.find(a.sumo_id);
       if (it == followed_.end()) continue;
       const sumo::SubscriptionResults around = nearby(a.sumo_id, it->second);
       for (const auto& [id, r] : around) {
         if (actor_kind_.count(id) || found.count(id) || r.empty()) continue;
-        engine::NearbyVehicle v;
+        sim::NearbyVehicle v;
         v.sumo_id = id;
         v.heading = from_sumo_angle(number(r, tc::VAR_ANGLE));
         const Size& size = size_of(id);

@@ -27,7 +27,7 @@ namespace sumo = orch_sumo;
 namespace orch {
 namespace {
 
-using engine::TrackedActor;
+using sim::TrackedActor;
 
 constexpr double kForever = 1e7;  // s; "until the end of the run" for waits and stops
 
@@ -73,7 +73,7 @@ class SumoSimulator final : public Simulator {
     guard("subscribing to the simulation", [&] { reader_.start(); });
   }
 
-  void apply(const std::vector<engine::Command>& commands) override {
+  void apply(const std::vector<sim::Command>& commands) override {
     for (const auto& c : commands) std::visit([this](const auto& cmd) { execute(cmd); }, c);
   }
 
@@ -84,8 +84,8 @@ class SumoSimulator final : public Simulator {
     });
   }
 
-  engine::WorldSnapshot read(const std::vector<TrackedActor>& actors) override {
-    engine::WorldSnapshot snap;
+  sim::WorldSnapshot read(const std::vector<TrackedActor>& actors) override {
+    sim::WorldSnapshot snap;
     guard("reading the simulation", [&] { snap = reader_.read(actors); });
     return snap;
   }
@@ -271,7 +271,7 @@ class SumoSimulator final : public Simulator {
     return type;
   }
 
-  void execute(const engine::SpawnVehicle& c) {
+  void execute(const sim::SpawnVehicle& c) {
     reader_.expect(c.actor);
     guard("inserting a vehicle", [&] {
       const std::string type = make_type("DEFAULT_VEHTYPE", c.actor.sumo_id, c.model, c.color);
@@ -308,7 +308,7 @@ class SumoSimulator final : public Simulator {
     });
   }
 
-  void execute(const engine::SpawnPerson& c) {
+  void execute(const sim::SpawnPerson& c) {
     reader_.expect(c.actor);
     guard("inserting a pedestrian", [&] {
       const std::string type = make_type("DEFAULT_PEDTYPE", c.actor.sumo_id, c.model, c.color);
@@ -318,7 +318,7 @@ class SumoSimulator final : public Simulator {
     });
   }
 
-  void execute(const engine::SetPose& c) {
+  void execute(const sim::SetPose& c) {
     guard("placing an actor", [&] {
       const double angle = to_sumo_angle(c.heading);
       if (c.kind == ActorKind::Pedestrian) {
@@ -345,18 +345,18 @@ class SumoSimulator final : public Simulator {
     });
   }
 
-  void execute(const engine::SetSignals& c) {
+  void execute(const sim::SetSignals& c) {
     guard("setting signals", [&] {
       sumo::Vehicle::setSignals(c.sumo_id, c.signals);
       sent_[c.sumo_id].signals = c.signals;
     });
   }
 
-  void execute(const engine::SetMaxSpeed& c) {
+  void execute(const sim::SetMaxSpeed& c) {
     guard("setting a speed", [&] { sumo::Vehicle::setMaxSpeed(c.sumo_id, c.speed); });
   }
 
-  void execute(const engine::SetStop& c) {
+  void execute(const sim::SetStop& c) {
     guard("setting the ego's stop", [&] {
       const double lane_length = sumo::Lane::getLength(c.edge + "_" + std::to_string(c.lane));
       const double front = std::clamp(c.lane_pos + c.length / 2, 0.0, lane_length);
@@ -364,7 +364,7 @@ class SumoSimulator final : public Simulator {
     });
   }
 
-  void execute(const engine::DriveSpeed& c) {
+  void execute(const sim::DriveSpeed& c) {
     guard("driving the ego", [&] {
       Sent& sent = sent_[c.sumo_id];
       if (!sent.speed_mode_off) {
@@ -375,11 +375,11 @@ class SumoSimulator final : public Simulator {
     });
   }
 
-  void execute(const engine::SetParameter& c) {
+  void execute(const sim::SetParameter& c) {
     guard("setting a parameter", [&] { sumo::Vehicle::setParameter(c.sumo_id, c.key, c.value); });
   }
 
-  void execute(const engine::RemoveActor& c) {
+  void execute(const sim::RemoveActor& c) {
     guard("removing an actor", [&] {
       reader_.forget(c.sumo_id);
       if (c.kind == ActorKind::Pedestrian) sumo::Person::remove(c.sumo_id);
@@ -388,7 +388,7 @@ class SumoSimulator final : public Simulator {
     });
   }
 
-  void execute(const engine::ReleaseActor& c) {
+  void execute(const sim::ReleaseActor& c) {
     guard("handing an actor to SUMO", [&] {
       sumo::Vehicle::setSpeedMode(c.sumo_id, 31);  // SUMO's default: safe speeds, brakes for leaders
       sumo::Vehicle::setSpeed(c.sumo_id, -1);      // its own speed from now on
@@ -397,7 +397,7 @@ class SumoSimulator final : public Simulator {
     });
   }
 
-  void execute(const engine::SetRoute& c) {
+  void execute(const sim::SetRoute& c) {
     guard("giving a vehicle its route", [&] {
       // SUMO wants the new route to start at the vehicle's current route edge.
       const auto route = sumo::Vehicle::getRoute(c.sumo_id);

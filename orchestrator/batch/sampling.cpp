@@ -10,7 +10,7 @@
 #include "batch/template_file.hpp"
 #include "core/errors.hpp"
 #include "json/json_text.hpp"
-#include "scenario/loader.hpp"
+#include "scenario_executor/loader.hpp"
 
 namespace orch::batch {
 

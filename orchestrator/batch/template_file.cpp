@@ -6,7 +6,7 @@
 #include "evaluation/evaluation_file.hpp"
 #include "evaluation/yaml_tree.hpp"
 #include "json/json_text.hpp"
-#include "scenario/loader.hpp"
+#include "scenario_executor/loader.hpp"
 
 namespace orch::batch {
 

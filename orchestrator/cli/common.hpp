@@ -5,7 +5,7 @@
 
 #include "cli/commands.hpp"
 #include "map/map_registry.hpp"
-#include "scenario/catalog.hpp"
+#include "scenario_executor/catalog.hpp"
 
 namespace orch::cli {
 

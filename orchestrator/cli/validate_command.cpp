@@ -18,8 +18,8 @@
 #include "core/suggest.hpp"
 #include "core/utf8.hpp"
 #include "evaluation/evaluation_file.hpp"
-#include "scenario/loader_internal.hpp"
-#include "scenario/validator.hpp"
+#include "scenario_executor/loader_internal.hpp"
+#include "scenario_executor/validator.hpp"
 
 namespace orch::cli {
 

@@ -24,7 +24,7 @@ std::optional<Mode> parse_mode(std::string_view text) {
   return std::nullopt;
 }
 
-CriterionState::CriterionState(CriterionSpec spec, scenario::ActorId ego)
+CriterionState::CriterionState(CriterionSpec spec, sim::ActorId ego)
     : spec_(std::move(spec)), type_(find_criterion_type(spec_.type)), actor_(spec_.actor.value_or(ego)) {
   if (!type_) throw OrchError("unknown criterion type \"" + spec_.type + "\"");
   opened_ = !spec_.from_scene;

@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "criteria/criterion_result.hpp"
-#include "engine/engine.hpp"
+#include "scenario_executor_engine/engine.hpp"
 #include "metrics/actor_metrics.hpp"
 
 namespace orch::criteria {
@@ -26,7 +26,7 @@ std::optional<Mode> parse_mode(std::string_view text);
 struct CriterionSpec {
   std::string name;
   std::string type = "metric";           // a row of criterion_types()
-  std::optional<scenario::ActorId> actor;  // none: the ego
+  std::optional<sim::ActorId> actor;  // none: the ego
   std::string metric;                    // type metric: one of metrics::metric_names()
   std::optional<double> min;             // the limit: min <= value <= max
   std::optional<double> max;
@@ -52,7 +52,7 @@ struct RunFacts {
 // What a frame function sees of one step.
 struct StepInput {
   const RunFacts& run;
-  scenario::ActorId actor = 0;                    // the criterion's actor (resolved)
+  sim::ActorId actor = 0;                    // the criterion's actor (resolved)
   const metrics::ActorMetrics* metrics = nullptr;  // the actor's metrics this step (null: not measured)
 };
 
@@ -77,7 +77,7 @@ const CriterionType* find_criterion_type(std::string_view name);
 // The running judgement of one criterion.
 class CriterionState {
  public:
-  CriterionState(CriterionSpec spec, scenario::ActorId ego);
+  CriterionState(CriterionSpec spec, sim::ActorId ego);
 
   // Judges this step (if it lies in the window); returns the frame (measured false outside).
   Frame step(const RunFacts& run, const metrics::ActorMetrics* metrics);
@@ -85,7 +85,7 @@ class CriterionState {
   [[nodiscard]] bool holds() const;
   [[nodiscard]] CriterionResult result() const;
   [[nodiscard]] const CriterionSpec& spec() const { return spec_; }
-  [[nodiscard]] scenario::ActorId actor() const { return actor_; }
+  [[nodiscard]] sim::ActorId actor() const { return actor_; }
 
  private:
   [[nodiscard]] bool in_window(const RunFacts& run);
@@ -94,7 +94,7 @@ class CriterionState {
 
   CriterionSpec spec_;
   const CriterionType* type_;
-  scenario::ActorId actor_;
+  sim::ActorId actor_;
   bool opened_ = false;
   bool closed_ = false;
   long long measured_ = 0;

@@ -3,13 +3,13 @@
 #include <optional>
 #include <string>
 
-#include "scenario/model.hpp"
+#include "sim/actor.hpp"
 
 namespace orch::criteria {
 
 struct CriterionResult {
   std::string name;
-  std::optional<scenario::ActorId> actor;
+  std::optional<sim::ActorId> actor;
   std::string metric;    // the metric judged ("collisions", "scene" for the built-ins that are not metrics)
   std::string expected;  // the limit in words: "ttc >= 2 at every step", ...
   std::optional<double> actual;  // the measured value that decided (none: never measured)

@@ -8,13 +8,13 @@
 
 #include "metrics/following.hpp"
 #include "metrics/kinematics.hpp"
-#include "scenario/model.hpp"
+#include "sim/actor.hpp"
 
 namespace orch::metrics {
 
 struct ActorMetrics {
   double time = 0;
-  scenario::ActorId actor = 0;
+  sim::ActorId actor = 0;
   double speed = 0;  // m/s
   std::optional<Following> leader;
   std::optional<Following> follower;
@@ -40,7 +40,7 @@ struct Extreme {
 };
 
 struct ActorSummary {
-  scenario::ActorId actor = 0;
+  sim::ActorId actor = 0;
   std::string label;  // how outputs name the actor ("" : its id): an OpenSCENARIO entity's name
   std::optional<Extreme> min_ttc, min_thw, min_gap, min_dist, max_drac;
   std::optional<Extreme> min_follower_ttc, min_follower_thw;

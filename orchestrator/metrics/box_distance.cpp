@@ -14,12 +14,12 @@ double point_segment(const Vec2& p, const Vec2& a, const Vec2& b) {
 }
 }  // namespace
 
-double box_distance(const engine::Box& a, const engine::Box& b) {
-  if (engine::boxes_touch(a, b)) return 0.0;
+double box_distance(const sim::Box& a, const sim::Box& b) {
+  if (sim::boxes_touch(a, b)) return 0.0;
   // Two convex polygons apart: the shortest distance joins a corner of one to an edge of
   // the other.
-  const auto ca = engine::box_corners(a);
-  const auto cb = engine::box_corners(b);
+  const auto ca = sim::box_corners(a);
+  const auto cb = sim::box_corners(b);
   double best = std::numeric_limits<double>::infinity();
   for (int i = 0; i < 4; ++i)
     for (int j = 0; j < 4; ++j) {

@@ -36,9 +36,9 @@ struct Interval {
 
 Interval occupancy(const std::vector<TrajectorySample>& tr, const Vec2& p) {
   Interval in;
-  const engine::Box dot{p, 0, 0, 0};
+  const sim::Box dot{p, 0, 0, 0};
   for (const auto& s : tr) {
-    if (!engine::boxes_touch(s.box, dot)) continue;
+    if (!sim::boxes_touch(s.box, dot)) continue;
     if (!in.any) in.first = s.time;
     in.last = s.time;
     in.any = true;

@@ -18,7 +18,7 @@
 #include <unordered_map>
 #include <vector>
 
-#include "engine/collision.hpp"
+#include "sim/box.hpp"
 
 namespace orch::metrics {
 
@@ -26,7 +26,7 @@ inline constexpr double kMinCrossing = 0.35;  // rad (20 degrees) between the pa
 
 struct TrajectorySample {
   double time = 0;
-  engine::Box box;
+  sim::Box box;
   // The body was out of sight before this sample (a background vehicle that left the
   // actors' surroundings and came back): no path between this sample and the one before.
   bool resumed = false;
@@ -69,7 +69,7 @@ class TrajectoryBook {
  public:
   struct Seen {
     std::string id;  // actor id as text, or the SUMO id of a background vehicle
-    engine::Box box;
+    sim::Box box;
   };
   // Every body present at `time`, recorded once per step in step order. A body missing from
   // a step starts a new piece of its trajectory when it is seen again.

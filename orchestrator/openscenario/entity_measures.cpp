@@ -4,7 +4,7 @@
 #include <cmath>
 #include <limits>
 
-#include "engine/collision.hpp"
+#include "sim/box.hpp"
 
 namespace orch::openscenario {
 namespace {
@@ -25,7 +25,7 @@ EntityState moved_on(const EntityState& state, const opendrive::RoadNetwork& roa
   return later;
 }
 
-engine::Box box_of(const Body& body) {
+sim::Box box_of(const Body& body) {
   const opendrive::Pose2& p = body.state->pose;
   const double c = std::cos(p.heading), s = std::sin(p.heading);
   const BoundingBox& b = *body.box;
@@ -47,7 +47,7 @@ double time_to_collision(const Body& from, const Body& to, const opendrive::Road
   return now / closing;
 }
 
-bool boxes_overlap(const Body& a, const Body& b) { return engine::boxes_touch(box_of(a), box_of(b)); }
+bool boxes_overlap(const Body& a, const Body& b) { return sim::boxes_touch(box_of(a), box_of(b)); }
 
 double relative_distance(const Body& from, const Body& to, const std::string& distance_type,
                          const std::string& coordinate_system, bool freespace) {

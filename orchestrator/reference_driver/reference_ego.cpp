@@ -55,14 +55,14 @@ void NearbyMotion::sweep(double time) {
   std::erase_if(seen_, [time](const auto& kv) { return kv.second.time < time; });
 }
 
-std::optional<DriverView> perceive(const engine::WorldSnapshot& snap, const std::vector<engine::TrackedActor>& tracked,
+std::optional<DriverView> perceive(const sim::WorldSnapshot& snap, const std::vector<sim::TrackedActor>& tracked,
                                    const ObjectKinds& kinds, const std::string& ego, const DrivingPath& path,
                                    double path_s, double range, NearbyMotion* motion) {
   std::size_t me_at = tracked.size();
   for (std::size_t i = 0; i < tracked.size() && i < snap.actors.size(); ++i)
     if (tracked[i].sumo_id == ego) me_at = i;
   if (me_at == tracked.size() || !snap.actors[me_at].present || path.line.empty()) return std::nullopt;
-  const engine::ActorState* me = &snap.actors[me_at];
+  const sim::ActorState* me = &snap.actors[me_at];
   DriverView view;
   view.time = snap.time;
   view.lane_width = path.lane_width;
@@ -74,7 +74,7 @@ std::optional<DriverView> perceive(const engine::WorldSnapshot& snap, const std:
     return !(o.s < view.ego.s - 50.0 || o.s > view.ego.s + range + 10.0 || std::abs(o.d) > 3 * path.lane_width);
   };
   for (std::size_t i = 0; i < snap.actors.size() && i < tracked.size(); ++i) {
-    const engine::ActorState& a = snap.actors[i];
+    const sim::ActorState& a = snap.actors[i];
     if (!a.present || i == me_at) continue;
     // Cheap first test before projecting: within reach of the ego at all.
     if ((a.position - me->position).norm() > range + 60.0) continue;
@@ -101,7 +101,7 @@ std::optional<DriverView> perceive(const engine::WorldSnapshot& snap, const std:
   return view;
 }
 
-void EgoWatch::step(const engine::WorldSnapshot& snap, const std::vector<engine::TrackedActor>& tracked) {
+void EgoWatch::step(const sim::WorldSnapshot& snap, const std::vector<sim::TrackedActor>& tracked) {
   const auto view = perceive(snap, tracked, kinds_, ego_, path_, path_s_, range_);
   if (!view) return;
   path_s_ = view->ego.s;
@@ -113,22 +113,22 @@ ReferenceEgo::ReferenceEgo(R157Parameters parameters, DrivingPath path, std::str
     : driver_(parameters), path_(std::move(path)), ego_(std::move(ego)), kinds_(std::move(kinds)), step_(step),
       set_speed_(set_speed) {}
 
-void ReferenceEgo::observe(const std::vector<engine::Command>& commands) {
+void ReferenceEgo::observe(const std::vector<sim::Command>& commands) {
   for (const auto& c : commands) {
     // A route speed of 0 before the end_position (the waypoints' last speeds) means: stop at
     // the end. The driver does that itself, where SUMO's stop would put the ego, so it keeps
     // its set speed until then.
-    if (const auto* m = std::get_if<engine::SetMaxSpeed>(&c); m && m->sumo_id == ego_ && (m->speed > 0 || !path_.end_s))
+    if (const auto* m = std::get_if<sim::SetMaxSpeed>(&c); m && m->sumo_id == ego_ && (m->speed > 0 || !path_.end_s))
       set_speed_ = m->speed;
-    if (const auto* v = std::get_if<engine::SpawnVehicle>(&c); v && v->actor.sumo_id == ego_ && v->max_speed > 0)
+    if (const auto* v = std::get_if<sim::SpawnVehicle>(&c); v && v->actor.sumo_id == ego_ && v->max_speed > 0)
       set_speed_ = v->max_speed;
-    if (const auto* st = std::get_if<engine::SetStop>(&c); st && st->sumo_id == ego_ && path_.stop_to_s)
+    if (const auto* st = std::get_if<sim::SetStop>(&c); st && st->sumo_id == ego_ && path_.stop_to_s)
       if (const auto s = path_.stop_to_s(*st)) path_.end_s = *s;
   }
 }
 
-std::vector<engine::Command> ReferenceEgo::drive(const engine::WorldSnapshot& snap,
-                                                 const std::vector<engine::TrackedActor>& tracked,
+std::vector<sim::Command> ReferenceEgo::drive(const sim::WorldSnapshot& snap,
+                                                 const std::vector<sim::TrackedActor>& tracked,
                                                  std::vector<std::string>& events) {
   auto view = perceive(snap, tracked, kinds_, ego_, path_, path_s_, driver_.parameters().perception_range,
                        &nearby_motion_);
@@ -138,7 +138,7 @@ std::vector<engine::Command> ReferenceEgo::drive(const engine::WorldSnapshot& sn
   view->set_speed = set_speed_;
   const Decision d = driver_.step(*view);
   for (const auto& e : d.events) events.push_back(e);
-  return {engine::DriveSpeed{ego_, d.speed}};
+  return {sim::DriveSpeed{ego_, d.speed}};
 }
 
 }  // namespace orch::reference_driver

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "core/polyline.hpp"
-#include "engine/world.hpp"
+#include "sim/world.hpp"
 #include "reference_driver/r157_driver.hpp"
 
 namespace orch::reference_driver {
@@ -21,7 +21,7 @@ struct DrivingPath {
   std::optional<double> end_s;  // where the ego's route ends on the line (its centre stops there)
   // Where a stop the scenario gives the ego (its end_position, as SUMO is told: edge, lane,
   // lane position of the centre) lies on the line; unset: stops are not followed.
-  std::function<std::optional<double>(const engine::SetStop&)> stop_to_s;
+  std::function<std::optional<double>(const sim::SetStop&)> stop_to_s;
 };
 
 // Actors by SUMO id: which are pedestrians or obstacles (the others are vehicles).
@@ -51,7 +51,7 @@ class NearbyMotion {
 // path's frame; `path_s` is the ego's arc length at the last step (the search starts
 // there; negative: search the whole path). Nullopt when the ego is not on the road.
 // `motion`, if given, supplies the background vehicles' accelerations (else 0).
-std::optional<DriverView> perceive(const engine::WorldSnapshot& snap, const std::vector<engine::TrackedActor>& tracked,
+std::optional<DriverView> perceive(const sim::WorldSnapshot& snap, const std::vector<sim::TrackedActor>& tracked,
                                    const ObjectKinds& kinds, const std::string& ego, const DrivingPath& path,
                                    double path_s, double range, NearbyMotion* motion = nullptr);
 
@@ -61,7 +61,7 @@ class EgoWatch {
  public:
   EgoWatch(DrivingPath path, std::string ego, ObjectKinds kinds, double range)
       : path_(std::move(path)), ego_(std::move(ego)), kinds_(std::move(kinds)), range_(range) {}
-  void step(const engine::WorldSnapshot& snap, const std::vector<engine::TrackedActor>& tracked);
+  void step(const sim::WorldSnapshot& snap, const std::vector<sim::TrackedActor>& tracked);
   [[nodiscard]] const Exposure& exposure() const { return exposure_; }
 
  private:
@@ -80,10 +80,10 @@ class ReferenceEgo {
 
   // The scenario's commands of this step: a desired speed for the ego (its insertion's
   // max_speed, SetMaxSpeed) becomes the driver's set speed, a stop (SetStop) the end of its path.
-  void observe(const std::vector<engine::Command>& commands);
+  void observe(const std::vector<sim::Command>& commands);
   // The command that drives the ego in the next step (none while the ego is not on the
   // road); `events` gets what the driver noticed, for the run log.
-  std::vector<engine::Command> drive(const engine::WorldSnapshot& snap, const std::vector<engine::TrackedActor>& tracked,
+  std::vector<sim::Command> drive(const sim::WorldSnapshot& snap, const std::vector<sim::TrackedActor>& tracked,
                                      std::vector<std::string>& events);
 
   [[nodiscard]] const R157Driver& driver() const { return driver_; }

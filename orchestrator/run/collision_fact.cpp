@@ -5,7 +5,7 @@
 namespace orch {
 
 namespace {
-std::optional<double> speed_of(const engine::WorldSnapshot& snap, const std::vector<engine::TrackedActor>& tracked,
+std::optional<double> speed_of(const sim::WorldSnapshot& snap, const std::vector<sim::TrackedActor>& tracked,
                                const std::string& sumo_id) {
   for (std::size_t i = 0; i < tracked.size() && i < snap.actors.size(); ++i)
     if (tracked[i].sumo_id == sumo_id) return snap.actors[i].speed;
@@ -15,7 +15,7 @@ std::optional<double> speed_of(const engine::WorldSnapshot& snap, const std::vec
 }
 }  // namespace
 
-std::optional<double> relative_speed(const engine::WorldSnapshot& snap, const std::vector<engine::TrackedActor>& tracked,
+std::optional<double> relative_speed(const sim::WorldSnapshot& snap, const std::vector<sim::TrackedActor>& tracked,
                                      const std::string& a, const std::string& b) {
   const auto va = speed_of(snap, tracked, a);
   const auto vb = speed_of(snap, tracked, b);
@@ -23,8 +23,8 @@ std::optional<double> relative_speed(const engine::WorldSnapshot& snap, const st
   return std::abs(*va - *vb);
 }
 
-std::optional<CollisionFact> ego_collision_fact(const engine::Engine& engine, scenario::ActorId ego,
-                                                const engine::WorldSnapshot& snap) {
+std::optional<CollisionFact> ego_collision_fact(const engine::Engine& engine, sim::ActorId ego,
+                                                const sim::WorldSnapshot& snap) {
   const std::string me = std::to_string(ego);
   for (const auto& c : engine.contacts()) {
     if (!c.counted || (c.a != me && c.b != me)) continue;

@@ -5,19 +5,19 @@
 #include <string>
 #include <vector>
 
-#include "engine/engine.hpp"
+#include "scenario_executor_engine/engine.hpp"
 #include "run/run_result.hpp"
 
 namespace orch {
 
 // The speed difference of two SUMO ids (tracked actors or nearby background vehicles) in
 // `snap`; nullopt when either is not in it.
-std::optional<double> relative_speed(const engine::WorldSnapshot& snap, const std::vector<engine::TrackedActor>& tracked,
+std::optional<double> relative_speed(const sim::WorldSnapshot& snap, const std::vector<sim::TrackedActor>& tracked,
                                      const std::string& a, const std::string& b);
 
 // ScenarioExecutor runs: the ego's first counted contact so far, if any, with the speeds of
 // the engine's judged snapshot (scripted actors carry their commanded speed).
-std::optional<CollisionFact> ego_collision_fact(const engine::Engine& engine, scenario::ActorId ego,
-                                                const engine::WorldSnapshot& snap);
+std::optional<CollisionFact> ego_collision_fact(const engine::Engine& engine, sim::ActorId ego,
+                                                const sim::WorldSnapshot& snap);
 
 }  // namespace orch

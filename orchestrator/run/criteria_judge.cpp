@@ -10,7 +10,7 @@ CriteriaJudge::CriteriaJudge(std::vector<CriterionSpec> specs, const metrics::Me
     : specs_(std::move(specs)), metrics_(metrics), sink_(std::move(sink)) {}
 
 void CriteriaJudge::begin(const ObservedRun& run) {
-  const scenario::ActorId ego = run.ego().value_or(0);
+  const sim::ActorId ego = run.ego().value_or(0);
   states_.clear();
   for (const auto& s : specs_) states_.emplace_back(s, ego);
 }

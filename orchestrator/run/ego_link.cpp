@@ -5,8 +5,8 @@
 
 namespace orch {
 
-std::optional<scenario::ActorId> plugin_driven_actor(const EgoLink* link,
-                                                     const std::vector<engine::TrackedActor>& tracked) {
+std::optional<sim::ActorId> plugin_driven_actor(const EgoLink* link,
+                                                     const std::vector<sim::TrackedActor>& tracked) {
   if (!link || !link->driving()) return std::nullopt;
   for (const auto& t : tracked)
     if (t.sumo_id == kEgoSumoId) return t.id;

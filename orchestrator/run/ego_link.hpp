@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "core/errors.hpp"
-#include "engine/world.hpp"
+#include "sim/world.hpp"
 
 namespace orch {
 
@@ -63,8 +63,8 @@ inline constexpr int kPluginEgoLaneChangeMode = 1621 & ~0xFF;
 
 // The ego's actor id when a connected plug-in drives it this step (for the trace's
 // `driver` column), else nullopt.
-std::optional<scenario::ActorId> plugin_driven_actor(const EgoLink* link,
-                                                     const std::vector<engine::TrackedActor>& tracked);
+std::optional<sim::ActorId> plugin_driven_actor(const EgoLink* link,
+                                                     const std::vector<sim::TrackedActor>& tracked);
 
 // One line for the run log: who connected, how it ended, what it used most.
 std::string describe(const EgoLinkReport& report);

@@ -2,19 +2,19 @@
 
 namespace orch {
 
-std::optional<scenario::ActorId> EngineRun::ego() const {
+std::optional<sim::ActorId> EngineRun::ego() const {
   for (const auto& slot : engine_.actors().slots())
     if (slot.is_ego()) return slot.spec.id;
   return std::nullopt;
 }
 
-std::optional<ObservedBody> EngineRun::body(scenario::ActorId id) const {
+std::optional<ObservedBody> EngineRun::body(sim::ActorId id) const {
   const engine::ActorSlot* slot = engine_.actors().find(id);
   if (!slot) return std::nullopt;
   return ObservedBody{std::to_string(id), slot->model.length, slot->model.width, slot->tracked.kind};
 }
 
-const Polyline* EngineRun::path_of(scenario::ActorId id) const {
+const Polyline* EngineRun::path_of(sim::ActorId id) const {
   const WaypointRoute* route = engine_.route_of(id);
   return route ? &route->line : nullptr;
 }

@@ -18,7 +18,7 @@ std::string cell(const std::optional<double>& v) { return v ? fmt::format("{:.3f
 
 struct Measured {
   Body body;
-  engine::Box box;
+  sim::Box box;
   bool actor = false;
 };
 
@@ -29,13 +29,13 @@ MetricsRecorder::MetricsRecorder(const std::filesystem::path& csv, const LaneMap
   for (int i = 0; i < static_cast<int>(lanes.lanes().size()); ++i) lane_index_[lanes.lane(i).id] = i;
 }
 
-const ActorMetrics* MetricsRecorder::current(scenario::ActorId id) const {
+const ActorMetrics* MetricsRecorder::current(sim::ActorId id) const {
   for (const auto& m : current_)
     if (m.actor == id) return &m;
   return nullptr;
 }
 
-std::optional<double> MetricsRecorder::departure(const engine::ActorState& a, double length, double width) const {
+std::optional<double> MetricsRecorder::departure(const sim::ActorState& a, double length, double width) const {
   const auto it = lane_index_.find(a.edge + "_" + std::to_string(a.lane));
   if (it == lane_index_.end()) return std::nullopt;
   const LaneInfo& lane = lanes_.lane(it->second);
@@ -45,7 +45,7 @@ std::optional<double> MetricsRecorder::departure(const engine::ActorState& a, do
 }
 
 void MetricsRecorder::step(const StepView& view) {
-  const engine::WorldSnapshot& snap = view.run.judged();
+  const sim::WorldSnapshot& snap = view.run.judged();
   const double dt = last_time_ ? snap.time - *last_time_ : 0.0;
   last_time_ = snap.time;
   std::vector<Measured> bodies;
@@ -54,12 +54,12 @@ void MetricsRecorder::step(const StepView& view) {
     const auto known = view.run.body(a.id);
     if (!known) continue;
     Body b{known->label, a.position, a.heading, a.speed, known->length, known->width};
-    const engine::Box box{a.position, a.heading, b.length, b.width};
+    const sim::Box box{a.position, a.heading, b.length, b.width};
     bodies.push_back({std::move(b), box, true});
   }
   for (const auto& v : snap.nearby)
     bodies.push_back({Body{v.sumo_id, v.position, v.heading, v.speed, v.length, v.width},
-                      engine::Box{v.position, v.heading, v.length, v.width}, false});
+                      sim::Box{v.position, v.heading, v.length, v.width}, false});
   std::vector<Body> others;
   others.reserve(bodies.size());
   std::vector<TrajectoryBook::Seen> seen;
@@ -94,7 +94,7 @@ void MetricsRecorder::step(const StepView& view) {
     last_kinematics_[a.id] = m.kinematics;
     m.lane_departure = departure(a, self.length, self.width);
 
-    const engine::Box own{a.position, a.heading, self.length, self.width};
+    const sim::Box own{a.position, a.heading, self.length, self.width};
     const double own_reach = std::hypot(self.length, self.width) / 2;
     double best = std::numeric_limits<double>::infinity();
     for (const auto& b : bodies) {

@@ -30,19 +30,19 @@ class MetricsRecorder : public RunObserver {
 
   // This step's metrics, one per measured actor present.
   [[nodiscard]] const std::vector<ActorMetrics>& current() const { return current_; }
-  [[nodiscard]] const ActorMetrics* current(scenario::ActorId id) const;
+  [[nodiscard]] const ActorMetrics* current(sim::ActorId id) const;
   [[nodiscard]] std::vector<ActorSummary> summaries() const;
 
  private:
-  [[nodiscard]] std::optional<double> departure(const engine::ActorState& a, double length, double width) const;
+  [[nodiscard]] std::optional<double> departure(const sim::ActorState& a, double length, double width) const;
 
   OutputFile file_;
   const LaneMap& lanes_;
   std::unordered_map<std::string, int> lane_index_;  // SUMO lane id -> LaneMap index
   std::vector<ActorMetrics> current_;
-  std::map<scenario::ActorId, KinematicSample> last_sample_;
-  std::map<scenario::ActorId, Kinematics> last_kinematics_;
-  std::map<scenario::ActorId, ActorSummary> summaries_;
+  std::map<sim::ActorId, KinematicSample> last_sample_;
+  std::map<sim::ActorId, Kinematics> last_kinematics_;
+  std::map<sim::ActorId, ActorSummary> summaries_;
   TrajectoryBook trajectories_;  // every body seen, for PET at the end
   std::optional<double> last_time_;
 };

@@ -31,17 +31,17 @@ double OpenScenarioEgo::spawn_speed(const openscenario::EntityState& state) {
   return desired_speed_;
 }
 
-std::vector<engine::Command> OpenScenarioEgo::commands(const openscenario::EntityState& state, engine::SetPose pose) {
-  std::vector<engine::Command> out;
+std::vector<sim::Command> OpenScenarioEgo::commands(const openscenario::EntityState& state, sim::SetPose pose) {
+  std::vector<sim::Command> out;
   const Driver d = driver(state);
   const bool hand_over = d == Driver::Plugin;
   if (external_ && hand_over != handed_over_) {
-    out.push_back(engine::SetParameter{sumo_id(), "orch.hand_over", hand_over ? "1" : "0"});
+    out.push_back(sim::SetParameter{sumo_id(), "orch.hand_over", hand_over ? "1" : "0"});
     handed_over_ = hand_over;
   }
   if (d == Driver::Plugin) return out;  // the system under test alone
   const double desired = storyboard_desired_speed(state, desired_speed_);
-  if (desired != desired_speed_) out.push_back(engine::SetMaxSpeed{sumo_id(), desired});
+  if (desired != desired_speed_) out.push_back(sim::SetMaxSpeed{sumo_id(), desired});
   desired_speed_ = desired;
   if (d == Driver::Storyboard) {
     pose.sumo_id = sumo_id();

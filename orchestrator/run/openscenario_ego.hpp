@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "engine/world.hpp"
+#include "sim/world.hpp"
 #include "openscenario/entity_motion.hpp"
 
 namespace orch {
@@ -40,7 +40,7 @@ class OpenScenarioEgo {
   double spawn_speed(const openscenario::EntityState& state);
   // Commands for the spawned ego this step; `pose` puts its centre where the storyboard has
   // it (used while the storyboard moves it).
-  std::vector<engine::Command> commands(const openscenario::EntityState& state, engine::SetPose pose);
+  std::vector<sim::Command> commands(const openscenario::EntityState& state, sim::SetPose pose);
 
  private:
   std::string name_;

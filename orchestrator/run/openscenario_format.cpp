@@ -48,7 +48,7 @@ std::string traffic_route_file(const RunRequest& req, const std::filesystem::pat
   return std::filesystem::absolute(file).string();
 }
 
-const engine::ActorState* find_actor(const engine::WorldSnapshot& snap, const OpenScenarioActors& actors,
+const sim::ActorState* find_actor(const sim::WorldSnapshot& snap, const OpenScenarioActors& actors,
                                      const std::string& name) {
   for (const auto& a : snap.actors)
     if (actors.name_of(a.id) == name) return &a;
@@ -60,7 +60,7 @@ const engine::ActorState* find_actor(const engine::WorldSnapshot& snap, const Op
 // entity's first SUMO id is its name); actor_id here is the run's index of the entity.
 std::vector<ActorRecord> entity_records(const OpenScenarioActors& actors) {
   std::vector<ActorRecord> out;
-  for (const engine::TrackedActor& t : actors.tracked()) {
+  for (const sim::TrackedActor& t : actors.tracked()) {
     const std::string& name = actors.name_of(t.id);
     out.push_back({static_cast<int>(t.id), name, "", "", "", t.length, t.width, name == actors.ego()});
   }
@@ -70,7 +70,7 @@ std::vector<ActorRecord> entity_records(const OpenScenarioActors& actors) {
 
 // The ego's first collision SUMO reported, if any (its SUMO vehicle: the ego's name, or
 // "ego" with an external ego).
-std::optional<CollisionFact> sumo_ego_collision(const engine::WorldSnapshot& snap, const OpenScenarioActors& actors,
+std::optional<CollisionFact> sumo_ego_collision(const sim::WorldSnapshot& snap, const OpenScenarioActors& actors,
                                                 const std::string& ego, double time) {
   if (ego.empty()) return std::nullopt;
   const std::string sumo_id = actors.ego_drive().sumo_id();
@@ -142,18 +142,18 @@ class OpenScenarioFormat : public RunFormat {
   [[nodiscard]] const LaneMap& measured_lanes() const override { return *sumo_lanes_; }
   [[nodiscard]] const ObservedRun& observed() const override { return *observed_; }
 
-  std::vector<engine::Command> start(RunResult& /*result*/, RunLog& /*log*/) override {
+  std::vector<sim::Command> start(RunResult& /*result*/, RunLog& /*log*/) override {
     auto commands = actors_->place(runtime_->entities());
     watch_ego(nullptr);
     return commands;
   }
-  [[nodiscard]] const std::vector<engine::TrackedActor>& tracked() const override { return actors_->tracked(); }
+  [[nodiscard]] const std::vector<sim::TrackedActor>& tracked() const override { return actors_->tracked(); }
   std::optional<reference_driver::ReferenceEgo> take_reference_ego() override {
     return std::exchange(reference_ego_, std::nullopt);
   }
 
-  double take_step(const engine::WorldSnapshot& snap, RunResult& result, RunLog& log) override;
-  std::optional<CollisionFact> ego_collision(const engine::WorldSnapshot& snap, double time, RunLog& log) override {
+  double take_step(const sim::WorldSnapshot& snap, RunResult& result, RunLog& log) override;
+  std::optional<CollisionFact> ego_collision(const sim::WorldSnapshot& snap, double time, RunLog& log) override {
     auto fact = sumo_ego_collision(snap, *actors_, ego_, time);
     if (fact) {
       collision_ = fmt::format("the ego {} collided with {} at t={:.2f} s", ego_, fact->with, time);
@@ -166,7 +166,7 @@ class OpenScenarioFormat : public RunFormat {
     return fmt::format("--max-time {} s reached before the Storyboard's StopTrigger", max_time);
   }
   // The storyboard advances a step; the poses of its time t reach SUMO in the next step.
-  std::vector<engine::Command> commands(const engine::WorldSnapshot& snap, RunLog& /*log*/) override {
+  std::vector<sim::Command> commands(const sim::WorldSnapshot& snap, RunLog& /*log*/) override {
     runtime_->step(req_.step);
     auto commands = actors_->place(runtime_->entities());
     watch_ego(&snap);
@@ -195,7 +195,7 @@ class OpenScenarioFormat : public RunFormat {
  private:
   // The reference driver takes the ego (and the ego's watch starts) once the storyboard has
   // placed it; the watch measures every step after.
-  void watch_ego(const engine::WorldSnapshot* snap) {
+  void watch_ego(const sim::WorldSnapshot* snap) {
     if (!ego_watch_ && !ego_.empty()) {
       const auto it = runtime_->entities().find(ego_);
       if (it != runtime_->entities().end() && it->second.placed) {
@@ -273,7 +273,7 @@ void OpenScenarioFormat::open(RunResult& result, RunLog& log, SimulatorConfig& c
   }
 }
 
-double OpenScenarioFormat::take_step(const engine::WorldSnapshot& snap, RunResult& result, RunLog& log) {
+double OpenScenarioFormat::take_step(const sim::WorldSnapshot& snap, RunResult& result, RunLog& log) {
   // The poses of storyboard time t reached SUMO in this step: the step's time is t.
   const double t = runtime_->time();
   background_ = snap.other_vehicles;
@@ -287,7 +287,7 @@ double OpenScenarioFormat::take_step(const engine::WorldSnapshot& snap, RunResul
   // (The observers see the step afterwards, through observed_, which does not read the runtime.)
   for (const std::string& driven : actors_->sumo_driven()) {
     if (driven == ego_ && ego_driver == OpenScenarioEgo::Driver::Storyboard) continue;
-    if (const engine::ActorState* e = find_actor(snap, *actors_, driven); e && e->present) {
+    if (const sim::ActorState* e = find_actor(snap, *actors_, driven); e && e->present) {
       const Vec2 ref = actors_->reference_point(*e);
       runtime_->observe(driven, {ref.x(), ref.y(), e->heading}, e->speed, e->accel);
     }

@@ -10,18 +10,18 @@ OpenScenarioRun::OpenScenarioRun(const openscenario::Scenario& scenario, const o
                                  const OpenScenarioActors& actors)
     : scenario_(scenario), roads_(roads), actors_(actors) {}
 
-std::optional<scenario::ActorId> OpenScenarioRun::id_of(const std::string& name) const {
+std::optional<sim::ActorId> OpenScenarioRun::id_of(const std::string& name) const {
   for (std::size_t i = 0; i < scenario_.entities.size(); ++i)
-    if (actors_.name_of(static_cast<engine::ActorId>(i)) == name) return static_cast<scenario::ActorId>(i);
+    if (actors_.name_of(static_cast<sim::ActorId>(i)) == name) return static_cast<sim::ActorId>(i);
   return std::nullopt;
 }
 
-std::optional<scenario::ActorId> OpenScenarioRun::ego() const {
+std::optional<sim::ActorId> OpenScenarioRun::ego() const {
   return actors_.ego().empty() ? std::nullopt : id_of(actors_.ego());
 }
 
-std::optional<ObservedBody> OpenScenarioRun::body(scenario::ActorId id) const {
-  for (const engine::TrackedActor& t : actors_.tracked()) {
+std::optional<ObservedBody> OpenScenarioRun::body(sim::ActorId id) const {
+  for (const sim::TrackedActor& t : actors_.tracked()) {
     if (t.id != id) continue;
     const std::string& name = actors_.name_of(t.id);
     ActorKind kind = ActorKind::Vehicle;  // SUMO has every entity as a vehicle; the metrics go by the entity
@@ -34,18 +34,18 @@ std::optional<ObservedBody> OpenScenarioRun::body(scenario::ActorId id) const {
   return std::nullopt;
 }
 
-const Polyline* OpenScenarioRun::path_of(scenario::ActorId id) const {
+const Polyline* OpenScenarioRun::path_of(sim::ActorId id) const {
   const auto it = paths_.find(id);
   return it == paths_.end() ? nullptr : &it->second;
 }
 
-void OpenScenarioRun::update(const engine::WorldSnapshot& snapshot, double time,
+void OpenScenarioRun::update(const sim::WorldSnapshot& snapshot, double time,
                              const std::map<std::string, openscenario::EntityState>& entities,
                              bool stop_trigger_fired) {
   snapshot_ = snapshot;
   snapshot_.time = time;
   stop_trigger_fired_ = stop_trigger_fired;
-  for (const engine::TrackedActor& t : actors_.tracked()) {
+  for (const sim::TrackedActor& t : actors_.tracked()) {
     if (paths_.count(t.id)) continue;
     const auto state = entities.find(actors_.name_of(t.id));
     if (state != entities.end() && state->second.placed && !state->second.road_id.empty())
@@ -54,17 +54,17 @@ void OpenScenarioRun::update(const engine::WorldSnapshot& snapshot, double time,
   record_contacts(snapshot, time);
 }
 
-void OpenScenarioRun::record_contacts(const engine::WorldSnapshot& snapshot, double time) {
+void OpenScenarioRun::record_contacts(const sim::WorldSnapshot& snapshot, double time) {
   // Contacts name entities by run index, like ScenarioExecutor actors (criteria's `With`),
   // and other SUMO vehicles by their SUMO id.
   auto body_id = [&](const std::string& sumo_id) -> std::optional<std::string> {
-    for (const engine::TrackedActor& t : actors_.tracked())
+    for (const sim::TrackedActor& t : actors_.tracked())
       if (t.sumo_id == sumo_id) return std::to_string(t.id);
     return std::nullopt;
   };
   auto position_of = [&](const std::string& sumo_id) {
     for (const auto& a : snapshot.actors)
-      for (const engine::TrackedActor& t : actors_.tracked())
+      for (const sim::TrackedActor& t : actors_.tracked())
         if (t.id == a.id && t.sumo_id == sumo_id) return a.position;
     for (const auto& v : snapshot.nearby)
       if (v.sumo_id == sumo_id) return v.position;

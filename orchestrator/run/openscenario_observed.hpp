@@ -28,29 +28,29 @@ class OpenScenarioRun : public ObservedRun {
   // The step the observers see next: the snapshot read after storyboard time `time` (its
   // rows carry that time, like trace.csv), the entities as the storyboard has them, and
   // whether the StopTrigger has fired.
-  void update(const engine::WorldSnapshot& snapshot, double time,
+  void update(const sim::WorldSnapshot& snapshot, double time,
               const std::map<std::string, openscenario::EntityState>& entities, bool stop_trigger_fired);
 
-  [[nodiscard]] const engine::WorldSnapshot& judged() const override { return snapshot_; }
-  [[nodiscard]] std::optional<scenario::ActorId> ego() const override;
-  [[nodiscard]] std::optional<ObservedBody> body(scenario::ActorId id) const override;
-  [[nodiscard]] const Polyline* path_of(scenario::ActorId id) const override;
+  [[nodiscard]] const sim::WorldSnapshot& judged() const override { return snapshot_; }
+  [[nodiscard]] std::optional<sim::ActorId> ego() const override;
+  [[nodiscard]] std::optional<ObservedBody> body(sim::ActorId id) const override;
+  [[nodiscard]] const Polyline* path_of(sim::ActorId id) const override;
   [[nodiscard]] int scene() const override { return 0; }
   [[nodiscard]] bool ending_reached() const override { return stop_trigger_fired_; }
   [[nodiscard]] const std::vector<engine::SceneVisit>& visits() const override { return visits_; }
   [[nodiscard]] const std::vector<engine::Contact>& contacts() const override { return contacts_; }
 
   // The entity's run index (result.json actors[].actor_id), nullopt for a name it does not have.
-  [[nodiscard]] std::optional<scenario::ActorId> id_of(const std::string& name) const;
+  [[nodiscard]] std::optional<sim::ActorId> id_of(const std::string& name) const;
 
  private:
-  void record_contacts(const engine::WorldSnapshot& snapshot, double time);
+  void record_contacts(const sim::WorldSnapshot& snapshot, double time);
 
   const openscenario::Scenario& scenario_;
   const opendrive::RoadNetwork& roads_;
   const OpenScenarioActors& actors_;
-  engine::WorldSnapshot snapshot_;
-  std::map<scenario::ActorId, Polyline> paths_;
+  sim::WorldSnapshot snapshot_;
+  std::map<sim::ActorId, Polyline> paths_;
   std::vector<engine::SceneVisit> visits_;  // always empty
   std::vector<engine::Contact> contacts_;
   std::set<std::pair<std::string, std::string>> touched_;  // pairs already in contacts_

@@ -54,7 +54,7 @@ OpenScenarioActors::OpenScenarioActors(const openscenario::Scenario& scenario, c
     : lanes_(lanes), ego_(std::move(ego)), ego_drive_(ego_, external_ego) {
   for (const auto& e : scenario.entities) {
     Body body;
-    body.id = static_cast<engine::ActorId>(names_.size());
+    body.id = static_cast<sim::ActorId>(names_.size());
     body.model = model_of(e);
     body.centre_x = e.box.center_x;
     body.centre_y = e.box.center_y;
@@ -68,7 +68,7 @@ Vec2 OpenScenarioActors::centre_of(const Body& body, const opendrive::Pose2& pos
   return {pose.x + body.centre_x * c - body.centre_y * s, pose.y + body.centre_x * s + body.centre_y * c};
 }
 
-Vec2 OpenScenarioActors::reference_point(const engine::ActorState& state) const {
+Vec2 OpenScenarioActors::reference_point(const sim::ActorState& state) const {
   const Body& body = bodies_.at(name_of(state.id));
   const double c = std::cos(state.heading), s = std::sin(state.heading);
   return {state.position.x() - body.centre_x * c + body.centre_y * s,
@@ -82,7 +82,7 @@ std::vector<std::string> OpenScenarioActors::sumo_route_of(const openscenario::E
 }
 
 void OpenScenarioActors::spawn(const std::string& name, Body& body, const openscenario::EntityState& state,
-                               std::vector<engine::Command>& out) {
+                               std::vector<sim::Command>& out) {
   const auto hint = lanes_.find(state.road_id, state.lane, state.s);
   if (!hint)
     throw MapError(fmt::format("entity {} starts on road {} lane {} at s={:.2f}, of which the SUMO net has no lane",
@@ -90,8 +90,8 @@ void OpenScenarioActors::spawn(const std::string& name, Body& body, const opensc
   ++body.lives;
   const std::string first_id = name == ego_ ? ego_drive_.sumo_id() : name;
   body.sumo_id = body.lives == 1 ? first_id : fmt::format("{}~{}", first_id, body.lives);
-  engine::TrackedActor actor{body.id, body.sumo_id, body.model.kind, body.model.length, body.model.width};
-  engine::SpawnVehicle command;
+  sim::TrackedActor actor{body.id, body.sumo_id, body.model.kind, body.model.length, body.model.width};
+  sim::SpawnVehicle command;
   command.actor = actor;
   command.model = body.model;
   command.route = {hint->edge};
@@ -114,15 +114,15 @@ void OpenScenarioActors::spawn(const std::string& name, Body& body, const opensc
   body.spawned = true;
 }
 
-std::vector<engine::Command> OpenScenarioActors::place(const std::map<std::string, openscenario::EntityState>& entities) {
-  std::vector<engine::Command> out;
+std::vector<sim::Command> OpenScenarioActors::place(const std::map<std::string, openscenario::EntityState>& entities) {
+  std::vector<sim::Command> out;
   for (const auto& [name, state] : entities) {
     Body& body = bodies_.at(name);
     const bool is_ego = name == ego_;
     const bool in_traffic = state.placed && state.visibility.traffic;
     if (!in_traffic) {
       if (body.spawned) {
-        out.push_back(engine::RemoveActor{body.sumo_id, body.model.kind});
+        out.push_back(sim::RemoveActor{body.sumo_id, body.model.kind});
         body.spawned = false;
       }
       continue;
@@ -134,14 +134,14 @@ std::vector<engine::Command> OpenScenarioActors::place(const std::map<std::strin
       spawn(name, body, state, out);
     } else if (body.driven && !is_ego) {
       const double desired = storyboard_desired_speed(state, body.desired_speed);
-      if (hand_over) out.push_back(engine::ReleaseActor{body.sumo_id, desired});
-      else if (desired != body.desired_speed) out.push_back(engine::SetMaxSpeed{body.sumo_id, desired});
+      if (hand_over) out.push_back(sim::ReleaseActor{body.sumo_id, desired});
+      else if (desired != body.desired_speed) out.push_back(sim::SetMaxSpeed{body.sumo_id, desired});
       body.desired_speed = desired;
       if (hand_over || body.route_version != state.route_version) set_route(body, state, out);
       continue;
     }
     const auto hint = lanes_.find(state.road_id, state.lane, state.s);
-    engine::SetPose pose;
+    sim::SetPose pose;
     pose.sumo_id = body.sumo_id;
     pose.kind = body.model.kind;
     pose.length = body.model.length;
@@ -165,9 +165,9 @@ std::vector<engine::Command> OpenScenarioActors::place(const std::map<std::strin
 }
 
 void OpenScenarioActors::set_route(Body& body, const openscenario::EntityState& state,
-                                   std::vector<engine::Command>& out) {
+                                   std::vector<sim::Command>& out) {
   body.route_version = state.route_version;
-  if (auto route = sumo_route_of(state); !route.empty()) out.push_back(engine::SetRoute{body.sumo_id, std::move(route)});
+  if (auto route = sumo_route_of(state); !route.empty()) out.push_back(sim::SetRoute{body.sumo_id, std::move(route)});
 }
 
 std::vector<std::string> OpenScenarioActors::sumo_driven() const {

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "engine/world.hpp"
+#include "sim/world.hpp"
 #include "opendrive/sumo_lanes.hpp"
 #include "openscenario/entity_motion.hpp"
 #include "openscenario/model.hpp"
@@ -33,22 +33,22 @@ class OpenScenarioActors {
   // taken out of SUMO, and spawned again (under a new SUMO id) when it comes back. A non-ego
   // entity whose controller is activated (Assign/ActivateControllerAction) is handed to
   // SUMO's driver like the ego. Throws MapError when an entity first appears where SUMO has no lane.
-  std::vector<engine::Command> place(const std::map<std::string, openscenario::EntityState>& entities);
+  std::vector<sim::Command> place(const std::map<std::string, openscenario::EntityState>& entities);
   // Entities SUMO drives (the ego, activated controllers): the storyboard observes them.
   [[nodiscard]] std::vector<std::string> sumo_driven() const;
   [[nodiscard]] bool is_sumo_driven(const std::string& name) const;
 
   // The actors SUMO knows (spawned so far), for Simulator::read.
-  [[nodiscard]] const std::vector<engine::TrackedActor>& tracked() const { return tracked_; }
-  [[nodiscard]] const std::string& name_of(engine::ActorId id) const { return names_.at(static_cast<size_t>(id)); }
+  [[nodiscard]] const std::vector<sim::TrackedActor>& tracked() const { return tracked_; }
+  [[nodiscard]] const std::string& name_of(sim::ActorId id) const { return names_.at(static_cast<size_t>(id)); }
   // The entity's reference point (rear axle centre for vehicles) from SUMO's reported centre.
-  [[nodiscard]] Vec2 reference_point(const engine::ActorState& state) const;
+  [[nodiscard]] Vec2 reference_point(const sim::ActorState& state) const;
   [[nodiscard]] const std::string& ego() const { return ego_; }
   [[nodiscard]] const OpenScenarioEgo& ego_drive() const { return ego_drive_; }
 
  private:
   struct Body {
-    engine::ActorId id = 0;
+    sim::ActorId id = 0;
     ModelInfo model;
     double centre_x = 0, centre_y = 0;  // bounding box centre relative to the reference point
     bool spawned = false;
@@ -61,16 +61,16 @@ class OpenScenarioActors {
   [[nodiscard]] Vec2 centre_of(const Body& body, const opendrive::Pose2& pose) const;
   // SUMO edges for a SUMO-driven entity: its road, its planned lanes, then straight on.
   [[nodiscard]] std::vector<std::string> sumo_route_of(const openscenario::EntityState& state) const;
-  void set_route(Body& body, const openscenario::EntityState& state, std::vector<engine::Command>& out);
+  void set_route(Body& body, const openscenario::EntityState& state, std::vector<sim::Command>& out);
   void spawn(const std::string& name, Body& body, const openscenario::EntityState& state,
-             std::vector<engine::Command>& out);
+             std::vector<sim::Command>& out);
 
   const opendrive::SumoLaneIndex& lanes_;
   std::string ego_;
   OpenScenarioEgo ego_drive_;
   std::map<std::string, Body> bodies_;
   std::vector<std::string> names_;  // by actor id
-  std::vector<engine::TrackedActor> tracked_;
+  std::vector<sim::TrackedActor> tracked_;
 };
 
 }  // namespace orch

@@ -21,7 +21,7 @@ class PacedSimulator final : public Simulator {
     steps_ = 0;
     origin_ = std::chrono::steady_clock::now();
   }
-  void apply(const std::vector<engine::Command>& commands) override { inner_.apply(commands); }
+  void apply(const std::vector<sim::Command>& commands) override { inner_.apply(commands); }
   // After each step, waits until its simulated time is due; a step that took longer is not
   // made up for by skipping waits later (the run falls behind, it does not rush).
   void advance() override {
@@ -38,7 +38,7 @@ class PacedSimulator final : public Simulator {
       origin_ += now - due;
     }
   }
-  engine::WorldSnapshot read(const std::vector<engine::TrackedActor>& actors) override { return inner_.read(actors); }
+  sim::WorldSnapshot read(const std::vector<sim::TrackedActor>& actors) override { return inner_.read(actors); }
   double time() override { return inner_.time(); }
   [[nodiscard]] std::string backend() const override { return inner_.backend(); }
   std::string version() override { return inner_.version(); }

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "engine/engine.hpp"
+#include "scenario_executor_engine/engine.hpp"
 #include "run/run_result.hpp"
 
 namespace orch {

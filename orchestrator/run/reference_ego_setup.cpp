@@ -40,7 +40,7 @@ std::optional<ReferenceEgo> reference_ego_for(const EgoModelChoice& choice, cons
   DrivingPath path;
   path.line = route->line;
   // The ego's end_position as the engine tells SUMO to stop there: the same place.
-  path.stop_to_s = [&lanes, route](const engine::SetStop& stop) -> std::optional<double> {
+  path.stop_to_s = [&lanes, route](const sim::SetStop& stop) -> std::optional<double> {
     for (std::size_t i = 0; i < lanes.lanes().size(); ++i) {
       const LaneInfo& lane = lanes.lanes()[i];
       if (lane.edge != stop.edge || lane.index != stop.lane) continue;

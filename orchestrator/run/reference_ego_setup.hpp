@@ -3,7 +3,7 @@
 // ego's lane as its path, the ego's size, which actors are pedestrians or obstacles.
 #include <optional>
 
-#include "engine/engine.hpp"
+#include "scenario_executor_engine/engine.hpp"
 #include "map/lane_map.hpp"
 #include "opendrive/road_network.hpp"
 #include "openscenario/entity_motion.hpp"

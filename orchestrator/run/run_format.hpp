@@ -22,7 +22,7 @@
 #include <utility>
 #include <vector>
 
-#include "engine/world.hpp"
+#include "sim/world.hpp"
 #include "map/lane_map.hpp"
 #include "reference_driver/reference_ego.hpp"
 #include "run/run_log.hpp"
@@ -52,9 +52,9 @@ class RunFormat {
   [[nodiscard]] virtual const ObservedRun& observed() const = 0;
 
   // The first commands: the actors placed.
-  virtual std::vector<engine::Command> start(RunResult& result, RunLog& log) = 0;
+  virtual std::vector<sim::Command> start(RunResult& result, RunLog& log) = 0;
   // The actors to read from the simulator (it may grow as entities appear).
-  [[nodiscard]] virtual const std::vector<engine::TrackedActor>& tracked() const = 0;
+  [[nodiscard]] virtual const std::vector<sim::TrackedActor>& tracked() const = 0;
   // The R157 reference driver once it drives the ego (--ego-model r157), handed to the loop
   // the first time it is asked after the language placed the ego; nullopt before, and when
   // another model drives.
@@ -62,16 +62,16 @@ class RunFormat {
 
   // The step just simulated, as read: the scenario logic sees it (its events go to the log
   // and the result). Returns the step's time as the run records it.
-  virtual double take_step(const engine::WorldSnapshot& snapshot, RunResult& result, RunLog& log) = 0;
+  virtual double take_step(const sim::WorldSnapshot& snapshot, RunResult& result, RunLog& log) = 0;
   // The ego's first collision, if it happened by this step.
-  virtual std::optional<CollisionFact> ego_collision(const engine::WorldSnapshot& snapshot, double time,
+  virtual std::optional<CollisionFact> ego_collision(const sim::WorldSnapshot& snapshot, double time,
                                                      RunLog& log) = 0;
   // The scenario's own end (an ending scene, a stop condition, the StopTrigger).
   [[nodiscard]] virtual bool ended() const = 0;
   // Why --max-time ended the run, in the language's words.
   [[nodiscard]] virtual std::string max_time_reason(double max_time) const = 0;
   // The commands for the next step (the reference driver's are added by the loop).
-  virtual std::vector<engine::Command> commands(const engine::WorldSnapshot& snapshot, RunLog& log) = 0;
+  virtual std::vector<sim::Command> commands(const sim::WorldSnapshot& snapshot, RunLog& log) = 0;
   // The step loop has ended without an error: the verdict of the language's own end.
   virtual void conclude(RunResult& result, RunLog& log) = 0;
 

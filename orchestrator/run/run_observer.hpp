@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "core/polyline.hpp"
-#include "engine/engine.hpp"
+#include "scenario_executor_engine/engine.hpp"
 
 namespace orch {
 
@@ -31,12 +31,12 @@ class ObservedRun {
  public:
   virtual ~ObservedRun() = default;
   // The snapshot as judged (scripted ScenarioExecutor actors carry their commanded speed).
-  [[nodiscard]] virtual const engine::WorldSnapshot& judged() const = 0;
-  [[nodiscard]] virtual std::optional<scenario::ActorId> ego() const = 0;
+  [[nodiscard]] virtual const sim::WorldSnapshot& judged() const = 0;
+  [[nodiscard]] virtual std::optional<sim::ActorId> ego() const = 0;
   // Null for an id the run does not have.
-  [[nodiscard]] virtual std::optional<ObservedBody> body(scenario::ActorId id) const = 0;
+  [[nodiscard]] virtual std::optional<ObservedBody> body(sim::ActorId id) const = 0;
   // The line along which the actor's leader and follower are searched (its route); null: none.
-  [[nodiscard]] virtual const Polyline* path_of(scenario::ActorId id) const = 0;
+  [[nodiscard]] virtual const Polyline* path_of(sim::ActorId id) const = 0;
   // Scenes are ScenarioExecutor's: an OpenSCENARIO run stays in scene 0 and has no visits;
   // its "ending" is the Storyboard's StopTrigger.
   [[nodiscard]] virtual int scene() const = 0;
@@ -47,8 +47,8 @@ class ObservedRun {
 
 struct StepView {
   const ObservedRun& run;                     // run.judged(): the snapshot as judged
-  const engine::WorldSnapshot& snapshot;      // as read from the simulator
-  std::optional<scenario::ActorId> plugin_driven;  // the actor an ego plug-in drove in this step
+  const sim::WorldSnapshot& snapshot;      // as read from the simulator
+  std::optional<sim::ActorId> plugin_driven;  // the actor an ego plug-in drove in this step
 };
 
 class RunObserver {

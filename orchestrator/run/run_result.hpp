@@ -8,7 +8,7 @@
 
 #include "core/verdict.hpp"
 #include "criteria/criterion_result.hpp"
-#include "engine/engine.hpp"
+#include "scenario_executor_engine/engine.hpp"
 #include "metrics/actor_metrics.hpp"
 #include "run/ego_link.hpp"
 

@@ -67,7 +67,7 @@ RunResult run_format(const RunRequest& req, Simulator& sim, RunFormat& format) {
     // The R157 reference driver drives the ego once the language has placed it (never with
     // a plug-in): it sees the scenario's commands and adds its own.
     std::optional<reference_driver::ReferenceEgo> reference_ego;
-    auto drive_ego = [&](std::vector<engine::Command>& commands, const engine::WorldSnapshot* snap) {
+    auto drive_ego = [&](std::vector<sim::Command>& commands, const sim::WorldSnapshot* snap) {
       if (!reference_ego) reference_ego = format.take_reference_ego();
       if (!reference_ego) return;
       reference_ego->observe(commands);
@@ -85,7 +85,7 @@ RunResult run_format(const RunRequest& req, Simulator& sim, RunFormat& format) {
       sim.advance();
       result.timing.sumo_step_s += seconds_since(before_step);
       ++result.steps;
-      const engine::WorldSnapshot snap = sim.read(format.tracked());
+      const sim::WorldSnapshot snap = sim.read(format.tracked());
       const double t = format.take_step(snap, result, log);
       result.sim_time = t;
       observers.step(StepView{format.observed(), snap, plugin_driven_actor(req.ego_link, format.tracked())});

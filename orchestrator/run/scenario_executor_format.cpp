@@ -6,7 +6,7 @@
 
 #include "core/errors.hpp"
 #include "core/files.hpp"
-#include "engine/engine.hpp"
+#include "scenario_executor_engine/engine.hpp"
 #include "map/background_traffic.hpp"
 #include "map/map_registry.hpp"
 #include "map/waypoint_file.hpp"
@@ -16,9 +16,9 @@
 #include "run/ssm_device.hpp"
 #include "run/trace_writer.hpp"
 #include "run/traffic_trace.hpp"
-#include "scenario/catalog.hpp"
-#include "scenario/loader.hpp"
-#include "scenario/validator.hpp"
+#include "scenario_executor/catalog.hpp"
+#include "scenario_executor/loader.hpp"
+#include "scenario_executor/validator.hpp"
 
 namespace orch {
 
@@ -142,7 +142,7 @@ class ScenarioExecutorFormat : public RunFormat {
   [[nodiscard]] const LaneMap& measured_lanes() const override { return *lanes_; }
   [[nodiscard]] const ObservedRun& observed() const override { return *observed_; }
 
-  std::vector<engine::Command> start(RunResult& result, RunLog& log) override {
+  std::vector<sim::Command> start(RunResult& result, RunLog& log) override {
     engine::StepOutput out = engine_->start();
     log_events(log, result, out.events);
     // The R157 reference driver drives the ego unless a plug-in does (--ego-model r157); it
@@ -155,17 +155,17 @@ class ScenarioExecutorFormat : public RunFormat {
     tracked_ = engine_->tracked();
     return std::move(out.commands);
   }
-  [[nodiscard]] const std::vector<engine::TrackedActor>& tracked() const override { return tracked_; }
+  [[nodiscard]] const std::vector<sim::TrackedActor>& tracked() const override { return tracked_; }
   std::optional<reference_driver::ReferenceEgo> take_reference_ego() override {
     return std::exchange(reference_ego_, std::nullopt);
   }
 
-  double take_step(const engine::WorldSnapshot& snap, RunResult& result, RunLog& log) override {
+  double take_step(const sim::WorldSnapshot& snap, RunResult& result, RunLog& log) override {
     out_ = engine_->step(snap);
     log_events(log, result, out_.events);
     return snap.time;
   }
-  std::optional<CollisionFact> ego_collision(const engine::WorldSnapshot& snap, double /*time*/,
+  std::optional<CollisionFact> ego_collision(const sim::WorldSnapshot& snap, double /*time*/,
                                              RunLog& /*log*/) override {
     return ego_collision_fact(*engine_, in_->scenario.ego.id, snap);
   }
@@ -173,7 +173,7 @@ class ScenarioExecutorFormat : public RunFormat {
   [[nodiscard]] std::string max_time_reason(double max_time) const override {
     return fmt::format("--max-time {} s reached in scene {}", max_time, engine_->scene());
   }
-  std::vector<engine::Command> commands(const engine::WorldSnapshot& /*snap*/, RunLog& /*log*/) override {
+  std::vector<sim::Command> commands(const sim::WorldSnapshot& /*snap*/, RunLog& /*log*/) override {
     return std::move(out_.commands);
   }
   void conclude(RunResult& result, RunLog& /*log*/) override {
@@ -228,7 +228,7 @@ class ScenarioExecutorFormat : public RunFormat {
   std::optional<engine::Engine> engine_;
   std::optional<EngineRun> observed_;  // the engine as the observers see it
   TraceWriter* trace_ = nullptr;       // owned by the loop's observers
-  std::vector<engine::TrackedActor> tracked_;
+  std::vector<sim::TrackedActor> tracked_;
   engine::StepOutput out_;  // the engine's last step: its commands go to SUMO next
   std::optional<reference_driver::ReferenceEgo> reference_ego_;
 };

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "engine/world.hpp"
+#include "sim/world.hpp"
 
 namespace orch {
 
@@ -25,12 +25,12 @@ class Simulator {
  public:
   virtual ~Simulator() = default;
   virtual void start(const SimulatorConfig& config) = 0;
-  virtual void apply(const std::vector<engine::Command>& commands) = 0;
+  virtual void apply(const std::vector<sim::Command>& commands) = 0;
   virtual void advance() = 0;  // one step
   // The tracked actors' state now (same order); background vehicles near them
   // (WorldSnapshot::nearby) and the number of all others. Its cost must not grow with the
   // number of background vehicles (docs/performance.md).
-  virtual engine::WorldSnapshot read(const std::vector<engine::TrackedActor>& actors) = 0;
+  virtual sim::WorldSnapshot read(const std::vector<sim::TrackedActor>& actors) = 0;
   virtual double time() = 0;
   [[nodiscard]] virtual std::string backend() const = 0;  // "libsumo", "traci"
   virtual std::string version() = 0;                      // "SUMO 1.15.0"

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "engine/engine.hpp"
+#include "scenario_executor_engine/engine.hpp"
 #include "openscenario/storyboard_runtime.hpp"
 
 namespace orch {

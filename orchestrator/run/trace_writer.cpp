@@ -9,7 +9,7 @@ TraceWriter::TraceWriter(const std::filesystem::path& path, const LaneMap& lanes
   for (int i = 0; i < static_cast<int>(lanes.lanes().size()); ++i) lane_index_[lanes.lane(i).id] = i;
 }
 
-double TraceWriter::lateral_offset(const engine::ActorState& a) const {
+double TraceWriter::lateral_offset(const sim::ActorState& a) const {
   // The centre's offset from the centre of the lane SUMO has the actor on, like x and y.
   // (SUMO's own lateral position is the front's: a car turned 3 degrees to change lanes
   // would read 0.13 m off. Persons have none.)
@@ -18,8 +18,8 @@ double TraceWriter::lateral_offset(const engine::ActorState& a) const {
   return a.lat_offset.value_or(0.0);
 }
 
-void TraceWriter::record(const engine::Engine& engine, std::optional<scenario::ActorId> plugin_driven) {
-  const engine::WorldSnapshot& snap = engine.judged();
+void TraceWriter::record(const engine::Engine& engine, std::optional<sim::ActorId> plugin_driven) {
+  const sim::WorldSnapshot& snap = engine.judged();
   for (const auto& a : snap.actors) {
     if (!a.present) continue;
     const char* driver = plugin_driven == a.id    ? "plugin"

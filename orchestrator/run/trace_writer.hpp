@@ -8,7 +8,7 @@
 #include <unordered_map>
 
 #include "core/output_file.hpp"
-#include "engine/engine.hpp"
+#include "scenario_executor_engine/engine.hpp"
 #include "map/lane_map.hpp"
 #include "run/run_observer.hpp"
 #include "run/run_result.hpp"
@@ -25,12 +25,12 @@ class TraceWriter : public RunObserver {
   TraceWriter(const std::filesystem::path& path, const LaneMap& lanes, const engine::Engine& engine);
 
   // The actor a built-in ego model drives (driver `label`, e.g. "r157") instead of SUMO's.
-  void set_model_driven(scenario::ActorId id, const char* label) {
+  void set_model_driven(sim::ActorId id, const char* label) {
     model_driven_ = id;
     model_label_ = label;
   }
   // `plugin_driven`: the actor an external ego plug-in drove in this step (driver "plugin").
-  void record(const engine::Engine& engine, std::optional<scenario::ActorId> plugin_driven = std::nullopt);
+  void record(const engine::Engine& engine, std::optional<sim::ActorId> plugin_driven = std::nullopt);
   void flush() { file_.flush(); }
   [[nodiscard]] long long rows() const { return rows_; }
 
@@ -41,13 +41,13 @@ class TraceWriter : public RunObserver {
   }
 
  private:
-  [[nodiscard]] double lateral_offset(const engine::ActorState& a) const;
+  [[nodiscard]] double lateral_offset(const sim::ActorState& a) const;
 
   OutputFile file_;
   const LaneMap& lanes_;
   const engine::Engine& engine_;
   std::unordered_map<std::string, int> lane_index_;  // SUMO lane id -> LaneMap index
-  std::optional<scenario::ActorId> model_driven_;
+  std::optional<sim::ActorId> model_driven_;
   const char* model_label_ = "sumo";
   long long rows_ = 0;
 };

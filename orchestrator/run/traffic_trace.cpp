@@ -7,7 +7,7 @@ TrafficTrace::TrafficTrace(const std::filesystem::path& dir, bool background_row
   if (background_rows) background_.emplace(dir / "background.csv", kBackgroundHeader);
 }
 
-void TrafficTrace::record(const engine::WorldSnapshot& snap) {
+void TrafficTrace::record(const sim::WorldSnapshot& snap) {
   counts_.print("{:.3f},{},{},{}\n", snap.time, snap.other_vehicles, snap.nearby.size(), snap.long_waiting);
   if (background_) {
     for (const auto& v : snap.nearby) {

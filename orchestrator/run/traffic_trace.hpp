@@ -11,7 +11,7 @@
 #include <optional>
 
 #include "core/output_file.hpp"
-#include "engine/world.hpp"
+#include "sim/world.hpp"
 #include "run/run_observer.hpp"
 
 namespace orch {
@@ -24,7 +24,7 @@ class TrafficTrace : public RunObserver {
 
   TrafficTrace(const std::filesystem::path& dir, bool background_rows);
 
-  void record(const engine::WorldSnapshot& snapshot);
+  void record(const sim::WorldSnapshot& snapshot);
   void flush();
   [[nodiscard]] long long background_rows() const { return background_rows_; }
 

@@ -19,7 +19,7 @@
 #include "core/errors.hpp"
 #include "json/json_document.hpp"
 #include "json/json_text.hpp"
-#include "scenario/loader.hpp"
+#include "scenario_executor/loader.hpp"
 
 namespace {
 

@@ -37,5 +37,5 @@ function(orch_clang_fuzzer name main)
     DEPENDS ${objects}
     COMMENT "Linking the libFuzzer target ${name}" VERBATIM)
   add_custom_target(${name}_build ALL DEPENDS ${CMAKE_CURRENT_BINARY_DIR}/${name})
-  add_dependencies(${name}_build orch_scenario)  # orch_scenario generates the embedded catalog source
+  add_dependencies(${name}_build orch_scenario_executor)  # orch_scenario_executor generates the embedded catalog source
 endfunction()

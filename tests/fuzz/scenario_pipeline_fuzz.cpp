@@ -12,13 +12,13 @@
 #include <string>
 
 #include "core/errors.hpp"
-#include "engine/engine.hpp"
+#include "scenario_executor_engine/engine.hpp"
 #include "json/json_document.hpp"
 #include "map/lane_map.hpp"
 #include "map/map_registry.hpp"
-#include "scenario/catalog.hpp"
-#include "scenario/loader.hpp"
-#include "scenario/validator.hpp"
+#include "scenario_executor/catalog.hpp"
+#include "scenario_executor/loader.hpp"
+#include "scenario_executor/validator.hpp"
 #include "support/fake_world.hpp"
 
 namespace {

@@ -10,7 +10,7 @@
 #include <set>
 #include <string>
 
-#include "engine/world.hpp"
+#include "sim/world.hpp"
 #include "sumo/sumo_process.hpp"
 #include "sumo/sumo_simulator.hpp"
 #include "unit/synthetic_roads.hpp"
@@ -21,8 +21,8 @@ namespace {
 
 const std::string kNorth = "Waypoint03+Waypoint02+Waypoint01#";
 
-engine::SpawnVehicle ego_command() {
-  engine::SpawnVehicle c;
+sim::SpawnVehicle ego_command() {
+  sim::SpawnVehicle c;
   c.actor = {0, "ego", ActorKind::Vehicle, 4.5, 2.0};
   c.model = {"test.car", ActorKind::Vehicle, 4.5, 2.0, 1.5, "passenger", "passenger", false};
   c.scripted = false;
@@ -48,11 +48,11 @@ TEST(SumoReader, CountsAndNearbyVehiclesMatchLibsumosExhaustiveAnswers) {
   sim->start(config);
   const auto spawn = ego_command();
   sim->apply({spawn});
-  const std::vector<engine::TrackedActor> tracked{spawn.actor};
+  const std::vector<sim::TrackedActor> tracked{spawn.actor};
   int checked_nearby = 0;
   for (int step = 1; step <= 300; ++step) {
     sim->advance();
-    const engine::WorldSnapshot snap = sim->read(tracked);
+    const sim::WorldSnapshot snap = sim->read(tracked);
     if (step % 25 != 0) continue;
     SCOPED_TRACE(step);
     ASSERT_TRUE(snap.actors.at(0).present);

@@ -10,9 +10,9 @@
 #include <vector>
 
 #include "map/waypoint_file.hpp"
-#include "scenario/catalog.hpp"
-#include "scenario/loader.hpp"
-#include "scenario/validator.hpp"
+#include "scenario_executor/catalog.hpp"
+#include "scenario_executor/loader.hpp"
+#include "scenario_executor/validator.hpp"
 #include "support/cli_runner.hpp"
 
 namespace fs = std::filesystem;

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "engine/engine.hpp"
+#include "scenario_executor_engine/engine.hpp"
 
 namespace orch::test {
 
@@ -29,10 +29,10 @@ class FakeWorld {
     ego_s_ += ego_speed * step_;
     // Poses commanded during the last step are where the actors are now (as in SUMO).
     for (const auto& [id, p] : pending_) shown_[id] = p;
-    engine::WorldSnapshot snap;
+    sim::WorldSnapshot snap;
     snap.time = time_;
     for (const auto& t : tracked_) {
-      engine::ActorState a;
+      sim::ActorState a;
       a.id = t.id;
       if (t.sumo_id == "ego") {
         a.present = !ego_gone;
@@ -61,21 +61,21 @@ class FakeWorld {
 
   [[nodiscard]] double time() const { return time_; }
   // Where an actor is at time(): the pose commanded on the step before.
-  [[nodiscard]] const engine::SetPose& pose(const std::string& sumo_id) const { return shown_.at(sumo_id); }
-  [[nodiscard]] const engine::WorldSnapshot& last() const { return last_; }
+  [[nodiscard]] const sim::SetPose& pose(const std::string& sumo_id) const { return shown_.at(sumo_id); }
+  [[nodiscard]] const sim::WorldSnapshot& last() const { return last_; }
   [[nodiscard]] int signals(const std::string& sumo_id) const { return shown_.at(sumo_id).signals; }
-  [[nodiscard]] const std::vector<engine::Command>& history() const { return history_; }
+  [[nodiscard]] const std::vector<sim::Command>& history() const { return history_; }
 
   double ego_speed = 0;                      // m/s, set by the test
   bool ego_gone = false;
   std::set<int> gone;                        // actors the "simulator" removed
-  std::vector<engine::NearbyVehicle> nearby;  // background traffic the test injects
+  std::vector<sim::NearbyVehicle> nearby;  // background traffic the test injects
 
  private:
-  void apply(const std::vector<engine::Command>& commands) {
+  void apply(const std::vector<sim::Command>& commands) {
     for (const auto& c : commands) {
       history_.push_back(c);
-      if (const auto* p = std::get_if<engine::SetPose>(&c)) pending_[p->sumo_id] = *p;
+      if (const auto* p = std::get_if<sim::SetPose>(&c)) pending_[p->sumo_id] = *p;
     }
   }
 
@@ -84,11 +84,11 @@ class FakeWorld {
   double step_;
   double time_ = 0;
   double ego_s_ = 0;
-  std::vector<engine::TrackedActor> tracked_;
-  std::map<std::string, engine::SetPose> pending_;  // commanded, shown after the next step
-  std::map<std::string, engine::SetPose> shown_;
-  std::vector<engine::Command> history_;
-  engine::WorldSnapshot last_;
+  std::vector<sim::TrackedActor> tracked_;
+  std::map<std::string, sim::SetPose> pending_;  // commanded, shown after the next step
+  std::map<std::string, sim::SetPose> shown_;
+  std::vector<sim::Command> history_;
+  sim::WorldSnapshot last_;
 };
 
 }  // namespace orch::test

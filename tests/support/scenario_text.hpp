@@ -6,7 +6,7 @@
 
 #include "json/json_document.hpp"
 #include "map/waypoint_file.hpp"
-#include "scenario/loader.hpp"
+#include "scenario_executor/loader.hpp"
 
 namespace orch::test {
 

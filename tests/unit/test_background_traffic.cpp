@@ -57,9 +57,9 @@ namespace {
 class CountingSimulator final : public Simulator {
  public:
   void start(const SimulatorConfig&) override {}
-  void apply(const std::vector<engine::Command>&) override {}
+  void apply(const std::vector<sim::Command>&) override {}
   void advance() override { ++steps; }
-  engine::WorldSnapshot read(const std::vector<engine::TrackedActor>&) override { return {}; }
+  sim::WorldSnapshot read(const std::vector<sim::TrackedActor>&) override { return {}; }
   double time() override { return 0; }
   [[nodiscard]] std::string backend() const override { return "fake"; }
   std::string version() override { return "fake"; }

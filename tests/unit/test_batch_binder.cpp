@@ -5,7 +5,7 @@
 #include "batch/logical_scenario.hpp"
 #include "batch/template_binder.hpp"
 #include "core/errors.hpp"
-#include "scenario/loader.hpp"
+#include "scenario_executor/loader.hpp"
 
 using namespace orch;
 using namespace orch::batch;

@@ -5,7 +5,7 @@
 #include <fstream>
 
 #include "core/errors.hpp"
-#include "scenario/catalog.hpp"
+#include "scenario_executor/catalog.hpp"
 
 using namespace orch;
 

@@ -2,7 +2,7 @@
 
 #include <numbers>
 
-#include "engine/collision.hpp"
+#include "scenario_executor_engine/collision.hpp"
 #include "support/scenario_text.hpp"
 
 using namespace orch;

@@ -1,6 +1,6 @@
 #include <gtest/gtest.h>
 
-#include "engine/conditions.hpp"
+#include "scenario_executor_engine/conditions.hpp"
 #include "support/scenario_text.hpp"
 
 using namespace orch;

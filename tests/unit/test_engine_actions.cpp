@@ -4,7 +4,7 @@
 #include <cmath>
 #include <memory>
 
-#include "engine/engine.hpp"
+#include "scenario_executor_engine/engine.hpp"
 #include "map/lane_map.hpp"
 #include "map/map_registry.hpp"
 #include "support/fake_world.hpp"

@@ -17,7 +17,7 @@
 #include "core/plausible.hpp"
 #include "core/polyline.hpp"
 #include "opendrive/xodr_reader.hpp"
-#include "scenario/loader_internal.hpp"
+#include "scenario_executor/loader_internal.hpp"
 #include "test_loader_support.hpp"
 
 using namespace orch;

@@ -1,10 +1,10 @@
-// Background vehicles in the way of a scripted lane change (engine/lane_change_conflicts.hpp).
+// Background vehicles in the way of a scripted lane change (scenario_executor_engine/lane_change_conflicts.hpp).
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <numbers>
 
-#include "engine/lane_change_conflicts.hpp"
+#include "scenario_executor_engine/lane_change_conflicts.hpp"
 
 using namespace orch;
 using namespace orch::engine;

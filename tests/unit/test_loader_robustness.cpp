@@ -4,7 +4,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "scenario/loader_internal.hpp"
+#include "scenario_executor/loader_internal.hpp"
 #include "test_loader_support.hpp"
 
 using namespace orch;

@@ -8,9 +8,9 @@
 #include "core/diagnostics.hpp"
 #include "json/json_document.hpp"
 #include "map/waypoint_file.hpp"
-#include "scenario/catalog.hpp"
-#include "scenario/loader.hpp"
-#include "scenario/validator.hpp"
+#include "scenario_executor/catalog.hpp"
+#include "scenario_executor/loader.hpp"
+#include "scenario_executor/validator.hpp"
 
 namespace orch::loader_test {
 

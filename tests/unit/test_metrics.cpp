@@ -142,7 +142,7 @@ TEST(LaneKeeping, BodyBeyondTheMarking) {
 }
 
 TEST(BoxDistance, AxisAlignedDiagonalRotatedTouching) {
-  const engine::Box a{{0, 0}, 0, 4, 2};
+  const sim::Box a{{0, 0}, 0, 4, 2};
   EXPECT_NEAR(box_distance(a, {{10, 0}, 0, 4, 2}), 6, 1e-9);                // 10 - 2 - 2
   EXPECT_NEAR(box_distance(a, {{10, 5}, 0, 4, 2}), std::sqrt(45.0), 1e-9);  // corners (2,1)-(8,4)
   EXPECT_NEAR(box_distance(a, {{5, 0}, std::numbers::pi / 2, 4, 2}), 2, 1e-9);  // x from 4: 4 - 2
@@ -153,7 +153,7 @@ std::vector<TrajectorySample> drive(Vec2 from, Vec2 velocity, double t0, double 
   std::vector<TrajectorySample> out;
   for (int i = 0; t0 + i * 0.1 <= t1 + 1e-9; ++i) {
     const double t = t0 + i * 0.1;
-    append_sample(out, {t, engine::Box{from + velocity * (t - t0), heading, 4, 2}});
+    append_sample(out, {t, sim::Box{from + velocity * (t - t0), heading, 4, 2}});
   }
   return out;
 }
@@ -184,7 +184,7 @@ TEST(PostEncroachmentTime, SimultaneousIsZeroAndFollowingHasNone) {
 
 TEST(PostEncroachmentTime, AStopIsKeptAsItsFirstAndLastSample) {
   std::vector<TrajectorySample> t;
-  for (int i = 0; i < 100; ++i) append_sample(t, {i * 0.1, engine::Box{{5, 5}, 0, 4, 2}});
+  for (int i = 0; i < 100; ++i) append_sample(t, {i * 0.1, sim::Box{{5, 5}, 0, 4, 2}});
   ASSERT_EQ(t.size(), 2u);
   EXPECT_DOUBLE_EQ(t.front().time, 0);
   EXPECT_NEAR(t.back().time, 9.9, 1e-9);

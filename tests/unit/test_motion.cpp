@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "engine/motion.hpp"
+#include "scenario_executor_engine/motion.hpp"
 
 using namespace orch;
 using namespace orch::engine;

@@ -81,13 +81,13 @@ TEST_F(OpenScenarioActorsOnRoad3, SpawnsOnceOnTheSumoLaneAndPosesTheBoxCentre) {
 
   const auto first = actors.place(entities);
   ASSERT_EQ(first.size(), 2u);
-  const auto& spawn = std::get<engine::SpawnVehicle>(first[0]);
+  const auto& spawn = std::get<sim::SpawnVehicle>(first[0]);
   EXPECT_EQ(spawn.edge, "-3");
   EXPECT_EQ(spawn.lane, 1);
   EXPECT_NEAR(spawn.lane_pos, 40 + 1.4, 1e-9);  // the centre
   EXPECT_TRUE(spawn.scripted);
   EXPECT_EQ(spawn.model.vclass, "authority");  // hard shoulders admit scripted entities
-  const auto& pose = std::get<engine::SetPose>(first[1]);
+  const auto& pose = std::get<sim::SetPose>(first[1]);
   EXPECT_NEAR(pose.position.x(), state.pose.x + 1.4 * std::cos(0.5), 1e-9);
   EXPECT_NEAR(pose.position.y(), state.pose.y + 1.4 * std::sin(0.5), 1e-9);
   ASSERT_EQ(actors.tracked().size(), 1u);
@@ -96,7 +96,7 @@ TEST_F(OpenScenarioActorsOnRoad3, SpawnsOnceOnTheSumoLaneAndPosesTheBoxCentre) {
   // Later steps only pose; SUMO's centre maps back to the reference point.
   const auto second = actors.place(entities);
   ASSERT_EQ(second.size(), 1u);
-  engine::ActorState seen;
+  sim::ActorState seen;
   seen.id = actors.tracked()[0].id;
   seen.position = pose.position;
   seen.heading = pose.heading;
@@ -119,16 +119,16 @@ TEST_F(OpenScenarioActorsOnRoad3, TheEgoIsPlacedOnceThenOnlyItsDesiredSpeedFollo
   std::map<std::string, openscenario::EntityState> entities{{"Ego", state}};
   const auto first = actors.place(entities);
   ASSERT_EQ(first.size(), 2u);
-  const auto& spawn = std::get<engine::SpawnVehicle>(first[0]);
+  const auto& spawn = std::get<sim::SpawnVehicle>(first[0]);
   EXPECT_FALSE(spawn.scripted);
   EXPECT_EQ(spawn.lane, 0);
   EXPECT_DOUBLE_EQ(spawn.max_speed, 15);
-  EXPECT_FALSE(std::get<engine::SetPose>(first[1]).scripted);  // one placement, speed left to SUMO
+  EXPECT_FALSE(std::get<sim::SetPose>(first[1]).scripted);  // one placement, speed left to SUMO
   EXPECT_TRUE(actors.place(entities).empty());  // SUMO drives it
   entities["Ego"].speed_profile = openscenario::SpeedProfile{1, 2, 15, 25, openscenario::DynamicsShape::Linear};
   const auto changed = actors.place(entities);
   ASSERT_EQ(changed.size(), 1u);
-  EXPECT_DOUBLE_EQ(std::get<engine::SetMaxSpeed>(changed[0]).speed, 25);
+  EXPECT_DOUBLE_EQ(std::get<sim::SetMaxSpeed>(changed[0]).speed, 25);
   EXPECT_TRUE(actors.place(entities).empty());  // sent once
 }
 
@@ -145,25 +145,25 @@ TEST_F(OpenScenarioActorsOnRoad3, DeletedOrInvisibleEntitiesLeaveSumoActivatedCo
   entities["Lead"].visibility.traffic = false;
   auto out = actors.place(entities);
   ASSERT_EQ(out.size(), 1u);
-  EXPECT_EQ(std::get<engine::RemoveActor>(out[0]).sumo_id, "Lead");
+  EXPECT_EQ(std::get<sim::RemoveActor>(out[0]).sumo_id, "Lead");
   EXPECT_TRUE(actors.place(entities).empty());  // removed once
 
   entities["Lead"].visibility.traffic = true;
   out = actors.place(entities);
   ASSERT_EQ(out.size(), 2u);
-  EXPECT_EQ(std::get<engine::SpawnVehicle>(out[0]).actor.sumo_id, "Lead~2");
+  EXPECT_EQ(std::get<sim::SpawnVehicle>(out[0]).actor.sumo_id, "Lead~2");
   ASSERT_EQ(actors.tracked().size(), 1u);  // the same actor, a new SUMO id
   EXPECT_EQ(actors.tracked()[0].sumo_id, "Lead~2");
   EXPECT_EQ(actors.name_of(actors.tracked()[0].id), "Lead");
 
   entities["Lead"].controller = "Driver";
   entities["Lead"].controller_active = true;
-  const std::string spawn_edge = std::get<engine::SpawnVehicle>(out[0]).edge;
+  const std::string spawn_edge = std::get<sim::SpawnVehicle>(out[0]).edge;
   out = actors.place(entities);
   ASSERT_EQ(out.size(), 2u);  // handed over, with the route on from its lane (this road's edge: no links)
-  EXPECT_EQ(std::get<engine::ReleaseActor>(out[0]).sumo_id, "Lead~2");
-  EXPECT_DOUBLE_EQ(std::get<engine::ReleaseActor>(out[0]).max_speed, 20);
-  EXPECT_EQ(std::get<engine::SetRoute>(out[1]).edges, std::vector<std::string>{spawn_edge});
+  EXPECT_EQ(std::get<sim::ReleaseActor>(out[0]).sumo_id, "Lead~2");
+  EXPECT_DOUBLE_EQ(std::get<sim::ReleaseActor>(out[0]).max_speed, 20);
+  EXPECT_EQ(std::get<sim::SetRoute>(out[1]).edges, std::vector<std::string>{spawn_edge});
   EXPECT_TRUE(actors.is_sumo_driven("Lead"));
   EXPECT_EQ(actors.sumo_driven(), std::vector<std::string>{"Lead"});
   EXPECT_TRUE(actors.place(entities).empty());  // SUMO drives it now
@@ -171,7 +171,7 @@ TEST_F(OpenScenarioActorsOnRoad3, DeletedOrInvisibleEntitiesLeaveSumoActivatedCo
   entities["Lead"].placed = false;  // DeleteEntityAction
   out = actors.place(entities);
   ASSERT_EQ(out.size(), 1u);
-  EXPECT_EQ(std::get<engine::RemoveActor>(out[0]).sumo_id, "Lead~2");
+  EXPECT_EQ(std::get<sim::RemoveActor>(out[0]).sumo_id, "Lead~2");
   EXPECT_TRUE(actors.sumo_driven().empty());
 }
 

@@ -12,7 +12,7 @@ using openscenario::EntityState;
 using Driver = OpenScenarioEgo::Driver;
 
 template <class T>
-std::vector<T> of_type(const std::vector<engine::Command>& commands) {
+std::vector<T> of_type(const std::vector<sim::Command>& commands) {
   std::vector<T> out;
   for (const auto& c : commands)
     if (const auto* x = std::get_if<T>(&c)) out.push_back(*x);
@@ -27,8 +27,8 @@ EntityState cruising(double speed) {
   return s;
 }
 
-engine::SetPose pose_at(double x) {
-  engine::SetPose p;
+sim::SetPose pose_at(double x) {
+  sim::SetPose p;
   p.position = {x, 0};
   p.edge = "-1";
   p.lane = 2;
@@ -44,14 +44,14 @@ TEST(OpenScenarioEgoDrive, SumoDrivesWithTheStoryboardsSpeedTargetSentOnlyWhenIt
   EXPECT_TRUE(ego.commands(s, pose_at(0)).empty());
   s.speed_profile->to = 25;  // a new SpeedAction
   const auto c = ego.commands(s, pose_at(0));
-  ASSERT_EQ(of_type<engine::SetMaxSpeed>(c).size(), 1u);
-  EXPECT_EQ(of_type<engine::SetMaxSpeed>(c)[0].speed, 25);
-  EXPECT_EQ(of_type<engine::SetMaxSpeed>(c)[0].sumo_id, "Ego");
+  ASSERT_EQ(of_type<sim::SetMaxSpeed>(c).size(), 1u);
+  EXPECT_EQ(of_type<sim::SetMaxSpeed>(c)[0].speed, 25);
+  EXPECT_EQ(of_type<sim::SetMaxSpeed>(c)[0].sumo_id, "Ego");
   EXPECT_TRUE(ego.commands(s, pose_at(0)).empty());
   // Without an external ego an active controller changes nothing: SUMO keeps driving.
   s.controller_active = true;
   EXPECT_EQ(ego.driver(s), Driver::Sumo);
-  EXPECT_TRUE(of_type<engine::SetParameter>(ego.commands(s, pose_at(0))).empty());
+  EXPECT_TRUE(of_type<sim::SetParameter>(ego.commands(s, pose_at(0))).empty());
 }
 
 TEST(OpenScenarioEgoDrive, TheStoryboardPlacesItDuringALateralAction) {
@@ -61,14 +61,14 @@ TEST(OpenScenarioEgoDrive, TheStoryboardPlacesItDuringALateralAction) {
   s.lateral_profile = openscenario::LateralProfile{2, 3, -3.5, 0, openscenario::DynamicsShape::Sinusoidal};
   EXPECT_EQ(ego.driver(s), Driver::Storyboard);
   EXPECT_STREQ(OpenScenarioEgo::label(ego.driver(s)), "script");
-  const auto poses = of_type<engine::SetPose>(ego.commands(s, pose_at(42)));
+  const auto poses = of_type<sim::SetPose>(ego.commands(s, pose_at(42)));
   ASSERT_EQ(poses.size(), 1u);
   EXPECT_FALSE(poses[0].scripted);  // placed, SUMO's speed handling stays
   EXPECT_EQ(poses[0].sumo_id, "Ego");
   EXPECT_DOUBLE_EQ(poses[0].position.x(), 42);
   s.lateral_profile.reset();  // the action ended
   EXPECT_EQ(ego.driver(s), Driver::Sumo);
-  EXPECT_TRUE(of_type<engine::SetPose>(ego.commands(s, pose_at(43))).empty());
+  EXPECT_TRUE(of_type<sim::SetPose>(ego.commands(s, pose_at(43))).empty());
 }
 
 TEST(OpenScenarioEgoDrive, AnActivatedControllerHandsTheEgoToTheExternalEgo) {
@@ -85,7 +85,7 @@ TEST(OpenScenarioEgoDrive, AnActivatedControllerHandsTheEgoToTheExternalEgo) {
   const auto c = ego.commands(s, pose_at(0));
   // Only the hand-over: no speed target, no lateral placement for the plug-in's ego.
   ASSERT_EQ(c.size(), 1u);
-  const auto& p = std::get<engine::SetParameter>(c[0]);
+  const auto& p = std::get<sim::SetParameter>(c[0]);
   EXPECT_EQ(p.sumo_id, "ego");
   EXPECT_EQ(p.key, "orch.hand_over");
   EXPECT_EQ(p.value, "1");
@@ -93,10 +93,10 @@ TEST(OpenScenarioEgoDrive, AnActivatedControllerHandsTheEgoToTheExternalEgo) {
   s.controller_active = false;  // a later ActivateControllerAction with false
   s.lateral_profile.reset();
   const auto back = ego.commands(s, pose_at(0));
-  ASSERT_EQ(of_type<engine::SetParameter>(back).size(), 1u);
-  EXPECT_EQ(of_type<engine::SetParameter>(back)[0].value, "0");
-  ASSERT_EQ(of_type<engine::SetMaxSpeed>(back).size(), 1u);  // SUMO drives again, at the target
-  EXPECT_EQ(of_type<engine::SetMaxSpeed>(back)[0].speed, 30);
+  ASSERT_EQ(of_type<sim::SetParameter>(back).size(), 1u);
+  EXPECT_EQ(of_type<sim::SetParameter>(back)[0].value, "0");
+  ASSERT_EQ(of_type<sim::SetMaxSpeed>(back).size(), 1u);  // SUMO drives again, at the target
+  EXPECT_EQ(of_type<sim::SetMaxSpeed>(back)[0].speed, 30);
 }
 
 }  // namespace

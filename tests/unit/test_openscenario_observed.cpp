@@ -50,11 +50,11 @@ class OpenScenarioRunOnRoad3 : public ::testing::Test {
     }
   }
   // The snapshot of the actors SUMO has, at their poses.
-  engine::WorldSnapshot snapshot(double time) const {
-    engine::WorldSnapshot snap;
+  sim::WorldSnapshot snapshot(double time) const {
+    sim::WorldSnapshot snap;
     snap.time = time;
     for (const auto& t : actors.tracked()) {
-      engine::ActorState a;
+      sim::ActorState a;
       a.id = t.id;
       a.present = true;
       const auto& pose = entities.at(actors.name_of(t.id)).pose;
@@ -74,7 +74,7 @@ class OpenScenarioRunOnRoad3 : public ::testing::Test {
 
 TEST_F(OpenScenarioRunOnRoad3, EntitiesByNameWithTheirKindAndTheLaneTheyStartedInAsPath) {
   OpenScenarioRun run(scenario, roads, actors);
-  EXPECT_EQ(run.ego(), std::optional<scenario::ActorId>(1));
+  EXPECT_EQ(run.ego(), std::optional<sim::ActorId>(1));
   EXPECT_FALSE(run.body(0)) << "not spawned yet: SUMO does not know it";
   (void)actors.place(entities);
   run.update(snapshot(1.05), 1.0, entities, false);
@@ -91,7 +91,7 @@ TEST_F(OpenScenarioRunOnRoad3, EntitiesByNameWithTheirKindAndTheLaneTheyStartedI
   EXPECT_NEAR(path->point(0).x(), 100, 1e-9);
   EXPECT_NEAR(path->point(0).y(), 48.25, 1e-9);
   EXPECT_NEAR(path->length(), 500, 1e-6);
-  EXPECT_EQ(run.id_of("Walker"), std::optional<scenario::ActorId>(2));
+  EXPECT_EQ(run.id_of("Walker"), std::optional<sim::ActorId>(2));
   EXPECT_FALSE(run.id_of("Nobody"));
   EXPECT_FALSE(run.ending_reached());
   EXPECT_EQ(run.scene(), 0);
@@ -103,7 +103,7 @@ TEST_F(OpenScenarioRunOnRoad3, EntitiesByNameWithTheirKindAndTheLaneTheyStartedI
 TEST_F(OpenScenarioRunOnRoad3, SumosCollisionReportsBecomeContactsOncePerPair) {
   OpenScenarioRun run(scenario, roads, actors);
   (void)actors.place(entities);
-  engine::WorldSnapshot snap = snapshot(3.05);
+  sim::WorldSnapshot snap = snapshot(3.05);
   snap.collisions = {{"Ego", "Lead", "collision", "-3_0", 10}, {"bg.1", "bg.2", "collision", "-3_1", 5}};
   run.update(snap, 3.0, entities, false);
   snap.collisions = {{"Lead", "Ego", "collision", "-3_0", 11}, {"bg.7", "Ego", "collision", "-3_0", 12}};

@@ -161,20 +161,20 @@ TEST(R157Threats, ABackgroundLeaderBrakingHardIsARisk) {
   DrivingPath path;
   path.line = Polyline({{0, 0}, {2000, 0}});
   path.lane_width = 3.5;
-  engine::TrackedActor me_tracked;
+  sim::TrackedActor me_tracked;
   me_tracked.sumo_id = "ego";
   me_tracked.length = 4.5;
   me_tracked.width = 1.8;
-  const std::vector<engine::TrackedActor> tracked{me_tracked};
+  const std::vector<sim::TrackedActor> tracked{me_tracked};
   ReferenceEgo ego(R157Parameters{}, path, "ego", {}, kDt, kKmh60);
   double ego_x = 10, ego_v = kKmh60, bg_x = 10 + 2.25 + 30 + 2.25, bg_v = kKmh60;
   std::vector<std::string> events;
   std::optional<double> perceived;
   for (int i = 0; i <= 60 && !perceived; ++i) {
     const double t = i * kDt;
-    engine::WorldSnapshot snap;
+    sim::WorldSnapshot snap;
     snap.time = t;
-    engine::ActorState me;
+    sim::ActorState me;
     me.present = true;
     me.position = {ego_x, 0};
     me.speed = ego_v;
@@ -185,7 +185,7 @@ TEST(R157Threats, ABackgroundLeaderBrakingHardIsARisk) {
     for (const auto& e : step_events)
       if (e.find("risk perceived") != std::string::npos) perceived = t;
     ASSERT_EQ(commands.size(), 1u);
-    const double next = std::get<engine::DriveSpeed>(commands[0]).speed;
+    const double next = std::get<sim::DriveSpeed>(commands[0]).speed;
     ego_x += (ego_v + next) / 2 * kDt;
     ego_v = next;
     const double next_bg = t >= 1.0 - 1e-9 ? bg_v - 6.0 * kDt : bg_v;

@@ -66,14 +66,14 @@ TEST(ReferenceRun, R157ControllerMakesTheEntityTheEgo) {
 TEST(ReferenceRun, TheDriverSeesObjectsAlongItsPathAndPastItsEnd) {
   reference_driver::DrivingPath path;
   path.line = Polyline({{0, 0}, {100, 0}});
-  std::vector<engine::TrackedActor> tracked(3);
+  std::vector<sim::TrackedActor> tracked(3);
   tracked[0] = {0, "ego", ActorKind::Vehicle, 4.0, 2.0};
   tracked[1] = {1, "actor1", ActorKind::Vehicle, 5.0, 2.0};
   tracked[2] = {2, "actor2", ActorKind::Vehicle, 5.0, 2.0};
-  engine::WorldSnapshot snap;
+  sim::WorldSnapshot snap;
   snap.time = 1.0;
   auto actor = [](int id, Vec2 position, double speed) {
-    engine::ActorState a;
+    sim::ActorState a;
     a.id = id;
     a.present = true;
     a.position = position;

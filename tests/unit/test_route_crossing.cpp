@@ -1,7 +1,7 @@
 // Along-road distance between actors on routes that only cross or join (route_crossing.hpp).
 #include <gtest/gtest.h>
 
-#include "engine/route_crossing.hpp"
+#include "scenario_executor_engine/route_crossing.hpp"
 #include "map/waypoint_file.hpp"
 #include "unit/synthetic_roads.hpp"
 

@@ -1,11 +1,11 @@
-// The element tables (scenario/elements.hpp): one row per model type, one key per row, and
+// The element tables (scenario_executor/elements.hpp): one row per model type, one key per row, and
 // the loader reads exactly the keys the tables name.
 #include <gtest/gtest.h>
 
 #include <set>
 #include <utility>
 
-#include "scenario/elements.hpp"
+#include "scenario_executor/elements.hpp"
 
 using namespace orch;
 using namespace orch::scenario;

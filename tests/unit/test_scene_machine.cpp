@@ -1,6 +1,6 @@
 #include <gtest/gtest.h>
 
-#include "engine/scene_machine.hpp"
+#include "scenario_executor_engine/scene_machine.hpp"
 #include "support/scenario_text.hpp"
 
 using namespace orch;

@@ -5,7 +5,7 @@
 #include "run/ego_link.hpp"
 
 using namespace orch;
-using namespace orch::engine;
+using namespace orch::sim;
 
 namespace {
 
