@@ -10,7 +10,7 @@
 #include "batch/template_file.hpp"
 #include "core/errors.hpp"
 #include "core/files.hpp"
-#include "json/object_reader.hpp"
+#include "json/object_file.hpp"
 
 namespace orch::batch {
 
@@ -22,9 +22,8 @@ using nlohmann::ordered_json;
 // The seed's abstract scenario: only the links and the prompt matter here, the rest is
 // accepted as the seed defines it (unknown keys are still reported).
 void read_abstract(const fs::path& file, const std::string& expected_uuid, Lineage& out) {
-  const JsonDocument doc = JsonDocument::load(file.string());
-  Diagnostics diags;
-  ObjectReader r(doc, doc.root(), "", diags, "abstract scenario");
+  JsonObjectFile json(file.string(), "abstract scenario");
+  ObjectReader& r = json.top();
   const auto uuid = r.string("uuid", Need::Required);
   if (uuid && *uuid != expected_uuid)
     r.error("uuid", fmt::format("\"uuid\" is \"{}\" but the logical scenario names \"{}\"", *uuid, expected_uuid));
@@ -35,14 +34,12 @@ void read_abstract(const fs::path& file, const std::string& expected_uuid, Linea
   r.string("description", Need::Optional);
   r.string("created_at", Need::Optional);
   r.allow({"pegasus_layers", "environment", "actors", "scenario_type", "criticality"});
-  r.finish();
-  if (diags.has_errors()) throw ScenarioError(diags);
+  json.finish();
 }
 
 void read_natural(const fs::path& file, const std::string& expected_uuid, Lineage& out) {
-  const JsonDocument doc = JsonDocument::load(file.string());
-  Diagnostics diags;
-  ObjectReader r(doc, doc.root(), "", diags, "natural-language scenario");
+  JsonObjectFile json(file.string(), "natural-language scenario");
+  ObjectReader& r = json.top();
   const auto uuid = r.string("uuid", Need::Required);
   if (uuid && *uuid != expected_uuid)
     r.error("uuid", fmt::format("\"uuid\" is \"{}\" but the abstract scenario names \"{}\"", *uuid, expected_uuid));
@@ -50,8 +47,7 @@ void read_natural(const fs::path& file, const std::string& expected_uuid, Lineag
   if (out.original_prompt.empty()) out.original_prompt = prompt.value_or("");
   r.string("created_at", Need::Optional);
   r.object("user_metadata", Need::Optional);
-  r.finish();
-  if (diags.has_errors()) throw ScenarioError(diags);
+  json.finish();
 }
 
 Lineage find_lineage(const LogicalScenario& logical) {

@@ -6,7 +6,7 @@
 #include "core/errors.hpp"
 #include "json/json_document.hpp"
 #include "json/json_text.hpp"
-#include "json/object_reader.hpp"
+#include "json/object_file.hpp"
 
 namespace orch::batch {
 
@@ -103,11 +103,12 @@ std::string execution_trace_text(const PlannedRun& run, const PlannedLogical& lo
 }
 
 ExecutionSummary read_execution_summary(const std::filesystem::path& file) {
-  const JsonDocument doc = JsonDocument::load(file.string());
-  Diagnostics diags;
+  JsonObjectFile json(file.string(), "execution trace");
+  const JsonDocument& doc = json.doc();
+  Diagnostics& diags = json.diags();
   ExecutionSummary s;
   s.file = file;
-  ObjectReader top(doc, doc.root(), "", diags, "execution trace");
+  ObjectReader& top = json.top();
   s.logical_uuid = top.string("logical_uuid", Need::Required).value_or("");
   s.parameter_uuid = top.string("parameter_uuid", Need::Required).value_or("");
   s.name = top.string("name", Need::Optional).value_or("");
@@ -142,8 +143,7 @@ ExecutionSummary read_execution_summary(const std::filesystem::path& file) {
   if (const auto* outputs = top.object("outputs", Need::Required)) {
     if (outputs->contains("run_dir") && outputs->at("run_dir").is_string()) s.run_dir = outputs->at("run_dir").get<std::string>();
   }
-  top.finish();
-  if (diags.has_errors()) throw ScenarioError(diags);
+  json.finish();
   return s;
 }
 

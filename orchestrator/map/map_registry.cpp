@@ -9,15 +9,16 @@
 
 #include "core/errors.hpp"
 #include "core/files.hpp"
-#include "json/object_reader.hpp"
+#include "json/object_file.hpp"
 
 namespace orch {
 
 MapManifest load_map_manifest(const std::filesystem::path& dir) {
   const std::string path = (dir / "map.json").string();
-  const JsonDocument doc = JsonDocument::load(path);
-  Diagnostics diags;
-  ObjectReader r(doc, doc.root(), "", diags, "map manifest");
+  JsonObjectFile json(path, "map manifest");
+  const JsonDocument& doc = json.doc();
+  Diagnostics& diags = json.diags();
+  ObjectReader& r = json.top();
   MapManifest m;
   m.dir = dir;
   m.id = r.string("id", Need::Required).value_or("");
@@ -63,8 +64,7 @@ MapManifest load_map_manifest(const std::filesystem::path& dir) {
   }
   // Documentation-only blocks: how map coordinates relate to the waypoint file, provenance.
   r.allow({"transform", "source"});
-  r.finish();
-  if (diags.has_errors()) throw ScenarioError(diags);
+  json.finish();
   return m;
 }
 

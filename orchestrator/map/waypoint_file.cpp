@@ -6,7 +6,7 @@
 #include <optional>
 
 #include "core/errors.hpp"
-#include "json/object_reader.hpp"
+#include "json/object_file.hpp"
 #include "map/waypoint_file_stream.hpp"
 
 namespace orch {
@@ -55,11 +55,12 @@ WaypointPoint map_point(double x, std::optional<double> y, double z, std::option
 // The reader for every file: a value tree with line numbers, so that every problem is
 // reported with its place.
 WaypointFile read_waypoint_file_with_messages(const std::string& path) {
-  const JsonDocument doc = JsonDocument::load(path);
-  Diagnostics diags;
+  JsonObjectFile json(path, "waypoint file");
+  const JsonDocument& doc = json.doc();
+  Diagnostics& diags = json.diags();
   WaypointFile file;
   file.path = path;
-  ObjectReader top(doc, doc.root(), "", diags, "waypoint file");
+  ObjectReader& top = json.top();
   file.id = top.string("id", Need::Optional).value_or("");
   file.map_id = top.string("mapId", Need::Optional).value_or("");
   const auto* routes = top.array("waypoints", Need::Required);
@@ -109,7 +110,7 @@ WaypointFile read_waypoint_file_with_messages(const std::string& path) {
       file.properties.push_back(prop);
     }
   }
-  if (diags.has_errors()) throw ScenarioError(diags);
+  json.throw_if_errors();
   if (file.routes.empty()) throw ScenarioError(doc.where("/waypoints"), "the waypoint file has no routes");
   return file;
 }
