@@ -16,6 +16,7 @@ Usage: scripts/osc_differential.py [--orchestrator build/bin/orchestrator] [--jo
 """
 import argparse
 import concurrent.futures
+import json
 import os
 import pathlib
 import sys
@@ -132,6 +133,9 @@ def main() -> int:
     parser.add_argument("--extra", action="append", type=pathlib.Path, default=[], metavar="FILE.xosc",
                         help="a file outside the corpus (e.g. an OSC-ALKS template not in shared/): reported, not "
                              "judged; with only --extra files, only they run (repeat the option for more)")
+    parser.add_argument("--results", type=pathlib.Path, metavar="FILE.json",
+                        help="write every file's outcome here (file, status, detail, summary): the input of "
+                             "scripts/osc_coverage.py")
     parser.add_argument("--update", action="store_true",
                         help="rewrite the table from this run (reasons kept where the category stays) and the doc")
     parser.add_argument("--check-doc", action="store_true", help="only check docs/differential.md's table")
@@ -176,6 +180,11 @@ def main() -> int:
     print(f"differential: {len(results)} files in {elapsed:.1f} s with {args.jobs} jobs: " +
           ", ".join(f"{n} {k}" for k, n in sorted(counts.items())) +
           "; slowest: " + ", ".join(f"{pathlib.Path(r['file']).name} {r['seconds']:.1f} s" for r in slowest))
+    if args.results:
+        args.results.write_text(json.dumps(
+            sorted(({"file": r["file"], "status": r["status"], "detail": r["detail"],
+                     "summary": summary_of(r["comparison"])} for r in results), key=lambda r: r["file"]),
+            indent=1) + "\n")
     if args.update:
         for r in results:
             if r["file"] in extra_names:
