@@ -1,7 +1,7 @@
 #pragma once
 // The OpenDRIVE reference line (planView): a sequence of geometry records, each a line,
 // arc, spiral (clothoid), cubic polynomial or parametric cubic, evaluated in the
-// OpenDRIVE inertial frame. Elevation and superelevation are ignored (2D).
+// OpenDRIVE inertial frame, in the plane (the road's elevation and superelevation: Road).
 //
 // A PlanView answers pose(s) and curvature(s) in O(log g) for g records: the record by
 // binary search on s, and a spiral's or cubic polynomial's integral from a table of the

@@ -108,7 +108,35 @@ std::optional<int> Road::lane_at(double s, double t) const {
 
 Pose2 Road::world(double s, double t) const {
   const Pose2 ref = plan_view.pose(s);
-  return {ref.x - t * std::sin(ref.heading), ref.y + t * std::cos(ref.heading), ref.heading};
+  const double side = superelevations.empty() ? t : t * std::cos(roll(s));
+  return {ref.x - side * std::sin(ref.heading), ref.y + side * std::cos(ref.heading), ref.heading};
+}
+
+double Road::elevation(double s) const {
+  const CubicRecord* r = record_at(elevations, s);
+  return r == nullptr ? 0.0 : r->value(s - r->s);
+}
+
+double Road::elevation_slope(double s) const {
+  const CubicRecord* r = record_at(elevations, s);
+  return r == nullptr ? 0.0 : r->slope(s - r->s);
+}
+
+double Road::roll(double s) const {
+  const CubicRecord* r = record_at(superelevations, s);
+  return r == nullptr ? 0.0 : r->value(s - r->s);
+}
+
+SurfacePose surface_pose(const Road& road, double s, double t, double heading) {
+  // The surface's gradient in the road's frame (forward along s, left across it), turned
+  // into the body's frame.
+  const double forward = road.elevation_slope(s);
+  const double road_roll = road.roll(s);
+  const double left = std::tan(road_roll);
+  const double turn = heading - road.plan_view.pose(s).heading;
+  const double along_body = forward * std::cos(turn) + left * std::sin(turn);
+  const double across_body = -forward * std::sin(turn) + left * std::cos(turn);
+  return {road.height(s, t), -std::atan(along_body), std::atan(across_body)};
 }
 
 RoadNetwork::RoadNetwork(std::vector<Road> roads, std::vector<Junction> junctions)
@@ -156,7 +184,10 @@ RoadCoordinate project(const Road& road, double x, double y) {
     s = next;
   }
   const Pose2 p = road.plan_view.pose(s);
-  const double t = -(x - p.x) * std::sin(p.heading) + (y - p.y) * std::cos(p.heading);
+  const double side = -(x - p.x) * std::sin(p.heading) + (y - p.y) * std::cos(p.heading);
+  // Back from the projected offset to t along the (rolled) surface; the reader keeps the
+  // roll within +-75 degrees.
+  const double t = road.superelevations.empty() ? side : side / std::cos(road.roll(s));
   return {road.id, s, t, p.heading};
 }
 

@@ -2,6 +2,7 @@
 // An OpenDRIVE road network as plain values: roads with their reference line, lane offset,
 // lane sections and lanes, and the frame conversions (road, lane, s, t) <-> (x, y, heading).
 #include <map>
+#include <cmath>
 #include <optional>
 #include <string>
 #include <vector>
@@ -57,6 +58,8 @@ struct Road {
   std::string type;                      // road <type type>: "motorway", "town", ... ("" when none)
   PlanView plan_view;
   std::vector<CubicRecord> lane_offsets;  // s = road s
+  std::vector<CubicRecord> elevations;      // <elevationProfile>: height of the reference line, s = road s
+  std::vector<CubicRecord> superelevations; // <lateralProfile>: roll of the cross section (rad, + falls to the right)
   std::vector<LaneSection> sections;      // sorted by s
   RoadLink predecessor, successor;        // road <link>: what touches s = 0 / s = length
 
@@ -69,8 +72,27 @@ struct Road {
   // The lane holding lateral position t at s (0 = on the reference line with no lane).
   [[nodiscard]] std::optional<int> lane_at(double s, double t) const;
   // Point at (s, t) in the inertial frame; heading is the reference line's heading at s.
+  // t is measured along the road's surface: with superelevation the cross section is rolled
+  // about the reference line, so the point lies t cos(roll) to the side (OpenDRIVE 1.6,
+  // 8.4.1: superelevation does not change a lane's width, only its projected width).
   [[nodiscard]] Pose2 world(double s, double t) const;
+
+  // The road's surface at (s, t): the height of the point, the reference line's slope and
+  // the cross section's roll (0 where the file gives no profile).
+  [[nodiscard]] double elevation(double s) const;
+  [[nodiscard]] double elevation_slope(double s) const;
+  [[nodiscard]] double roll(double s) const;
+  [[nodiscard]] double height(double s, double t) const { return elevation(s) + t * std::sin(roll(s)); }
 };
+
+// The attitude of a body standing on the surface at (s, t) facing `heading` (inertial):
+// z of the surface, pitch (rad, + nose down, ISO 8855 as OpenSCENARIO) and roll (rad, + right side down).
+struct SurfacePose {
+  double z = 0.0;
+  double pitch = 0.0;
+  double roll = 0.0;
+};
+SurfacePose surface_pose(const Road& road, double s, double t, double heading);
 
 // A position in the road frame of one road.
 struct RoadCoordinate {

@@ -20,6 +20,9 @@ using xml::XmlSource;
 
 // A lane is at most a kilometre wide (docs/hardening.md).
 constexpr double kMaxLaneWidth = 1000.0;
+// Heights and rolls of a road's surface (docs/openscenario.md, "Elevation").
+constexpr double kMaxHeight = 1e5;   // m
+constexpr double kMaxRoll = 1.309;   // rad, 75 degrees
 
 class Reader {
  public:
@@ -260,7 +263,31 @@ class Reader {
                      [](const LaneSection& a, const LaneSection& b) { return a.s < b.s; });
     for (const pugi::xml_node section : lanes.children("laneSection"))
       check_lane_widths(section, section_length(road, number(section, "s")));
+    road.elevations = profile(node.child("elevationProfile"), "elevation", road.length, kMaxHeight,
+                              "the road's height reaches {:g} m: no road lies more than {:g} m above or below sea level");
+    road.superelevations =
+        profile(node.child("lateralProfile"), "superelevation", road.length, kMaxRoll,
+                "the road's roll reaches {:g} rad: at most {:g} rad (75 degrees), where a banked track's lanes still "
+                "have a width seen from above");
     return road;
+  }
+
+  // The records of a road's elevation or superelevation profile, sorted by s; each record
+  // stays within `limit` up to the next one (the same check as lane widths).
+  std::vector<CubicRecord> profile(const pugi::xml_node& holder, const char* element, double road_length, double limit,
+                                   const char* message) const {
+    std::vector<std::pair<CubicRecord, pugi::xml_node>> records;
+    for (const pugi::xml_node e : holder.children(element)) records.emplace_back(cubic(e, "s"), e);
+    std::stable_sort(records.begin(), records.end(), [](const auto& a, const auto& b) { return a.first.s < b.first.s; });
+    std::vector<CubicRecord> out;
+    for (std::size_t i = 0; i < records.size(); ++i) {
+      const double end = i + 1 < records.size() ? records[i + 1].first.s : road_length;
+      const double largest = records[i].first.largest_magnitude(std::max(0.0, end - records[i].first.s));
+      if (!(largest <= limit))
+        throw ScenarioError(src_.where(records[i].second, "a"), fmt::format(fmt::runtime(message), largest, limit));
+      out.push_back(records[i].first);
+    }
+    return out;
   }
 
   // The length of the section starting at `s`: up to the next section, or the road's end.

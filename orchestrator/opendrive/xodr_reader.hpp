@@ -1,7 +1,8 @@
 #pragma once
 // Reads an OpenDRIVE (.xodr) file into a RoadNetwork. Only what positions, lane types and
 // driving on need is read (planView, laneOffset, lane sections, widths, types, speeds, road
-// and lane links, junctions); elevation, road marks, objects and signals are ignored.
+// and lane links, junctions, the elevation profile and superelevation); road marks, lateral
+// shapes, objects and signals are ignored.
 // Errors name file, line and element path.
 #include <string>
 

@@ -137,7 +137,7 @@ class OpenScenarioFormat : public RunFormat {
   void open(RunResult& result, RunLog& log, SimulatorConfig& config) override;
 
   void add_observers(RunObservers& observers) override {
-    observers.add(std::make_unique<EntityTrace>(req_.out_dir / "trace.csv", *actors_, [this] { return ego_label_; }));
+    observers.add(std::make_unique<EntityTrace>(req_.out_dir / "trace.csv", *actors_, *roads_, [this] { return ego_label_; }));
   }
   [[nodiscard]] const LaneMap& measured_lanes() const override { return *sumo_lanes_; }
   [[nodiscard]] const ObservedRun& observed() const override { return *observed_; }

@@ -64,18 +64,19 @@ def _key(t: float) -> int:
 
 
 def read_our_trace(trace: pathlib.Path):
-    """{entity: {time_ms: (x, y)}} and {entity: set of drivers}."""
+    """{entity: {time_ms: (x, y, z)}} and {entity: set of drivers}; z is None in a trace without it."""
     points, drivers = collections.defaultdict(dict), collections.defaultdict(set)
     with trace.open(newline="") as f:
         for row in csv.DictReader(f):
             name = row["actor_id"]
-            points[name][_key(float(row["time"]))] = (float(row["x"]), float(row["y"]))
+            z = float(row["z"]) if row.get("z") not in (None, "") else None
+            points[name][_key(float(row["time"]))] = (float(row["x"]), float(row["y"]), z)
             drivers[name].add(row["driver"])
     return points, drivers
 
 
 def read_peer_trace(sim_csv: pathlib.Path):
-    """{entity: {time_ms: (x, y)}} from esmini's dat2csv output (columns with spaces)."""
+    """{entity: {time_ms: (x, y, z)}} from esmini's dat2csv output (columns with spaces)."""
     points = collections.defaultdict(dict)
     with sim_csv.open(newline="") as f:
         reader = csv.reader(f, skipinitialspace=True)
@@ -84,7 +85,8 @@ def read_peer_trace(sim_csv: pathlib.Path):
         for row in reader:
             if len(row) < len(header):
                 continue
-            points[row[col["name"]]][_key(float(row[col["time"]]))] = (float(row[col["x"]]), float(row[col["y"]]))
+            z = float(row[col["z"]]) if "z" in col else None
+            points[row[col["name"]]][_key(float(row[col["time"]]))] = (float(row[col["x"]]), float(row[col["y"]]), z)
     return points
 
 
@@ -117,7 +119,15 @@ def read_peer_transitions(log_txt: pathlib.Path) -> list:
 
 
 def _fmt_point(p) -> str:
-    return f"({p[0]:.3f}, {p[1]:.3f})" if p else "absent"
+    if not p:
+        return "absent"
+    return f"({p[0]:.3f}, {p[1]:.3f}" + (f", {p[2]:.3f})" if len(p) > 2 and p[2] is not None else ")")
+
+
+def _distance(a, b) -> float:
+    """Between reference points; in 3D when both players give z (roads with elevation)."""
+    dz = a[2] - b[2] if len(a) > 2 and len(b) > 2 and a[2] is not None and b[2] is not None else 0.0
+    return math.sqrt((a[0] - b[0]) ** 2 + (a[1] - b[1]) ** 2 + dz ** 2)
 
 
 def compare_positions(ours, drivers, peer, end_time: float):
@@ -144,7 +154,9 @@ def compare_positions(ours, drivers, peer, end_time: float):
                 differences.append(Difference("position", name, t, _fmt_point(a), _fmt_point(b)))
                 break
             count += 1
-            gap = math.hypot(a[0] - b[0], a[1] - b[1])
+            if a[2] is None or b[2] is None:  # heights compared only where both players give them
+                a, b = a[:2], b[:2]
+            gap = _distance(a, b)
             if gap > TOLERANCE:
                 differences.append(Difference("position", name, t, _fmt_point(a), f"{_fmt_point(b)}, {gap:.3f} m apart"))
                 break

@@ -82,6 +82,27 @@ class Comparison(unittest.TestCase):
         self.assertIn("(10.000, -1.640)", d.ours)
         self.assertIn("(10.000, -1.750), 0.110 m apart", d.peer)
 
+    def test_heights_are_compared_where_both_players_give_them(self):
+        # A road with elevation: our trace has z (the road surface under the entity); 0.11 m
+        # of height apart is a difference, as 0.11 m sideways is.
+        ours, peer = self.root / "ours", self.root / "peer"
+        ours.mkdir()
+        peer.mkdir()
+        trace = [OUR_HEADER.rstrip("\n") + ",z,pitch,roll\n"]
+        sim = ["time, id, name, x, y, z, h, p, r, speed, wheel_angle, wheel_rot\n"]
+        for i in range(41):
+            t = i * 0.05
+            trace.append(our_row(t, "A", 10 * t, -1.75).rstrip("\n") + f",{2.0 + (0.11 if t >= 1.0 else 0.0):.3f},0,0\n")
+            sim.append(f"{t:.3f}, 0, A, {10 * t:.3f}, -1.750, 2.000, 0.000, 0.000, 0.000, 10.000, 0.000, 0.000\n")
+        (ours / "trace.csv").write_text("".join(trace))
+        (peer / "sim.csv").write_text("".join(sim))
+        (ours / "result.json").write_text(json.dumps({"verdict": "success", "events": []}))
+        (peer / "log.txt").write_text("")
+        c = compare.compare_runs(ours, peer, 2.0, 2.0)
+        self.assertEqual([(d.what, d.subject, d.time) for d in c.differences], [("position", "A", 1.0)])
+        self.assertIn("(10.000, -1.750, 2.110)", c.differences[0].ours)
+        self.assertIn("(10.000, -1.750, 2.000), 0.110 m apart", c.differences[0].peer)
+
     def test_a_transition_two_steps_late_or_missing_is_a_difference(self):
         events = [e for e in OUR_EVENTS if "GoAction endTransition" not in e[2]]
         (self.root / "late").mkdir()
