@@ -21,7 +21,7 @@ rm -rf "$build"
 # costs a fifth of the compile time.
 sets="integration;shared_data;browser;libfuzzer;differential"
 [ "${ORCH_SANITIZE_STAGE:-1}" = 1 ] || sets="unit;integration;e2e;shared_data;browser;fuzz_random;libfuzzer;differential"
-"$root/scripts/build.sh" "$build" -DORCH_WERROR=ON -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O2 -g1 -DNDEBUG" \
+"$root/scripts/build.sh" "$build" -DORCH_WERROR=ON -DORCH_UNITY=ON -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O2 -g1 -DNDEBUG" \
   -DORCH_TEST_SETS="$sets"
 cd "$build"
 if [ -d "$root/../shared/data/roadeditor" ]; then

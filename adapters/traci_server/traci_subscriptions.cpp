@@ -14,7 +14,7 @@ namespace tc = libsumo;
 
 namespace {
 
-constexpr double kTimeEps = 1e-6;
+constexpr double kSubscriptionTimeEps = 1e-6;
 
 bool takes_parameter(Domain domain, std::uint8_t variable) {
   return variable == tc::VAR_PARAMETER || variable == tc::VAR_PARAMETER_WITH_KEY ||
@@ -105,8 +105,8 @@ void Session::subscribe(const RawCommand& c, Domain domain, bool context) {
 }
 
 bool Session::active(const Subscription& s, double now) const {
-  const bool begun = s.begin == tc::INVALID_DOUBLE_VALUE || now + kTimeEps >= s.begin;
-  const bool over = s.end != tc::INVALID_DOUBLE_VALUE && now > s.end + kTimeEps;
+  const bool begun = s.begin == tc::INVALID_DOUBLE_VALUE || now + kSubscriptionTimeEps >= s.begin;
+  const bool over = s.end != tc::INVALID_DOUBLE_VALUE && now > s.end + kSubscriptionTimeEps;
   return begun && !over;
 }
 
@@ -162,7 +162,7 @@ void Session::append_step_results() {
   std::int32_t n = 0;
   std::vector<Subscription> kept;
   for (const auto& s : subscriptions_) {
-    if (s.end != tc::INVALID_DOUBLE_VALUE && now > s.end + kTimeEps) continue;  // expired
+    if (s.end != tc::INVALID_DOUBLE_VALUE && now > s.end + kSubscriptionTimeEps) continue;  // expired
     if (!active(s, now)) {
       kept.push_back(s);
       continue;

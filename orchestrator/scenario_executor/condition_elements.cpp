@@ -64,7 +64,7 @@ void check_distance(CheckContext& ctx, const DistanceCondition& c, const SourceL
 }
 
 // ---------------------------------------------------------------- speed
-std::optional<SpeedCondition> read_speed(LoadContext& ctx, ObjectReader& r) {
+std::optional<SpeedCondition> read_speed_condition(LoadContext& ctx, ObjectReader& r) {
   SpeedCondition c;
   const auto actor = r.integer("actor_id", Need::Required);
   const auto type = loading::read_speed_type(r);
@@ -83,7 +83,7 @@ std::optional<SpeedCondition> read_speed(LoadContext& ctx, ObjectReader& r) {
   }
   return c;
 }
-void check_speed(CheckContext& ctx, const SpeedCondition& c, const SourceLocation& where) {
+void check_speed_condition(CheckContext& ctx, const SpeedCondition& c, const SourceLocation& where) {
   if (!c.target) return;
   checks::check_actor_ref(ctx, *c.target, where, "target_actor_id");
   check_not_self(ctx, c.actor, *c.target, where,
@@ -134,7 +134,7 @@ const std::vector<ConditionElement>& condition_elements() {
   static const std::vector<ConditionElement> table = {
       row<ConditionKind, read_position, check_position>("position"),
       row<ConditionKind, read_distance, check_distance>("distance"),
-      row<ConditionKind, read_speed, check_speed>("speed"),
+      row<ConditionKind, read_speed_condition, check_speed_condition>("speed"),
       row<ConditionKind, read_time_headway, check_time_headway>("time_headway"),
       row<ConditionKind, read_collision, check_collision>("collision"),
       row<ConditionKind, read_simulation_time, check_simulation_time>("simulation_time"),
