@@ -209,6 +209,19 @@ class OpenScenarioFormat : public RunFormat {
     if (ego_watch_ && snap) ego_watch_->step(*snap, actors_->tracked());
   }
 
+  // An ego that followed the storyboard is handed to SUMO's driver when its (not system under
+  // test) controller is activated, like any entity (openscenario_world.hpp): run.log and the
+  // report say so, once.
+  void note_ego_hand_over(double t, RunLog& log) {
+    if (ego_driven_ || ego_handed_ || ego_.empty() || !actors_->is_sumo_driven(ego_)) return;
+    ego_handed_ = true;
+    const std::string& controller = runtime_->entities().at(ego_).controller;
+    const std::string what = fmt::format("SUMO's driver drives it from t={:.2f} s (its controller {} was activated; "
+                                         "SUMO stands in for it)", t, controller);
+    log.at(t, fmt::format("{}: {}", ego_, what));
+    ego_summary_ += "; " + what;
+  }
+
   const RunRequest& req_;
   // Declared in this order: the runtime and the actors refer to the roads and lanes.
   std::optional<openscenario::Scenario> scenario_;
@@ -225,6 +238,7 @@ class OpenScenarioFormat : public RunFormat {
   EgoModelChoice ego_model_;
   std::string ego_;
   bool ego_driven_ = false;  // SUMO, the reference driver or a plug-in drives the ego (else the storyboard)
+  bool ego_handed_ = false;  // a storyboard ego was handed to SUMO's driver by its activated controller
   std::string ego_summary_;  // who drives the ego and why, for run.log and the report
   const char* ego_label_ = "sumo";  // the ego's trace `driver` this step
   std::size_t logged_ = 0;          // storyboard transitions already in the log
@@ -295,6 +309,7 @@ double OpenScenarioFormat::take_step(const engine::WorldSnapshot& snap, RunResul
   ego_label_ = model_drives ? "r157"
                : !ego_driven_ && !ego_.empty() && actors_->is_sumo_driven(ego_) ? "sumo"  // an activated controller
                                                                                : OpenScenarioEgo::label(ego_driver);
+  note_ego_hand_over(t, log);
   observed_->update(snap, t, runtime_->entities(), runtime_->finished());
   // Entities SUMO (or the external ego) drove are what the storyboard's conditions see of
   // them from now on; while the storyboard moves the ego laterally, its own state stands.
