@@ -81,6 +81,8 @@ class SumoSimulator final : public Simulator {
     guard("simulation step", [this] {
       sumo::Simulation::step();
       reader_.after_step();
+      for (const auto& [id, speed] : pending_max_speed_) sumo::Vehicle::setMaxSpeed(id, speed);
+      pending_max_speed_.clear();
     });
   }
 
@@ -290,9 +292,15 @@ class SumoSimulator final : public Simulator {
       const std::string lane_id = c.edge + "_" + std::to_string(c.lane);
       const double lane_length = sumo::Lane::getLength(lane_id);
       const double front = std::clamp(c.lane_pos + c.actor.length / 2, 0.0, lane_length);
-      // SUMO refuses to insert a vehicle faster than the lane allows; a scripted actor the
-      // scenario starts faster gets its exact speed with its first pose (speed mode 0).
-      const double depart_speed = c.scripted ? std::min(c.speed, sumo::Lane::getMaxSpeed(lane_id)) : c.speed;
+      // Never a negative or non-finite departSpeed (SUMO refuses it): an entity standing,
+      // reversing or without a speed yet departs standing; a scripted one gets its exact
+      // speed with its first pose (speed mode 0).
+      const double speed = std::isfinite(c.speed) ? std::max(c.speed, 0.0) : 0.0;
+      const double lane_max = sumo::Lane::getMaxSpeed(lane_id);
+      // SUMO refuses to insert a vehicle faster than the lane allows: a scripted actor departs
+      // at the limit (its first pose sets its speed), a driven one at the storyboard's speed.
+      const double depart_speed = c.scripted ? std::min(speed, lane_max) : speed;
+      if (!c.scripted) allow_driven_speeds(type, c, lane_id, depart_speed);
       sumo::Vehicle::add(c.actor.sumo_id, route, type, "now", std::to_string(c.lane), fmt::format("{:.3f}", front),
                          fmt::format("{:.3f}", depart_speed));
       if (c.scripted) {
@@ -302,10 +310,27 @@ class SumoSimulator final : public Simulator {
       } else {
         // The built-in ego keeps the lane of its route and drives at the route's speed.
         sumo::Vehicle::setLaneChangeMode(c.actor.sumo_id, 0);
-        if (c.max_speed > 0) sumo::Vehicle::setMaxSpeed(c.actor.sumo_id, c.max_speed);
+        // SUMO checks the departure speed against the vehicle's maximum speed again when it
+        // inserts it (the next step): a desired speed below the departure speed waits for that.
+        if (c.max_speed > 0 && c.max_speed < depart_speed) pending_max_speed_[c.actor.sumo_id] = c.max_speed;
+        else if (c.max_speed > 0) sumo::Vehicle::setMaxSpeed(c.actor.sumo_id, c.max_speed);
         if (c.keep_lateral) sumo::VehicleType::setLateralAlignment(type, "arbitrary");
       }
     });
+  }
+
+  // A vehicle SUMO drives departs at its given speed (the storyboard's) even above the lane's
+  // limit: SUMO caps a vehicle's speed at limit x speed factor and refuses a departure above
+  // it ("Departure speed ... is too high for the departure edge"), so such a vehicle's type
+  // gets the speed factor (and maximum speed) that allows its departure speed; it then keeps
+  // at most that speed where the limit is the same. Within the limit nothing changes (speed
+  // factor 1, see make_type's caller on speed factors).
+  void allow_driven_speeds(const std::string& type, const sim::SpawnVehicle& c, const std::string& lane_id,
+                           double depart_speed) {
+    // SUMO checks the edge by its first lane, then the departure lane.
+    const double limit = std::min(sumo::Lane::getMaxSpeed(lane_id), sumo::Lane::getMaxSpeed(c.edge + "_0"));
+    if (limit > 0 && depart_speed > limit) sumo::VehicleType::setSpeedFactor(type, depart_speed / limit * 1.001);
+    if (depart_speed > sumo::VehicleType::getMaxSpeed(type)) sumo::VehicleType::setMaxSpeed(type, depart_speed * 1.001);
   }
 
   void execute(const sim::SpawnPerson& c) {
@@ -353,6 +378,10 @@ class SumoSimulator final : public Simulator {
   }
 
   void execute(const sim::SetMaxSpeed& c) {
+    if (const auto pending = pending_max_speed_.find(c.sumo_id); pending != pending_max_speed_.end()) {
+      pending->second = c.speed;  // not inserted yet: set after the step (execute(SpawnVehicle))
+      return;
+    }
     guard("setting a speed", [&] { sumo::Vehicle::setMaxSpeed(c.sumo_id, c.speed); });
   }
 
@@ -385,6 +414,7 @@ class SumoSimulator final : public Simulator {
       if (c.kind == ActorKind::Pedestrian) sumo::Person::remove(c.sumo_id);
       else sumo::Vehicle::remove(c.sumo_id);
       sent_.erase(c.sumo_id);
+      pending_max_speed_.erase(c.sumo_id);
     });
   }
 
@@ -423,6 +453,9 @@ class SumoSimulator final : public Simulator {
     bool speed_mode_off = false;  // DriveSpeed switched SUMO's own speed checks off
   };
   std::unordered_map<std::string, Sent> sent_;
+  // Driven vehicles added this step whose desired speed is below their departure speed: set
+  // after the step that inserts them (execute(SpawnVehicle)).
+  std::unordered_map<std::string, double> pending_max_speed_;
 };
 
 }  // namespace

@@ -61,7 +61,10 @@ std::optional<int> prepare_evaluation(RunOptions& o, RunRequest& req) {
   if (f.backend && !given(o, "--backend")) o.backend = *f.backend;
   if (!f.local_map_path.empty()) req.map_dirs.insert(req.map_dirs.begin(), f.local_map_path);
   req.evaluation = EvaluationRequest{o.file, f.criteria, f.conditions, f.vehicle_model, o.jsonl_every};
-  if (f.ego_model && !given(o, "--ego-model")) req.ego_model = *f.ego_model;
+  if (f.ego_model && !given(o, "--ego-model")) {
+    req.ego_model = *f.ego_model;
+    req.ego_model_given = true;
+  }
   if (f.reference_run && !given(o, "--reference-run")) req.reference_run = *f.reference_run;
   // no_preventable_collision is judged against the reference run: it asks for one.
   for (const auto& c : f.criteria)
@@ -104,7 +107,10 @@ int run_command(const RunOptions& o) {
   if (!o.parameters.empty() && detect_scenario_format(o.file) != ScenarioFormat::OpenScenario)
     throw OrchError("--param sets OpenSCENARIO parameters: " + o.file + " is not an OpenSCENARIO file");
   req.ssm = o.ssm;
-  if (!o.ego_model.empty()) req.ego_model.name = o.ego_model;
+  if (!o.ego_model.empty()) {
+    req.ego_model.name = o.ego_model;
+    req.ego_model_given = true;
+  }
   req.reference_run = o.reference_run;
 
   RunOptions options = o;

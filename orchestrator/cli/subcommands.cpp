@@ -49,7 +49,10 @@ Handler setup_run(CLI::App& cmd) {
   r->add_option("--ego-port", run->ego_port,
                 "An external plug-in drives the ego over TraCI: listen on this port (0: any free port)")
       ->check(CLI::Range(0, 65535));
-  r->add_option("--ego", run->ego_entity, "OpenSCENARIO runs: the entity that is the ego (default: the ALKSController's)");
+  r->add_option("--ego", run->ego_entity,
+                "OpenSCENARIO runs: the entity that is the ego, driven by SUMO (or --ego-model, --ego-port) instead of "
+                "the storyboard (default: the entity with a system-under-test controller drives; docs/openscenario.md "
+                "\"The ego\")");
   r->add_option("--param", run->parameters, "NAME=VALUE: set an OpenSCENARIO parameter (repeatable)")
       ->allow_extra_args(false);
   r->add_option("--ego-model", run->ego_model,

@@ -1,6 +1,7 @@
 #include "run/openscenario_ego_choice.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <algorithm>
 #include <array>
@@ -53,23 +54,50 @@ std::string name_rule(const openscenario::Entity& e) {
   return one_of(e.name, {"Ego", "ego_vehicle", "hero"}) ? fmt::format("its name is {}", e.name) : "";
 }
 
+// What the ego's controller is, in words (run.log says why the ego is or is not driven).
+std::string controller_note(const openscenario::Entity& e) {
+  if (!e.controller) return "no controller";
+  const std::string sut = controller_rule(e);
+  if (sut.empty()) return fmt::format("controller {} is not a system under test", e.controller->name);
+  return sut.find("esminiController") != std::string::npos
+             ? fmt::format("controller {} (esminiController=ExternalController) is a system under test", e.controller->name)
+             : fmt::format("controller {} is a system under test", e.controller->name);
+}
+
+EgoChoice with_note(const openscenario::Scenario& scenario, EgoChoice choice, bool system_under_test) {
+  choice.system_under_test = system_under_test;
+  if (const auto* e = scenario.entity(choice.entity)) choice.controller_note = controller_note(*e);
+  return choice;
+}
+
 }  // namespace
+
+EgoDriving ego_driving(const EgoChoice& choice, const EgoRequests& requests) {
+  if (choice.entity.empty()) return {false, choice.rule};
+  if (requests.plugin) return {true, "--ego-port: an external plug-in"};
+  if (!requests.ego_model.empty()) return {true, "--ego-model " + requests.ego_model};
+  if (requests.reference_driver) return {true, "the reference run"};
+  if (choice.rule.rfind("--ego ", 0) == 0) return {true, choice.rule};
+  if (choice.system_under_test) return {true, choice.controller_note};
+  return {false, choice.controller_note};
+}
 
 EgoChoice choose_ego(const openscenario::Scenario& scenario, const std::string& requested) {
   std::vector<std::string> names;
   for (const auto& e : scenario.entities) names.push_back(e.name);
   const SourceLocation where{scenario.file, "/OpenSCENARIO/Entities", 0};
   if (!requested.empty()) {
-    if (scenario.entity(requested)) return {requested, "--ego " + requested};
-    throw ScenarioError(where, fmt::format("--ego {}: no such entity{}", requested, did_you_mean(requested, names)));
+    if (scenario.entity(requested)) return with_note(scenario, {requested, "--ego " + requested, false, ""}, true);
+    throw ScenarioError(where, fmt::format("--ego {}: no such entity{}; the entities are {}", requested,
+                                           did_you_mean(requested, names), fmt::join(names, ", ")));
   }
   using Rule = std::function<std::string(const openscenario::Entity&)>;
   const std::array<Rule, 3> ranks{controller_rule, property_rule, name_rule};
-  for (const Rule& rule : ranks) {
+  for (std::size_t rank = 0; rank < ranks.size(); ++rank) {
     std::vector<EgoChoice> found;
     for (const auto& e : scenario.entities)
-      if (std::string why = rule(e); !why.empty()) found.push_back({e.name, std::move(why)});
-    if (found.size() == 1) return found.front();
+      if (std::string why = ranks[rank](e); !why.empty()) found.push_back({e.name, std::move(why), false, ""});
+    if (found.size() == 1) return with_note(scenario, found.front(), rank == 0);
     if (found.size() > 1) {
       std::string list;
       for (const auto& f : found) list += fmt::format("{}{} ({})", list.empty() ? "" : ", ", f.entity, f.rule);
@@ -78,7 +106,7 @@ EgoChoice choose_ego(const openscenario::Scenario& scenario, const std::string& 
     }
   }
   return {"", "no entity has a system-under-test controller, a Property type=ego_vehicle or the name Ego/hero, "
-              "and no --ego"};
+              "and no --ego", false, ""};
 }
 
 }  // namespace orch

@@ -58,11 +58,13 @@ const sim::ActorState* find_actor(const sim::WorldSnapshot& snap, const OpenScen
 // The entities SUMO had, for result.json's "actors": what the report draws them with. The
 // trace names entities in actor_id, so the report finds a record by its sumo_id (an
 // entity's first SUMO id is its name); actor_id here is the run's index of the entity.
-std::vector<ActorRecord> entity_records(const OpenScenarioActors& actors) {
+// The ego's description says who drove it and why (the report shows it beside its name).
+std::vector<ActorRecord> entity_records(const OpenScenarioActors& actors, const std::string& ego_summary) {
   std::vector<ActorRecord> out;
   for (const sim::TrackedActor& t : actors.tracked()) {
     const std::string& name = actors.name_of(t.id);
-    out.push_back({static_cast<int>(t.id), name, "", "", "", t.length, t.width, name == actors.ego()});
+    const bool ego = name == actors.ego();
+    out.push_back({static_cast<int>(t.id), name, "", ego ? ego_summary : "", "", t.length, t.width, ego});
   }
   std::sort(out.begin(), out.end(), [](const ActorRecord& l, const ActorRecord& r) { return l.id < r.id; });
   return out;
@@ -187,7 +189,7 @@ class OpenScenarioFormat : public RunFormat {
       result.ego_min_gap = ego_watch_->exposure().min_gap;
       result.ego_min_ttc = ego_watch_->exposure().min_ttc;
     }
-    if (actors_) result.actors = entity_records(*actors_);
+    if (actors_) result.actors = entity_records(*actors_, ego_summary_);
     if (observed_) result.collisions = observed_->contacts();
   }
   [[nodiscard]] std::optional<std::string> ego_collision_reason() const override { return collision_; }
@@ -207,6 +209,19 @@ class OpenScenarioFormat : public RunFormat {
     if (ego_watch_ && snap) ego_watch_->step(*snap, actors_->tracked());
   }
 
+  // An ego that followed the storyboard is handed to SUMO's driver when its (not system under
+  // test) controller is activated, like any entity (openscenario_world.hpp): run.log and the
+  // report say so, once.
+  void note_ego_hand_over(double t, RunLog& log) {
+    if (ego_driven_ || ego_handed_ || ego_.empty() || !actors_->is_sumo_driven(ego_)) return;
+    ego_handed_ = true;
+    const std::string& controller = runtime_->entities().at(ego_).controller;
+    const std::string what = fmt::format("SUMO's driver drives it from t={:.2f} s (its controller {} was activated; "
+                                         "SUMO stands in for it)", t, controller);
+    log.at(t, fmt::format("{}: {}", ego_, what));
+    ego_summary_ += "; " + what;
+  }
+
   const RunRequest& req_;
   // Declared in this order: the runtime and the actors refer to the roads and lanes.
   std::optional<openscenario::Scenario> scenario_;
@@ -222,6 +237,9 @@ class OpenScenarioFormat : public RunFormat {
   std::optional<reference_driver::EgoWatch> ego_watch_;          // the ego's minimum gap and TTC
   EgoModelChoice ego_model_;
   std::string ego_;
+  bool ego_driven_ = false;  // SUMO, the reference driver or a plug-in drives the ego (else the storyboard)
+  bool ego_handed_ = false;  // a storyboard ego was handed to SUMO's driver by its activated controller
+  std::string ego_summary_;  // who drives the ego and why, for run.log and the report
   const char* ego_label_ = "sumo";  // the ego's trace `driver` this step
   std::size_t logged_ = 0;          // storyboard transitions already in the log
   int background_ = 0;              // SUMO vehicles that are not entities, at the last step
@@ -249,25 +267,32 @@ void OpenScenarioFormat::open(RunResult& result, RunLog& log, SimulatorConfig& c
   if (req_.ego_link && ego_model_.r157())
     throw OrchError("--ego-port: an external ego drives the ego; the R157 reference driver (--ego-model r157 or "
                     "an R157ReferenceDriver controller) cannot drive it too");
-  result.ego_model = ego_model_.name;
+  const EgoDriving driving = ego_driving(chosen, {req_.ego_model_given ? req_.ego_model.name : "",
+                                                  req_.ego_model.r157(), req_.ego_link != nullptr});
+  ego_driven_ = driving.driven;
+  if (!ego_driven_) ego_model_ = EgoModelChoice{};  // nothing drives it: no reference driver either
+  result.ego_model = ego_.empty() || ego_driven_ ? ego_model_.name : "storyboard";
+  ego_summary_ = ego_.empty() ? ""
+                 : !ego_driven_ ? fmt::format("follows the storyboard ({})", driving.why)
+                 : req_.ego_link ? fmt::format("driven by SUMO's car-following model until an ActivateControllerAction "
+                                               "hands it to the external ego ({})", driving.why)
+                                 : fmt::format("driven by {} ({})",
+                                               ego_model_.r157() ? "the UN R157 reference driver" : "SUMO",
+                                               driving.why);
   log.note(ego_.empty() ? fmt::format("no ego: {}", chosen.rule)
-           : req_.ego_link ? fmt::format("ego {} (SUMO vehicle \"ego\"; driven by SUMO's car-following model until "
-                                         "an ActivateControllerAction hands it to the external ego); chosen: {}",
-                                         ego_, chosen.rule)
-                           : fmt::format("ego {} (driven by {}); chosen: {}", ego_,
-                                         ego_model_.r157() ? "the UN R157 reference driver"
-                                                           : "SUMO's car-following model",
-                                         chosen.rule));
+                        : fmt::format("{}: {}; the ego of metrics and the report because {}{}", ego_, ego_summary_,
+                                      chosen.rule, req_.ego_link ? " (SUMO vehicle \"ego\")" : ""));
   if (req_.evaluation) check_criteria(*req_.evaluation, *scenario_, ego_, log);
   runtime_.emplace(*scenario_, *roads_);
-  actors_.emplace(*scenario_, *lanes_, ego_, req_.ego_link != nullptr);
+  actors_.emplace(*scenario_, *lanes_, ego_,
+                  !ego_driven_ ? EgoDrive::Storyboard : req_.ego_link ? EgoDrive::External : EgoDrive::Sumo);
   sumo_lanes_.emplace(LaneMap::build(net.net_file.string(), WaypointFile{}));
   observed_.emplace(*scenario_, *roads_, *actors_);
 
   config.net_file = std::filesystem::absolute(net.net_file).string();
   if (const auto traffic = traffic_route_file(req_, net.net_file, result, log); !traffic.empty())
     config.route_files.push_back(traffic);
-  if (req_.ssm && !ego_.empty()) {  // the ego is SUMO's (its vehicle id is the entity's name)
+  if (req_.ssm && !ego_.empty() && ego_driven_) {  // the ego is SUMO's (its vehicle id is the entity's name)
     const auto ssm = ssm_device_arguments(ego_, req_.out_dir / kSsmFileName);
     config.extra_args.insert(config.extra_args.end(), ssm.begin(), ssm.end());
   }
@@ -278,15 +303,19 @@ double OpenScenarioFormat::take_step(const sim::WorldSnapshot& snap, RunResult& 
   const double t = runtime_->time();
   background_ = snap.other_vehicles;
   const auto ego_driver = ego_.empty() ? OpenScenarioEgo::Driver::Sumo
-                                       : actors_->ego_drive().driver(runtime_->entities().at(ego_));
+                         : !ego_driven_ ? OpenScenarioEgo::Driver::Storyboard
+                                        : actors_->ego_drive().driver(runtime_->entities().at(ego_));
   const bool model_drives = model_drives_ego_ && ego_driver == OpenScenarioEgo::Driver::Sumo;
-  ego_label_ = model_drives ? "r157" : OpenScenarioEgo::label(ego_driver);
+  ego_label_ = model_drives ? "r157"
+               : !ego_driven_ && !ego_.empty() && actors_->is_sumo_driven(ego_) ? "sumo"  // an activated controller
+                                                                               : OpenScenarioEgo::label(ego_driver);
+  note_ego_hand_over(t, log);
   observed_->update(snap, t, runtime_->entities(), runtime_->finished());
   // Entities SUMO (or the external ego) drove are what the storyboard's conditions see of
   // them from now on; while the storyboard moves the ego laterally, its own state stands.
   // (The observers see the step afterwards, through observed_, which does not read the runtime.)
   for (const std::string& driven : actors_->sumo_driven()) {
-    if (driven == ego_ && ego_driver == OpenScenarioEgo::Driver::Storyboard) continue;
+    if (driven == ego_ && ego_driven_ && ego_driver == OpenScenarioEgo::Driver::Storyboard) continue;
     if (const sim::ActorState* e = find_actor(snap, *actors_, driven); e && e->present) {
       const Vec2 ref = actors_->reference_point(*e);
       runtime_->observe(driven, {ref.x(), ref.y(), e->heading}, e->speed, e->accel);

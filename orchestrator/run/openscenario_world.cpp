@@ -50,8 +50,11 @@ std::string choose_ego_entity(const openscenario::Scenario& scenario, const std:
 }
 
 OpenScenarioActors::OpenScenarioActors(const openscenario::Scenario& scenario, const opendrive::SumoLaneIndex& lanes,
-                                       std::string ego, bool external_ego)
-    : lanes_(lanes), ego_(std::move(ego)), ego_drive_(ego_, external_ego) {
+                                       std::string ego, EgoDrive drive)
+    : lanes_(lanes),
+      ego_(std::move(ego)),
+      ego_driven_(drive != EgoDrive::Storyboard),
+      ego_drive_(ego_, drive == EgoDrive::External) {
   for (const auto& e : scenario.entities) {
     Body body;
     body.id = static_cast<sim::ActorId>(names_.size());
@@ -88,7 +91,8 @@ void OpenScenarioActors::spawn(const std::string& name, Body& body, const opensc
     throw MapError(fmt::format("entity {} starts on road {} lane {} at s={:.2f}, of which the SUMO net has no lane",
                                name, state.road_id, state.lane, state.s));
   ++body.lives;
-  const std::string first_id = name == ego_ ? ego_drive_.sumo_id() : name;
+  const bool driven_ego = ego_driven_ && name == ego_;
+  const std::string first_id = driven_ego ? ego_drive_.sumo_id() : name;
   body.sumo_id = body.lives == 1 ? first_id : fmt::format("{}~{}", first_id, body.lives);
   sim::TrackedActor actor{body.id, body.sumo_id, body.model.kind, body.model.length, body.model.width};
   sim::SpawnVehicle command;
@@ -105,7 +109,7 @@ void OpenScenarioActors::spawn(const std::string& name, Body& body, const opensc
     if (auto route = sumo_route_of(state); !route.empty() && route.front() == hint->edge) command.route = std::move(route);
     body.route_version = state.route_version;
     body.desired_speed = storyboard_desired_speed(state, -1);
-    command.max_speed = name == ego_ ? ego_drive_.spawn_speed(state) : body.desired_speed;
+    command.max_speed = driven_ego ? ego_drive_.spawn_speed(state) : body.desired_speed;
   }
   out.push_back(std::move(command));
   const auto known = std::find_if(tracked_.begin(), tracked_.end(), [&](const auto& t) { return t.id == body.id; });
@@ -118,7 +122,7 @@ std::vector<sim::Command> OpenScenarioActors::place(const std::map<std::string, 
   std::vector<sim::Command> out;
   for (const auto& [name, state] : entities) {
     Body& body = bodies_.at(name);
-    const bool is_ego = name == ego_;
+    const bool is_ego = ego_driven_ && name == ego_;  // the driven ego; a storyboard one is as any entity
     const bool in_traffic = state.placed && state.visibility.traffic;
     if (!in_traffic) {
       if (body.spawned) {

@@ -18,14 +18,22 @@ namespace orch {
 // The ego's entity by the rule of openscenario_ego_choice.hpp ("" for none).
 std::string choose_ego_entity(const openscenario::Scenario& scenario, const std::string& requested);
 
+// Who drives the ego entity (openscenario_ego_choice.hpp, ego_driving).
+enum class EgoDrive {
+  Sumo,        // SUMO's car-following model (or the reference driver through SUMO's vehicle)
+  External,    // as Sumo, until an ActivateControllerAction hands it to the plug-in (--ego-port)
+  Storyboard,  // nobody: it follows the storyboard like every other entity
+};
+
 class OpenScenarioActors {
  public:
-  // `ego` ("" for none) is driven by SUMO's car-following model: spawned and placed once where
-  // the storyboard puts it, then only its desired speed follows the storyboard's speed target.
-  // `external_ego`: an external ego (--ego-port) takes the ego over once its controller is
-  // activated (openscenario_ego.hpp).
+  // `ego` ("" for none) is the ego of metrics and the report. Driven (EgoDrive::Sumo or
+  // External), SUMO's car-following model drives it: spawned and placed once where the
+  // storyboard puts it, then only its desired speed follows the storyboard's speed target;
+  // an external ego (--ego-port) takes it over once its controller is activated
+  // (openscenario_ego.hpp). EgoDrive::Storyboard: it is placed every step like any entity.
   OpenScenarioActors(const openscenario::Scenario& scenario, const opendrive::SumoLaneIndex& lanes,
-                     std::string ego, bool external_ego = false);
+                     std::string ego, EgoDrive drive = EgoDrive::Sumo);
 
   // Commands for the entities' states now: a spawn for each newly placed entity, then a pose
   // for every placed scripted one (SUMO-driven ones: their desired speed when it changed).
@@ -44,6 +52,8 @@ class OpenScenarioActors {
   // The entity's reference point (rear axle centre for vehicles) from SUMO's reported centre.
   [[nodiscard]] Vec2 reference_point(const sim::ActorState& state) const;
   [[nodiscard]] const std::string& ego() const { return ego_; }
+  // SUMO, the reference driver or a plug-in drive the ego (false: it follows the storyboard).
+  [[nodiscard]] bool ego_driven() const { return ego_driven_; }
   [[nodiscard]] const OpenScenarioEgo& ego_drive() const { return ego_drive_; }
 
  private:
@@ -67,6 +77,7 @@ class OpenScenarioActors {
 
   const opendrive::SumoLaneIndex& lanes_;
   std::string ego_;
+  bool ego_driven_ = true;
   OpenScenarioEgo ego_drive_;
   std::map<std::string, Body> bodies_;
   std::vector<std::string> names_;  // by actor id

@@ -67,6 +67,7 @@ RunResult run_with_reference(const RunRequest& req, Simulator& sim,
   ref.reference_run = false;
   ref.echo = false;
   ref.ego_model.name = "r157";
+  ref.ego_model_given = false;  // the reference run's own model: run.log says "the reference run"
   if (!req.ego_model.r157()) ref.ego_model.parameters.clear();
   const auto ref_sim = make_reference_sim();
   const RunResult reference = run_scenario(ref, *ref_sim);

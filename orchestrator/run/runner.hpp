@@ -36,7 +36,8 @@ struct RunRequest {
   // An evaluation file's criteria (docs/evaluation.md): judged every step, folded into the
   // verdict, written to result.json's "criteria" and to result.jsonl.
   std::optional<EvaluationRequest> evaluation;
-  // OpenSCENARIO runs: the ego entity (--ego NAME); empty: the one with the ALKSController.
+  // OpenSCENARIO runs: the ego entity (--ego NAME), driven; empty: by the rules of
+  // run/openscenario_ego_choice.hpp.
   std::string ego_entity;
   // OpenSCENARIO runs: --param NAME=VALUE overrides of declared parameters.
   std::map<std::string, std::string> parameter_overrides;
@@ -44,6 +45,9 @@ struct RunRequest {
   bool ssm = false;
   // Which model drives the ego when no plug-in does (docs/reference-driver.md).
   EgoModelChoice ego_model;
+  // --ego-model (or the evaluation file's EgoModel) was given: in OpenSCENARIO runs the user
+  // asks for the ego to be driven, even without a system-under-test controller.
+  bool ego_model_given = false;
   // Run the scenario again with the R157 reference driver as the ego (into reference/) and
   // judge whether a collision was preventable (docs/reference-driver.md).
   bool reference_run = false;

@@ -169,8 +169,8 @@ TEST(OpenScenarioEvaluationCli, TheSeedsOvertakingEgoIsChosenByItsSystemUnderTes
   bool ego_marked = false;
   for (const auto& a : result["actors"]) ego_marked |= a["sumo_id"] == "Ego" && a["ego"] == true;
   EXPECT_TRUE(ego_marked) << result["actors"].dump();
-  EXPECT_NE(slurp(out / "run.log").find("ego Ego (driven by SUMO's car-following model); chosen: its controller is "
-                                        "named SystemUnderTest"),
+  EXPECT_NE(slurp(out / "run.log").find("Ego: driven by SUMO (controller SystemUnderTest is a system under test); the "
+                                        "ego of metrics and the report because its controller is named SystemUnderTest"),
             std::string::npos);
 }
 

@@ -95,6 +95,6 @@ TEST(ReferenceDriverAlks, OpenScenarioControllerNamedR157ReferenceDriverDrivesTh
   const auto result = read_json(dir / "out" / "result.json");
   EXPECT_EQ(result["ego_model"], "r157");
   EXPECT_EQ(result["verdict"], "success") << result["reason"];
-  EXPECT_NE(slurp(dir / "out" / "run.log").find("ego Ego (driven by the UN R157 reference driver)"), std::string::npos);
+  EXPECT_NE(slurp(dir / "out" / "run.log").find("Ego: driven by the UN R157 reference driver (controller R157ReferenceDriver is a system under test)"), std::string::npos);
   EXPECT_EQ(r.exit_code, 0) << r.output;
 }

@@ -132,6 +132,27 @@ TEST_F(OpenScenarioActorsOnRoad3, TheEgoIsPlacedOnceThenOnlyItsDesiredSpeedFollo
   EXPECT_TRUE(actors.place(entities).empty());  // sent once
 }
 
+// An ego nothing drives (no system-under-test controller, nothing asked on the command
+// line) follows the storyboard: posed every step, scripted, like every other entity.
+TEST_F(OpenScenarioActorsOnRoad3, AStoryboardEgoIsPosedEveryStepLikeAnyEntity) {
+  openscenario::Scenario s;
+  s.entities = {car("Ego", "")};
+  OpenScenarioActors actors(s, lanes, "Ego", EgoDrive::Storyboard);
+  EXPECT_EQ(actors.ego(), "Ego");
+  EXPECT_FALSE(actors.ego_driven());
+  std::map<std::string, openscenario::EntityState> entities{{"Ego", placed_on(roads, -3, 10, 15)}};
+  const auto first = actors.place(entities);
+  ASSERT_EQ(first.size(), 2u);
+  EXPECT_TRUE(std::get<sim::SpawnVehicle>(first[0]).scripted);
+  EXPECT_TRUE(std::get<sim::SetPose>(first[1]).scripted);
+  entities["Ego"] = placed_on(roads, -3, 11, 15);
+  const auto next = actors.place(entities);
+  ASSERT_EQ(next.size(), 1u);  // posed again: the storyboard moves it
+  EXPECT_TRUE(std::get<sim::SetPose>(next[0]).scripted);
+  EXPECT_FALSE(actors.is_sumo_driven("Ego"));
+  EXPECT_TRUE(actors.sumo_driven().empty());
+}
+
 // DeleteEntityAction / VisibilityAction(traffic=false) take the entity out of SUMO; it comes
 // back under a new SUMO id. An activated controller of a non-ego entity hands it to SUMO.
 TEST_F(OpenScenarioActorsOnRoad3, DeletedOrInvisibleEntitiesLeaveSumoActivatedControllersHandOver) {

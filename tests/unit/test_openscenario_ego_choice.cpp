@@ -38,6 +38,8 @@ TEST(OpenScenarioEgoChoice, EgoOptionWinsOverEveryOtherRule) {
   EXPECT_EQ(c.entity, "Lead");
   EXPECT_EQ(c.rule, "--ego Lead");
   EXPECT_NE(error_of(s, "Laed").find("did you mean \"Lead\""), std::string::npos);
+  EXPECT_NE(error_of(s, "Laed").find("; the entities are Ego, Subject, Lead"), std::string::npos) << error_of(s, "Laed");
+  EXPECT_TRUE(c.system_under_test);  // asked for: driven
 }
 
 TEST(OpenScenarioEgoChoice, SystemUnderTestControllersBeforeProperties) {
@@ -49,6 +51,8 @@ TEST(OpenScenarioEgoChoice, SystemUnderTestControllersBeforeProperties) {
     const EgoChoice c = choose_ego(s, "");
     EXPECT_EQ(c.entity, "Car") << name;
     EXPECT_EQ(c.rule, "its controller is named " + name);
+    EXPECT_TRUE(c.system_under_test) << name;
+    EXPECT_EQ(c.controller_note, "controller " + name + " is a system under test");
   }
 }
 
@@ -69,6 +73,7 @@ TEST(OpenScenarioEgoChoice, CarlaEgoVehiclePropertyBeforeNames) {
   const EgoChoice c = choose_ego(s, "");
   EXPECT_EQ(c.entity, "Vehicle1");
   EXPECT_EQ(c.rule, "it has the Property type=ego_vehicle");
+  EXPECT_FALSE(c.system_under_test);  // the ego of metrics and report, not driven
 }
 
 TEST(OpenScenarioEgoChoice, EgoNamesAnyCase) {
@@ -76,6 +81,8 @@ TEST(OpenScenarioEgoChoice, EgoNamesAnyCase) {
     const EgoChoice c = choose_ego(scenario_of({entity("Lead"), entity(name), entity("Egon")}), "");
     EXPECT_EQ(c.entity, name);
     EXPECT_EQ(c.rule, "its name is " + name);
+    EXPECT_FALSE(c.system_under_test);
+    EXPECT_EQ(c.controller_note, "no controller");
   }
 }
 
@@ -96,6 +103,43 @@ TEST(OpenScenarioEgoChoice, NoCandidateNoEgo) {
   const EgoChoice c = choose_ego(scenario_of({entity("Lead", "DefaultDriver"), entity("Follower")}), "");
   EXPECT_EQ(c.entity, "");
   EXPECT_NE(c.rule.find("no --ego"), std::string::npos);
+}
+
+// The standard's meaning of a controller: an entity named Ego without a system-under-test
+// controller follows the storyboard, unless the user asks for it to be driven.
+TEST(OpenScenarioEgoDriving, OnlyASystemUnderTestControllerOrTheUserMakesTheEgoDriven) {
+  const EgoRequests none{};
+  const EgoChoice named = choose_ego(scenario_of({entity("Lead"), entity("Ego")}), "");
+  EXPECT_EQ(named.entity, "Ego");
+  EgoDriving d = ego_driving(named, none);
+  EXPECT_FALSE(d.driven);
+  EXPECT_EQ(d.why, "no controller");
+
+  const EgoChoice other = choose_ego(scenario_of({entity("Lead"), entity("Ego", "DefaultDriver")}), "");
+  d = ego_driving(other, none);
+  EXPECT_FALSE(d.driven);
+  EXPECT_EQ(d.why, "controller DefaultDriver is not a system under test");
+
+  const EgoChoice sut = choose_ego(scenario_of({entity("Lead"), entity("Ego", "ALKSController")}), "");
+  d = ego_driving(sut, none);
+  EXPECT_TRUE(d.driven);
+  EXPECT_EQ(d.why, "controller ALKSController is a system under test");
+
+  const EgoChoice esmini =
+      choose_ego(scenario_of({entity("Car", "MyStack", {{"esminiController", "ExternalController"}})}), "");
+  EXPECT_EQ(ego_driving(esmini, none).why, "controller MyStack (esminiController=ExternalController) is a system under test");
+
+  // The user asks: --ego, --ego-model, the reference run, --ego-port.
+  d = ego_driving(choose_ego(scenario_of({entity("Lead"), entity("Ego")}), "Lead"), none);
+  EXPECT_TRUE(d.driven);
+  EXPECT_EQ(d.why, "--ego Lead");
+  EXPECT_EQ(ego_driving(named, {"sumo", false, false}).why, "--ego-model sumo");
+  EXPECT_TRUE(ego_driving(named, {"sumo", false, false}).driven);
+  EXPECT_TRUE(ego_driving(named, {"", true, false}).driven);
+  EXPECT_TRUE(ego_driving(named, {"", false, true}).driven);
+
+  // No ego: nothing to drive.
+  EXPECT_FALSE(ego_driving(choose_ego(scenario_of({entity("Lead")}), ""), {"r157", true, false}).driven);
 }
 
 }  // namespace

@@ -1,0 +1,106 @@
+// Vehicles enter real SUMO at the speed the scenario gives them (docs/openscenario.md "The
+// ego"): SUMO refuses a departure above the lane's limit ("Departure speed ... is too high
+// for the departure edge") and a negative or non-finite departSpeed ("Invalid departSpeed
+// definition"); the adapter hands a driven vehicle over at its own speed and never sends such
+// a value.
+#include <gtest/gtest.h>
+#include <libsumo/libsumo.h>
+
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include "sim/world.hpp"
+#include "sumo/sumo_simulator.hpp"
+#include "unit/synthetic_roads.hpp"
+
+using namespace orch;
+
+namespace {
+
+const std::string kNorth = "Waypoint03+Waypoint02+Waypoint01#";
+
+sim::SpawnVehicle vehicle(const std::string& id, sim::ActorId actor, int lane, double speed, bool scripted) {
+  sim::SpawnVehicle c;
+  c.actor = {actor, id, ActorKind::Vehicle, 4.5, 2.0};
+  c.model = {"test.car", ActorKind::Vehicle, 4.5, 2.0, 1.5, "passenger", "passenger", false};
+  c.scripted = scripted;
+  for (int i = 0; i < 8; ++i) c.route.push_back(kNorth + std::to_string(i));
+  c.edge = kNorth + "1";
+  c.lane = lane;
+  c.lane_pos = 50 + 30 * actor;
+  c.speed = speed;
+  return c;
+}
+
+class SumoDeparture : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const std::string maps = std::string(ORCH_SOURCE_DIR) + "/sumo_nets/highway/";
+    SimulatorConfig config;
+    config.net_file = maps + "highway.net.xml";
+    config.log_file = (dir.path() / "sumo.log").string();
+    sim->start(config);
+    limit = libsumo::Lane::getMaxSpeed(kNorth + "1_0");
+    ASSERT_GT(limit, 10.0);
+  }
+  void TearDown() override { sim->close(); }
+
+  test::TempDir dir{"sumo_departure"};
+  std::unique_ptr<Simulator> sim = make_libsumo_simulator();
+  double limit = 0;
+};
+
+// A driven vehicle 30 % over the limit departs at its speed and keeps it (its desired speed);
+// a second one whose desired speed is below its departure speed departs at its speed, then
+// slows to the desired one.
+TEST_F(SumoDeparture, ADrivenVehicleDepartsAtItsOwnSpeedAboveTheLaneLimit) {
+  auto fast = vehicle("fast", 0, 0, limit * 1.3, false);
+  fast.max_speed = limit * 1.3;
+  auto slowing = vehicle("slowing", 1, 1, limit * 1.3, false);
+  slowing.max_speed = limit * 0.5;
+  ASSERT_NO_THROW(sim->apply({fast, slowing}));
+  const std::vector<sim::TrackedActor> tracked{fast.actor, slowing.actor};
+  sim->advance();
+  auto snap = sim->read(tracked);
+  ASSERT_TRUE(snap.actors.at(0).present);
+  ASSERT_TRUE(snap.actors.at(1).present);
+  EXPECT_NEAR(snap.actors.at(0).speed, limit * 1.3, 0.01);
+  EXPECT_NEAR(snap.actors.at(1).speed, limit * 1.3, 0.01);
+  for (int step = 0; step < 400; ++step) sim->advance();  // 20 s
+  snap = sim->read(tracked);
+  EXPECT_NEAR(snap.actors.at(0).speed, limit * 1.3, 0.05);  // not capped at the limit
+  EXPECT_NEAR(snap.actors.at(1).speed, limit * 0.5, 0.05);  // SUMO drives it at its desired speed
+}
+
+// Within the limit nothing changes: the speed factor stays 1.
+TEST_F(SumoDeparture, WithinTheLimitTheSpeedFactorStaysOne) {
+  auto calm = vehicle("calm", 0, 0, limit * 0.8, false);
+  calm.max_speed = limit * 2;
+  sim->apply({calm});
+  sim->advance();
+  EXPECT_DOUBLE_EQ(libsumo::Vehicle::getSpeedFactor("calm"), 1.0);
+  for (int step = 0; step < 300; ++step) sim->advance();
+  EXPECT_NEAR(sim->read({calm.actor}).actors.at(0).speed, limit, 0.05);  // the lane's limit caps it, as before
+}
+
+// Negative (reversing) and non-finite speeds never reach SUMO as a departSpeed.
+TEST_F(SumoDeparture, NegativeOrNonFiniteSpeedsDepartStanding) {
+  const auto nan = std::numeric_limits<double>::quiet_NaN();
+  const auto inf = std::numeric_limits<double>::infinity();
+  const std::vector<sim::Command> spawns{vehicle("reversing", 0, 0, -3, true), vehicle("nan", 1, 1, nan, true),
+                                            vehicle("driven_nan", 2, 0, nan, false),
+                                            vehicle("driven_inf", 3, 1, -inf, false)};
+  ASSERT_NO_THROW(sim->apply(spawns));
+  ASSERT_NO_THROW(sim->advance());
+  std::vector<sim::TrackedActor> tracked;
+  for (const auto& c : spawns) tracked.push_back(std::get<sim::SpawnVehicle>(c).actor);
+  const auto snap = sim->read(tracked);
+  for (const auto& a : snap.actors) {
+    EXPECT_TRUE(a.present) << a.id;
+    EXPECT_TRUE(std::isfinite(a.speed)) << a.id;
+    EXPECT_GE(a.speed, 0.0) << a.id;
+  }
+}
+
+}  // namespace
