@@ -3,14 +3,17 @@
 // (map/position_resolver.hpp):
 //  - the ScenarioExecutor format's: a point of a RoadEditor route (WaypointRef) and a
 //    distance along a route from another actor (RouteDistance), on the waypoint maps;
-//  - OpenSCENARIO's: World, RelativeWorld, RelativeObject, Road, RelativeRoad, Lane and
-//    RelativeLane positions with their Orientation, on OpenDRIVE roads.
+//  - OpenSCENARIO's: World, RelativeWorld, RelativeObject, Road, RelativeRoad, Lane,
+//    RelativeLane and Route positions with their Orientation, on OpenDRIVE roads.
 // Relative positions name the entity they refer to; the resolver asks the caller for its pose.
+#include <memory>
 #include <optional>
 #include <string>
 #include <variant>
+#include <vector>
 
 #include "core/diagnostics.hpp"
+#include "opendrive/route_planner.hpp"
 
 namespace orch::position {
 
@@ -54,9 +57,36 @@ struct RelativeLanePosition {
   std::optional<Orientation> orientation;
 };
 
+// RoutePosition: a place on a route (its waypoints, defined below, after Position: a
+// waypoint is itself any position). InRoutePosition's three kinds (OpenSCENARIO 1.0-1.3):
+//  - FromCurrentEntity: where the entity is (it must be on the route);
+//  - FromRoadCoordinates: pathS along the route, t from the road's reference line;
+//  - FromLaneCoordinates: pathS along the route, on lane laneId of the road there,
+//    laneOffset from that lane's centre.
+// pathS is measured along the route's path from its first waypoint (the roads between the
+// waypoints as the waypoints' routeStrategy plans them), in the route's direction.
+struct RouteWaypoints;
+struct InRouteFromEntity { std::string entity; };
+struct InRouteFromRoad { double path_s = 0, t = 0; };
+struct InRouteFromLane { double path_s = 0; int lane_id = 0; double lane_offset = 0; };
+struct RoutePosition {
+  std::shared_ptr<const RouteWaypoints> route;
+  std::variant<InRouteFromEntity, InRouteFromRoad, InRouteFromLane> in_route;
+  std::optional<Orientation> orientation;
+};
+
 // Every position of both languages: each reader produces its own kinds, the resolver
 // resolves any of them given the geometry it needs.
 using Position = std::variant<WaypointRef, RouteDistance, WorldPosition, RelativeWorldPosition, RelativeObjectPosition,
-                              RoadPosition, RelativeRoadPosition, LanePosition, RelativeLanePosition>;
+                              RoadPosition, RelativeRoadPosition, LanePosition, RelativeLanePosition, RoutePosition>;
+
+struct RouteWaypoint {
+  Position position;
+  opendrive::RouteStrategy strategy = opendrive::RouteStrategy::Shortest;
+};
+struct RouteWaypoints {
+  std::string name;
+  std::vector<RouteWaypoint> waypoints;  // at least two
+};
 
 }  // namespace orch::position

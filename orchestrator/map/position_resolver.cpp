@@ -2,10 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 #include <fmt/format.h>
 
 #include "core/errors.hpp"
+#include "map/route_path.hpp"
 
 namespace orch::position {
 namespace {
@@ -133,6 +135,8 @@ ResolvedPosition PositionResolver::resolve(const Position& position, const Entit
           const double heading = road.plan_view.pose(kind.s).heading;
           return on_road(road, kind.s, road.lane_center_t(kind.lane_id, kind.s) + kind.offset,
                          oriented(kind.orientation, heading));
+        } else if constexpr (std::is_same_v<T, RoutePosition>) {
+          return resolve_on_route(kind, entities);
         } else {  // RelativeLanePosition
           const ResolvedPosition from = locate(pose_of(kind.entity));
           if (!from.road || !from.lane)
@@ -147,6 +151,48 @@ ResolvedPosition PositionResolver::resolve(const Position& position, const Entit
         }
       },
       position);
+}
+
+ResolvedPosition PositionResolver::resolve_on_route(const RoutePosition& position, const Entities& entities) const {
+  if (const auto* current = std::get_if<InRouteFromEntity>(&position.in_route)) {
+    // The entity's own place (the standard: it is on the route); an Orientation turns it.
+    const auto pose = entities.pose(current->entity);
+    if (!pose)
+      throw MapError(fmt::format("entity \"{}\" has no position yet to place another relative to it", current->entity));
+    return locate(Pose2{pose->x, pose->y, oriented(position.orientation, pose->heading)});
+  }
+  const RouteWaypoints& route = *position.route;
+  std::vector<opendrive::RoutePoint> points;
+  std::vector<opendrive::RouteStrategy> strategies;
+  for (std::size_t i = 0; i < route.waypoints.size(); ++i) {
+    const ResolvedPosition w = resolve(route.waypoints[i].position, entities);
+    if (!w.road || !w.lane || *w.lane == 0)
+      throw MapError(fmt::format("route \"{}\": waypoint {} (x {:.3f}, y {:.3f}) is on no lane of the road network",
+                                 route.name, i + 1, w.pose.x, w.pose.y));
+    points.push_back({w.road->road_id, w.road->s, *w.lane});
+    strategies.push_back(route.waypoints[i].strategy);
+  }
+  const RoutePath path = route_path(roads(), points, strategies, route.name);
+  const bool by_lane = std::holds_alternative<InRouteFromLane>(position.in_route);
+  const double path_s = by_lane ? std::get<InRouteFromLane>(position.in_route).path_s
+                                : std::get<InRouteFromRoad>(position.in_route).path_s;
+  const PathPlace at = place_on_path(path, path_s, route.name);
+  const opendrive::Road& road = roads().road(at.road_id);
+  // Facing the way the route drives (the road's heading, turned round where the route runs
+  // against s); an Orientation is relative to that.
+  const double along = road.plan_view.pose(at.s).heading + (at.direction < 0 ? std::numbers::pi : 0.0);
+  double t = 0;
+  if (by_lane) {
+    const auto& lane = std::get<InRouteFromLane>(position.in_route);
+    t = road.lane_center_t(lane.lane_id, at.s) + lane.lane_offset;
+  } else {
+    t = std::get<InRouteFromRoad>(position.in_route).t;
+  }
+  Pose2 p = road.world(at.s, t);
+  const double road_heading = p.heading;
+  p.heading = oriented(position.orientation, along);
+  return ResolvedPosition{p, opendrive::RoadCoordinate{road.id, at.s, t, road_heading}, road.lane_at(at.s, t),
+                          std::nullopt};
 }
 
 }  // namespace orch::position

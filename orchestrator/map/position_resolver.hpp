@@ -69,6 +69,7 @@ class PositionResolver {
  private:
   [[nodiscard]] const opendrive::RoadNetwork& roads() const;
   [[nodiscard]] const WaypointFile& waypoints() const;
+  [[nodiscard]] ResolvedPosition resolve_on_route(const RoutePosition& position, const Entities& entities) const;
   const opendrive::RoadNetwork* roads_ = nullptr;
   const WaypointFile* waypoints_ = nullptr;
 };

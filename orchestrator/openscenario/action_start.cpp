@@ -10,6 +10,7 @@
 #include "core/exhaustive.hpp"
 #include "openscenario/expression.hpp"
 #include "openscenario/lane_offset.hpp"
+#include "openscenario/nurbs.hpp"
 #include "openscenario/route_plan.hpp"
 #include "openscenario/text_number.hpp"
 #include "openscenario/trajectory_follow.hpp"
@@ -171,6 +172,18 @@ PathMotion trajectory_path(const FollowTrajectoryAction& a, ActionContext& ctx, 
       const opendrive::Pose2 p = ctx.resolver.resolve(v.position, poses(ctx)).pose;
       points.push_back({p.x, p.y, 0.0, due(v.time)});
     }
+  } else if (const auto* nurbs = std::get_if<NurbsShape>(&a.trajectory.shape)) {
+    std::vector<NurbsControl> controls;
+    for (const NurbsControlPoint& c : nurbs->points) {
+      const opendrive::Pose2 p = ctx.resolver.resolve(c.position, poses(ctx)).pose;
+      controls.push_back({p.x, p.y, c.weight, c.time});
+    }
+    try {
+      points = nurbs_points(controls, nurbs->knots, nurbs->order);
+    } catch (const MapError& e) {
+      throw MapError(fmt::format("trajectory \"{}\" of \"{}\": {}", a.trajectory.name, entity, e.what()));
+    }
+    for (PathPoint& p : points) p.due = due(p.due);
   } else {
     const auto& c = std::get<ClothoidShape>(a.trajectory.shape);
     const opendrive::Pose2 start = ctx.resolver.resolve(c.start, poses(ctx)).pose;
@@ -287,13 +300,17 @@ std::vector<std::string> start_action(const PrivateAction& action, const std::st
         } else if constexpr (std::is_same_v<T, VisibilityAction>) {
           state.visibility = a;
         } else if constexpr (std::is_same_v<T, FollowTrajectoryAction>) {
-          if (!state.placed) throw MapError(fmt::format("entity \"{}\" has no position yet", entity));
+          // An entity not placed yet (Init may place an entity by its trajectory alone) starts
+          // on the trajectory, at initialDistanceOffset: "position" puts it there anyway, and
+          // "follow" has no other place to steer from.
           state.path = trajectory_path(a, ctx, entity);
           state.lateral_profile.reset();
+          if (!state.placed) state.pose = state.path->pose_at(state.path->distance);
           if (a.follow_mode)  // stays where it is; its controller steers onto the path
             start_following(*state.path, state.pose, state.speed, follow_limits(*ctx.scenario.entity(entity)));
           else
             state.pose = state.path->pose_at(state.path->distance);
+          state.placed = true;
           relocate(state, ctx.roads);
           // Timed: the trajectory sets the speed too; untimed: the speed actions keep it.
           if (a.timing) {

@@ -89,16 +89,24 @@ void no_direction(Element& e) {
     e.fail_attribute("direction", "only direction=\"longitudinal\" is supported");
 }
 
-void no_along_route(Element& e) {
-  if (e.has("alongRoute") && e.boolean("alongRoute")) e.fail_attribute("alongRoute", "alongRoute is not supported");
+// alongRoute (1.0; deprecated in 1.1 for coordinateSystem and relativeDistanceType): "true"
+// measures the distance along the road, i.e. coordinateSystem="road" with a longitudinal
+// distance; "false" the straight line, coordinateSystem="entity" (the default). It is the
+// mapping esmini's own examples make where they were rewritten for 1.1 (cut-in_external.xosc:
+// alongRoute="true" / "false", cut-in.xosc: coordinateSystem="road" longitudinal / "entity").
+// When the file gives coordinateSystem (or relativeDistanceType) too, those win.
+void read_along_route(Element& e, std::string& coordinate_system, std::string* distance_type) {
+  if (!e.has("alongRoute") || !e.boolean("alongRoute")) return;
+  if (!e.has("coordinateSystem")) coordinate_system = "road";
+  if (distance_type && !e.has("relativeDistanceType")) *distance_type = "longitudinal";
 }
 
 EntityCondition read_time_to_collision(Element& e) {
   TimeToCollisionCondition c;
-  no_along_route(e);
   c.freespace = e.boolean("freespace");
   c.coordinate_system = read_coordinate_system(e);
   c.distance_type = e.optional_choice<std::string>("relativeDistanceType", kDistanceTypes).value_or("euclidianDistance");
+  read_along_route(e, c.coordinate_system, &c.distance_type);
   c.rule = read_rule(e);
   c.value = e.number("value");
   Element holder = e.child("TimeToCollisionConditionTarget");
@@ -171,7 +179,7 @@ const std::vector<std::pair<std::string, EntityReader>> kEntityConditions = {
        h.entity = e.text("entityRef");
        h.freespace = e.boolean("freespace");
        h.coordinate_system = read_coordinate_system(e);
-       no_along_route(e);
+       read_along_route(e, h.coordinate_system, nullptr);
        if (e.has("relativeDistanceType") && e.text("relativeDistanceType") != "longitudinal")
          e.fail_attribute("relativeDistanceType", "only a longitudinal headway is supported");
        h.rule = read_rule(e);
@@ -187,7 +195,7 @@ const std::vector<std::pair<std::string, EntityReader>> kEntityConditions = {
        d.coordinate_system = read_coordinate_system(e);
        d.distance_type =
            e.optional_choice<std::string>("relativeDistanceType", kDistanceTypes).value_or("euclidianDistance");
-       no_along_route(e);
+       read_along_route(e, d.coordinate_system, &d.distance_type);
        d.rule = read_rule(e);
        d.value = e.number("value");
        return d;

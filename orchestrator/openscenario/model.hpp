@@ -70,7 +70,11 @@ using position::RelativeLanePosition;
 using position::RelativeObjectPosition;
 using position::RelativeRoadPosition;
 using position::RelativeWorldPosition;
+using position::InRouteFromEntity;
+using position::InRouteFromLane;
+using position::InRouteFromRoad;
 using position::RoadPosition;
+using position::RoutePosition;
 using position::WorldPosition;
 
 // ---- Actions ------------------------------------------------------------------------
@@ -136,10 +140,21 @@ struct ClothoidShape {
   double curvature = 0, curvature_dot = 0, length = 0;
   std::optional<double> start_time, stop_time;
 };
+// Nurbs: order, control points (weight, optional time), knots (openscenario/nurbs.hpp).
+struct NurbsControlPoint {
+  std::optional<double> time;
+  double weight = 1;
+  Position position;
+};
+struct NurbsShape {
+  int order = 0;
+  std::vector<NurbsControlPoint> points;
+  std::vector<double> knots;
+};
 struct Trajectory {
   std::string name;
   bool closed = false;
-  std::variant<PolylineShape, ClothoidShape> shape;
+  std::variant<PolylineShape, ClothoidShape, NurbsShape> shape;
 };
 // TimeReference/Timing: trajectory time = (simulation time, or time since the action
 // started when relative) ; a vertex is due at vertex time * scale + offset.

@@ -1,4 +1,5 @@
-// Position: the seven kinds the orchestrator resolves on OpenDRIVE roads.
+// Position: the eight kinds the orchestrator resolves on OpenDRIVE roads (GeoPosition and
+// TrajectoryPosition are not supported).
 #include <fmt/format.h>
 
 #include "openscenario/reader_context.hpp"
@@ -20,6 +21,33 @@ std::optional<Orientation> read_orientation(Element& owner) {
   return o;
 }
 
+thread_local Context* context_in_use = nullptr;
+
+RoutePosition read_route_position(Element& p) {
+  if (!context_in_use) p.fail("a RoutePosition is read only within a scenario file");
+  RoutePosition r;
+  Element ref = p.child("RouteRef");
+  r.route = read_route_ref(ref, *context_in_use);
+  r.orientation = read_orientation(p);
+  Element holder = p.child("InRoutePosition");
+  Element in = holder.one_of({"FromCurrentEntity", "FromRoadCoordinates", "FromLaneCoordinates"});
+  holder.finish();
+  const auto path_s = [&in] {
+    const double s = in.number("pathS");
+    if (s < 0) in.fail_attribute("pathS", "pathS cannot be negative (it is measured from the route's first waypoint)");
+    return s;
+  };
+  if (in.name() == "FromCurrentEntity") {
+    r.in_route = InRouteFromEntity{in.text("entityRef")};
+  } else if (in.name() == "FromRoadCoordinates") {
+    r.in_route = InRouteFromRoad{path_s(), in.number("t")};
+  } else {
+    r.in_route = InRouteFromLane{path_s(), in.integer("laneId"), in.optional_number("laneOffset").value_or(0.0)};
+  }
+  in.finish();
+  return r;
+}
+
 Position read_kind(Element& p) {
   const std::string_view kind = p.name();
   if (kind == "WorldPosition") {
@@ -39,6 +67,7 @@ Position read_kind(Element& p) {
     return RoadPosition{p.text("roadId"), p.number("s"), p.number("t"), read_orientation(p)};
   if (kind == "RelativeRoadPosition")
     return RelativeRoadPosition{p.text("entityRef"), p.number("ds"), p.number("dt"), read_orientation(p)};
+  if (kind == "RoutePosition") return read_route_position(p);
   if (kind == "LanePosition")
     return LanePosition{p.text("roadId"), p.integer("laneId"), p.number("s"), p.optional_number("offset").value_or(0.0),
                         read_orientation(p)};
@@ -51,9 +80,12 @@ Position read_kind(Element& p) {
 
 }  // namespace
 
+ContextInUse::ContextInUse(Context& context) : previous_(context_in_use) { context_in_use = &context; }
+ContextInUse::~ContextInUse() { context_in_use = previous_; }
+
 Position read_position(Element& position) {
   Element p = position.one_of({"WorldPosition", "RelativeWorldPosition", "RelativeObjectPosition", "RoadPosition",
-                               "RelativeRoadPosition", "LanePosition", "RelativeLanePosition"});
+                               "RelativeRoadPosition", "LanePosition", "RelativeLanePosition", "RoutePosition"});
   position.finish();
   Position result = read_kind(p);
   p.finish();

@@ -57,6 +57,21 @@ std::vector<Entity> read_entity(Element& scenario_object, Context& context);
 Controller read_controller(Element& controller);
 
 Position read_position(Element& position);
+// A RoutePosition's RouteRef (an inline Route or a CatalogReference to one).
+std::shared_ptr<const position::RouteWaypoints> read_route_ref(Element& route_ref, Context& context);
+// The Context of the file being read, for read_position (a RoutePosition's route may be a
+// catalog entry), which its many callers call without one: set by load_scenario for the
+// whole read, per thread.
+class ContextInUse {
+ public:
+  explicit ContextInUse(Context& context);
+  ~ContextInUse();
+  ContextInUse(const ContextInUse&) = delete;
+  ContextInUse& operator=(const ContextInUse&) = delete;
+
+ private:
+  Context* previous_;
+};
 // The action in a PrivateAction or GlobalAction element (action_reader.cpp's tables).
 PrivateAction read_private_action(Element& private_action, Context& context);
 PrivateAction read_global_action(Element& global_action, Context& context);

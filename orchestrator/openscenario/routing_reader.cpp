@@ -1,9 +1,12 @@
 // RoutingAction: routes (AssignRouteAction, inline or from a RouteCatalog) and
-// trajectories (FollowTrajectoryAction: Polyline and Clothoid shapes, inline or from a
+// trajectories (FollowTrajectoryAction: Polyline, Clothoid and Nurbs shapes, inline or from a
 // TrajectoryCatalog, with TimeReference and TrajectoryFollowingMode).
+#include <algorithm>
+
 #include <fmt/format.h>
 
 #include "openscenario/reader_context.hpp"
+#include "openscenario/route_plan.hpp"
 
 namespace orch::openscenario::reading {
 namespace {
@@ -72,6 +75,41 @@ ClothoidShape read_clothoid(Element& clothoid) {
   return shape;
 }
 
+NurbsShape read_nurbs(Element& nurbs) {
+  NurbsShape shape;
+  shape.order = nurbs.integer("order");
+  if (shape.order < 1) nurbs.fail_attribute("order", "a Nurbs' order must be at least 1");
+  for (Element control : nurbs.children("ControlPoint")) {
+    NurbsControlPoint c;
+    c.time = control.optional_number("time");
+    c.weight = control.optional_number("weight").value_or(1.0);
+    if (!(c.weight > 0)) control.fail_attribute("weight", "a control point's weight must be positive");
+    Element position = control.child("Position");
+    c.position = read_position(position);
+    control.finish();
+    shape.points.push_back(std::move(c));
+  }
+  for (Element knot : nurbs.children("Knot")) {
+    shape.knots.push_back(knot.number("value"));
+    if (shape.knots.size() > 1 && shape.knots.back() < shape.knots[shape.knots.size() - 2])
+      knot.fail_attribute("value", "knots must not decrease");
+    knot.finish();
+  }
+  const auto order = static_cast<std::size_t>(shape.order);
+  if (shape.points.size() < std::max<std::size_t>(order, 2))
+    nurbs.fail(fmt::format("a Nurbs of order {} needs at least {} ControlPoint elements, it has {}", shape.order,
+                           std::max<std::size_t>(order, 2), shape.points.size()));
+  if (shape.knots.size() != shape.points.size() + order)
+    nurbs.fail(fmt::format("a Nurbs of order {} with {} control points needs {} Knot elements (points + order), "
+                           "it has {}",
+                           shape.order, shape.points.size(), shape.points.size() + order, shape.knots.size()));
+  const bool timed = shape.points.front().time.has_value();
+  for (const NurbsControlPoint& c : shape.points)
+    if (c.time.has_value() != timed) nurbs.fail("give a time to every ControlPoint of the Nurbs or to none");
+  nurbs.finish();
+  return shape;
+}
+
 Trajectory read_trajectory(Element& e) {
   Trajectory t;
   t.name = e.text("name");
@@ -79,9 +117,10 @@ Trajectory read_trajectory(Element& e) {
   if (t.closed) e.fail_attribute("closed", "closed trajectories are not supported");
   e.ignore_children({"ParameterDeclarations"});  // read by Context::resolve or open_scope
   Element holder = e.child("Shape");
-  Element shape = holder.one_of({"Polyline", "Clothoid"});  // Nurbs, ClothoidSpline: "not supported"
+  Element shape = holder.one_of({"Polyline", "Clothoid", "Nurbs"});  // ClothoidSpline: "not supported"
   holder.finish();
   if (shape.name() == "Polyline") t.shape = read_polyline(shape);
+  else if (shape.name() == "Nurbs") t.shape = read_nurbs(shape);
   else t.shape = read_clothoid(shape);
   e.finish();
   return t;
@@ -113,6 +152,25 @@ AssignRouteAction read_assign_route(Element& e, Context& context) {
   }
   e.finish();
   return a;
+}
+
+std::shared_ptr<const position::RouteWaypoints> read_route_ref(Element& route_ref, Context& context) {
+  Element source = route_ref.one_of({"Route", "CatalogReference"});
+  route_ref.finish();
+  AssignRouteAction a;
+  if (source.name() == "CatalogReference") {
+    Element entry = context.resolve(source, {"Route"});
+    source.finish();
+    a = read_route(entry);
+  } else {
+    Element scoped = open_scope(source, context, "");
+    a = read_route(scoped);
+  }
+  auto route = std::make_shared<position::RouteWaypoints>();
+  route->name = a.name;
+  for (std::size_t i = 0; i < a.waypoints.size(); ++i)
+    route->waypoints.push_back({a.waypoints[i], route_strategy(a.strategies[i])});
+  return route;
 }
 
 FollowTrajectoryAction read_follow_trajectory(Element& e, Context& context) {
@@ -148,11 +206,14 @@ FollowTrajectoryAction read_follow_trajectory(Element& e, Context& context) {
         [](const auto& shape) {
           if constexpr (std::is_same_v<std::decay_t<decltype(shape)>, PolylineShape>)
             return shape.vertices.front().time.has_value();
+          else if constexpr (std::is_same_v<std::decay_t<decltype(shape)>, NurbsShape>)
+            return shape.points.front().time.has_value();
           else
             return shape.start_time.has_value();
         },
         a.trajectory.shape);
-    if (!timed) e.fail("a Timing needs vertex times (Polyline) or startTime and stopTime (Clothoid)");
+    if (!timed)
+      e.fail("a Timing needs vertex times (Polyline), control point times (Nurbs) or startTime and stopTime (Clothoid)");
   }
   e.finish();
   return a;

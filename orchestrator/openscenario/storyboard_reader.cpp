@@ -1,5 +1,6 @@
 // Storyboard: Init, Stories, Acts, ManeuverGroups, Maneuvers, Events, Actions and the
 // triggers; entity and storyboard element references are checked here, at load.
+#include <algorithm>
 #include <set>
 
 #include <fmt/format.h>
@@ -13,7 +14,13 @@ namespace {
 void position_entities(const Position& p, std::vector<std::string>& names) {
   std::visit(
       [&](const auto& kind) {
+        using T = std::decay_t<decltype(kind)>;
         if constexpr (requires { kind.entity; }) names.push_back(kind.entity);
+        if constexpr (std::is_same_v<T, position::RoutePosition>) {
+          if (const auto* current = std::get_if<position::InRouteFromEntity>(&kind.in_route))
+            names.push_back(current->entity);
+          for (const position::RouteWaypoint& w : kind.route->waypoints) position_entities(w.position, names);
+        }
       },
       p);
 }
@@ -36,6 +43,8 @@ std::vector<std::string> referenced_entities(const PrivateAction& action) {
         if constexpr (std::is_same_v<T, FollowTrajectoryAction>) {
           if (const auto* polyline = std::get_if<PolylineShape>(&a.trajectory.shape))
             for (const TrajectoryVertex& v : polyline->vertices) position_entities(v.position, names);
+          else if (const auto* nurbs = std::get_if<NurbsShape>(&a.trajectory.shape))
+            for (const NurbsControlPoint& c : nurbs->points) position_entities(c.position, names);
           else
             position_entities(std::get<ClothoidShape>(a.trajectory.shape).start, names);
         }
@@ -71,6 +80,7 @@ class StoryboardReader {
     }
     for (Element u : actions.children("UserDefinedAction")) unsupported(u);
     actions.finish();
+    order_init(board.init);
     for (Element story : storyboard.children("Story")) board.stories.push_back(read_story(story));
     Element stop = storyboard.child("StopTrigger");
     board.stop_trigger = read_trigger(stop, context_);
@@ -248,6 +258,55 @@ class StoryboardReader {
       if (scenario_.entity(name) == nullptr)
         throw ScenarioError(SourceLocation{scenario_.file, place.path, place.line},
                             fmt::format("no entity named \"{}\"{}", name, did_you_mean(name, entity_names_)));
+  }
+
+  // Init's actions in an order where an action that names another entity (a position
+  // relative to it, a speed relative to it, ...) runs after that entity's TeleportActions:
+  // the standard gives Init's actions no order (1.3, 8.4.2: all of them are executed at
+  // start-up, at 0 s), and files place an entity relative to one placed further down. A
+  // stable topological order, so a file that needs none keeps its own; two entities placed
+  // relative to each other (a cycle) are an error naming them.
+  void order_init(std::vector<InitAction>& init) const {
+    const auto is_teleport = [](const InitAction& a) { return std::holds_alternative<TeleportAction>(a.action); };
+    std::vector<std::vector<std::string>> waits(init.size());
+    for (std::size_t i = 0; i < init.size(); ++i)
+      for (const std::string& name : referenced_entities(init[i].action))
+        if (name != init[i].entity) waits[i].push_back(name);
+    std::vector<InitAction> ordered;
+    std::vector<bool> done(init.size(), false);
+    const auto placed = [&](const std::string& entity) {
+      for (std::size_t j = 0; j < init.size(); ++j)
+        if (!done[j] && init[j].entity == entity && is_teleport(init[j])) return false;
+      return true;
+    };
+    while (ordered.size() < init.size()) {
+      bool progressed = false;
+      for (std::size_t i = 0; i < init.size(); ++i) {
+        if (done[i] || !std::all_of(waits[i].begin(), waits[i].end(), placed)) continue;
+        done[i] = true;
+        ordered.push_back(init[i]);
+        progressed = true;
+        break;  // from the start again: the file's order wherever it can be kept
+      }
+      if (progressed) continue;
+      std::set<std::string> cycle;
+      const InitAction* first = nullptr;
+      for (std::size_t i = 0; i < init.size(); ++i)
+        if (!done[i] && is_teleport(init[i])) {
+          cycle.insert(init[i].entity);
+          if (!first) first = &init[i];
+        }
+      if (!first)
+        for (std::size_t i = 0; i < init.size(); ++i)
+          if (!done[i]) first = &init[i];
+      std::string names;
+      for (const std::string& n : cycle) names += (names.empty() ? "\"" : ", \"") + n + "\"";
+      throw ScenarioError(SourceLocation{scenario_.file, first->place.path, first->place.line},
+                          fmt::format("the Init positions of {} refer to each other in a cycle: none of them can be "
+                                      "placed first",
+                                      names));
+    }
+    init = std::move(ordered);
   }
 
   void check_state_references(const Storyboard& board) {

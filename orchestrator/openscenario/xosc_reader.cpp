@@ -150,6 +150,7 @@ std::map<std::string, std::string> parse_parameter_overrides(const std::vector<s
 Scenario load_scenario(const std::string& path, const LoadOptions& options) {
   const xml::XmlSource source = xml::XmlSource::load(path);
   Context context;
+  const reading::ContextInUse in_use(context);
   Element root(source, source.root(), context.global);
   if (root.name() != "OpenSCENARIO")
     root.fail(fmt::format("expected the root element OpenSCENARIO, found {}", root.name()));
