@@ -246,13 +246,19 @@ TEST(ActorSummary, ExtremesWithTimeAndPartner) {
   m.kinematics.standstill = 0.5;
   m.lane_departure = 0;
   s.add(m, 0.05);
-  EXPECT_DOUBLE_EQ(s.min_ttc->value, 1);
-  EXPECT_DOUBLE_EQ(s.min_ttc->time, 2);
-  EXPECT_EQ(s.min_ttc->partner, "bg.7");
-  EXPECT_DOUBLE_EQ(s.max_decel->value, 3);
-  EXPECT_DOUBLE_EQ(s.max_decel->time, 1);
-  EXPECT_DOUBLE_EQ(s.lane_departure_time, 0.05);
-  EXPECT_DOUBLE_EQ(s.standstill_time, 0.05);
+  const auto& min_ttc = s.extreme("min_ttc");
+  ASSERT_TRUE(min_ttc);
+  EXPECT_DOUBLE_EQ(min_ttc->value, 1);
+  EXPECT_DOUBLE_EQ(min_ttc->time, 2);
+  EXPECT_EQ(min_ttc->partner, "bg.7");
+  const auto& max_decel = s.extreme("max_decel");
+  ASSERT_TRUE(max_decel);
+  EXPECT_DOUBLE_EQ(max_decel->value, 3);
+  EXPECT_DOUBLE_EQ(max_decel->time, 1);
+  EXPECT_DOUBLE_EQ(s.seconds("lane_departure_time"), 0.05);
+  EXPECT_DOUBLE_EQ(s.seconds("standstill_time"), 0.05);
+  EXPECT_FALSE(s.extreme("min_follower_ttc")) << "no follower in any step";
+  EXPECT_THROW((void)s.extreme("min_ttcc"), std::invalid_argument);
 }
 
 TEST(MetricNames, EveryNameHasAValueOrNone) {
