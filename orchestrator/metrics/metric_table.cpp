@@ -32,6 +32,8 @@ std::optional<Extreme> min_pet(const TrajectoryBook& book, const std::string& id
   return Extreme{pet->pet.pet, pet->pet.time, pet->partner};
 }
 
+// The table. A new metric is one entry at the end (docs/layout.md "Adding a metric"): its column,
+// summary key and name then come after every earlier one.
 std::vector<MetricDef> make_table() {
   return {
     {.name = "speed", .value = [](const ActorMetrics& m) -> Value { return m.speed; },
@@ -66,6 +68,10 @@ std::vector<MetricDef> make_table() {
     {.name = "min_dist", .value = [](const ActorMetrics& m) { return m.min_dist; }, .partner = nearest,
      .columns = {{"min_dist"}, {"min_dist_to", Cell::Partner}}, .summary = Summary::Min, .summary_key = "min_dist"},
     {.summary = Summary::OverRun, .summary_key = "min_pet", .over_run = min_pet},
+    // The deceleration the follower needs not to run into the actor (docs/evaluation.md): its
+    // largest value is the worst case.
+    {.name = "follower_drac", .value = of_follower<&Following::drac>, .partner = follower,
+     .columns = {{"follower_drac"}}, .summary = Summary::Max, .summary_key = "max_follower_drac"},
   };
 }
 

@@ -19,7 +19,13 @@ std::vector<std::string> first(const std::vector<std::string>& all, std::size_t 
 
 std::vector<std::string> split(const std::string& header) {
   std::vector<std::string> out(1);
-  for (const char c : header) c == ',' ? out.emplace_back() : out.back().push_back(c);
+  for (const char c : header) {
+    if (c == ',') {
+      out.emplace_back();
+    } else {
+      out.back().push_back(c);
+    }
+  }
   return out;
 }
 
@@ -27,18 +33,20 @@ TEST(MetricTable, EveryEntryIsComplete) {
   std::set<std::string_view> names, keys, columns{"time", "actor_id"};
   for (const MetricDef& d : metric_table()) {
     EXPECT_EQ(d.name.empty(), d.value == nullptr) << d.name << ": a name exactly when there is a value per step";
-    if (!d.name.empty()) EXPECT_TRUE(names.insert(d.name).second) << "name twice: " << d.name;
+    if (!d.name.empty()) {
+      EXPECT_TRUE(names.insert(d.name).second) << "name twice: " << d.name;
+    }
     EXPECT_EQ(d.summary == Summary::None, d.summary_key.empty()) << d.name << ": a summary has its key";
-    if (d.summary != Summary::None) EXPECT_TRUE(keys.insert(d.summary_key).second) << "key twice: " << d.summary_key;
+    if (d.summary != Summary::None) {
+      EXPECT_TRUE(keys.insert(d.summary_key).second) << "key twice: " << d.summary_key;
+    }
     EXPECT_EQ(d.summary == Summary::OverRun, d.over_run != nullptr) << d.summary_key;
-    if (d.summary != Summary::None && d.summary != Summary::OverRun)
-      EXPECT_NE(d.value, nullptr) << d.summary_key << " folds the values per step";
+    if (d.summary != Summary::None && d.summary != Summary::OverRun) {
+      EXPECT_TRUE(d.value != nullptr) << d.summary_key << " folds the values per step";
+    }
     for (const Column& c : d.columns) {
       EXPECT_TRUE(columns.insert(c.name).second) << "column twice: " << c.name;
-      EXPECT_NE(c.cell == Cell::Partner ? reinterpret_cast<const void*>(d.partner)
-                                        : reinterpret_cast<const void*>(d.value),
-                nullptr)
-          << c.name;
+      EXPECT_TRUE(c.cell == Cell::Partner ? d.partner != nullptr : d.value != nullptr) << c.name;
     }
   }
 }
@@ -89,6 +97,12 @@ TEST(MetricTable, SummariesFoldAsTheirKindSays) {
   EXPECT_DOUBLE_EQ(s.extreme("max_abs_jerk")->time, 1);
   EXPECT_EQ(s.extreme("min_dist")->partner, "bg.1");
   EXPECT_FALSE(s.extreme("min_pet")) << "PET comes from the trajectories at the end, not per step";
+}
+
+TEST(MetricTable, FollowerDracIsTheLastColumnKeyAndName) {
+  EXPECT_EQ(split(metrics_csv_header()).back(), "follower_drac");
+  EXPECT_EQ(metric_table()[summary_rows().back()].summary_key, "max_follower_drac");
+  EXPECT_EQ(metric_names().back(), "follower_drac");
 }
 
 }  // namespace
