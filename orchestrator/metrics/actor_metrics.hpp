@@ -42,15 +42,21 @@ struct Extreme {
 struct ActorSummary {
   sim::ActorId actor = 0;
   std::string label;  // how outputs name the actor ("" : its id): an OpenSCENARIO entity's name
-  std::optional<Extreme> min_ttc, min_thw, min_gap, min_dist, max_drac;
-  std::optional<Extreme> min_follower_ttc, min_follower_thw;
-  std::optional<Extreme> max_decel, max_abs_jerk, max_lat_accel, max_speed;
-  std::optional<Extreme> min_pet;
-  double standstill_time = 0;      // s in total
-  double lane_departure_time = 0;  // s in total with the body beyond a marking
+  // One per row of metric_table() (metrics/metric_table.hpp), by its Summary: the extreme
+  // (Min, Max, MaxAbs, OverRun) or the seconds (SecondsPositive).
+  struct Row {
+    std::optional<Extreme> extreme;
+    double seconds = 0;
+  };
+  std::vector<Row> rows;
 
+  ActorSummary();
   // Folds one step in; `dt` the step length (time weights).
   void add(const ActorMetrics& m, double dt);
+  // A summary by its result.json key ("min_ttc"); throws std::invalid_argument for a key no
+  // row of the table has.
+  [[nodiscard]] const std::optional<Extreme>& extreme(std::string_view key) const;
+  [[nodiscard]] double seconds(std::string_view key) const;
 };
 
 }  // namespace orch::metrics

@@ -3,6 +3,7 @@
 #include "core/errors.hpp"
 #include "core/files.hpp"
 #include "json/json_document.hpp"
+#include "run/metrics_recorder.hpp"
 #include "run/trace_writer.hpp"
 #include "run/traffic_trace.hpp"
 
@@ -16,7 +17,7 @@ const std::vector<std::string>& trace_columns() {
 }
 
 const std::vector<std::string>& metrics_columns() {
-  static const std::vector<std::string> columns = csv_columns(kMetricsHeader);
+  static const std::vector<std::string> columns = csv_columns(metrics::MetricsRecorder::header());
   return columns;
 }
 

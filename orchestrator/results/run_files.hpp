@@ -12,10 +12,6 @@
 
 namespace orch {
 
-// metrics.csv's columns (the evaluation's contract); empty cells where a value does not exist.
-inline constexpr const char* kMetricsHeader =
-    "time,actor_id,leader,gap,rel_speed,ttc,thw,drac,accel,jerk,lat_accel,lane_departure,min_dist,min_dist_to";
-
 struct RunFiles {
   std::filesystem::path dir;
   nlohmann::json result;  // result.json
@@ -33,6 +29,7 @@ RunFiles read_run_files(const std::filesystem::path& dir, std::vector<std::strin
 
 // The trace's columns every reader relies on (a subset of the writer's header).
 const std::vector<std::string>& trace_columns();
+// metrics.csv's: every column the writer's header has (metrics/metric_table.hpp generates it).
 const std::vector<std::string>& metrics_columns();
 const std::vector<std::string>& background_columns();
 

@@ -3,18 +3,35 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <iterator>
 #include <limits>
 
 #include "core/errors.hpp"
 #include "metrics/box_distance.hpp"
 #include "metrics/lane_keeping.hpp"
+#include "metrics/metric_table.hpp"
 #include "run/run_result.hpp"
 
 namespace orch::metrics {
 
 namespace {
 
-std::string cell(const std::optional<double>& v) { return v ? fmt::format("{:.3f}", *v) : std::string{}; }
+// One metrics.csv row: the time, the actor, then every metric's columns (the table's order).
+void write_row(fmt::memory_buffer& row, double time, const std::string& actor, const ActorMetrics& m) {
+  row.clear();
+  auto out = std::back_inserter(row);
+  fmt::format_to(out, "{:.3f},{}", time, actor);
+  for (const MetricDef& d : metric_table())
+    for (const Column& c : d.columns) {
+      row.push_back(',');
+      if (c.cell == Cell::Partner) {
+        const std::string_view partner = d.partner ? d.partner(m) : std::string_view{};
+        row.append(partner.data(), partner.data() + partner.size());
+      } else if (const std::optional<double> v = d.value(m)) {
+        fmt::format_to(out, "{:.3f}", *v);
+      }
+    }
+}
 
 struct Measured {
   Body body;
@@ -24,8 +41,13 @@ struct Measured {
 
 }  // namespace
 
+const std::string& MetricsRecorder::header() {
+  static const std::string text = metrics_csv_header();
+  return text;
+}
+
 MetricsRecorder::MetricsRecorder(const std::filesystem::path& csv, const LaneMap& lanes)
-    : file_(csv, kHeader), lanes_(lanes) {
+    : file_(csv, header()), lanes_(lanes) {
   for (int i = 0; i < static_cast<int>(lanes.lanes().size()); ++i) lane_index_[lanes.lane(i).id] = i;
 }
 
@@ -71,6 +93,7 @@ void MetricsRecorder::step(const StepView& view) {
   trajectories_.record(snap.time, seen);
 
   current_.clear();
+  fmt::memory_buffer row;
   for (const auto& a : snap.actors) {
     if (!a.present) continue;
     const auto known = view.run.body(a.id);
@@ -110,11 +133,8 @@ void MetricsRecorder::step(const StepView& view) {
     }
     if (std::isfinite(best)) m.min_dist = best;
 
-    file_.print("{:.3f},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", snap.time, self.id,
-               m.leader ? m.leader->other : "", cell(metric_value(m, "gap")), cell(metric_value(m, "rel_speed")),
-               cell(metric_value(m, "ttc")), cell(metric_value(m, "thw")), cell(metric_value(m, "drac")),
-               cell(m.kinematics.accel), cell(m.kinematics.jerk), cell(m.kinematics.lat_accel), cell(m.lane_departure),
-               cell(m.min_dist), m.min_dist_to);
+    write_row(row, snap.time, self.id, m);
+    file_.line(std::string_view(row.data(), row.size()));
     auto& summary = summaries_[a.id];
     summary.actor = a.id;
     summary.label = self.id;
@@ -128,11 +148,13 @@ void MetricsRecorder::step(const StepView& view) {
 std::vector<ActorSummary> MetricsRecorder::summaries() const {
   std::vector<ActorSummary> out;
   for (const auto& [id, s] : summaries_) {
-    ActorSummary with_pet = s;
-    // PET against every other body (actors and background vehicles) whose path crossed this one's.
-    if (const auto pet = trajectories_.min_pet(s.label))
-      with_pet.min_pet = Extreme{pet->pet.pet, pet->pet.time, pet->partner};
-    out.push_back(std::move(with_pet));
+    ActorSummary whole = s;
+    // The summaries over the whole run's trajectories (PET against every other body, actors and
+    // background vehicles, whose path crossed this one's).
+    const auto& table = metric_table();
+    for (std::size_t i = 0; i < table.size(); ++i)
+      if (table[i].over_run) whole.rows[i].extreme = table[i].over_run(trajectories_, s.label);
+    out.push_back(std::move(whole));
   }
   return out;
 }

@@ -6,6 +6,7 @@
 // current().
 #include <filesystem>
 #include <map>
+#include <string>
 #include <unordered_map>
 #include <vector>
 
@@ -20,8 +21,8 @@ namespace orch::metrics {
 class MetricsRecorder : public RunObserver {
  public:
   [[nodiscard]] const char* name() const override { return "metrics"; }
-  static constexpr const char* kHeader =
-      "time,actor_id,leader,gap,rel_speed,ttc,thw,drac,accel,jerk,lat_accel,lane_departure,min_dist,min_dist_to";
+  // metrics.csv's header, generated from the metric table (metrics/metric_table.hpp).
+  static const std::string& header();
 
   MetricsRecorder(const std::filesystem::path& csv, const LaneMap& lanes);
 

@@ -17,11 +17,11 @@ std::optional<ActorRecord> ego_of(const RunResult& r) {
   return std::nullopt;
 }
 
-std::optional<double> ego_min(const RunResult& r, std::optional<metrics::Extreme> metrics::ActorSummary::*field) {
+std::optional<double> ego_min(const RunResult& r, std::string_view summary) {
   const auto ego = ego_of(r);
   if (!ego) return std::nullopt;
   for (const auto& m : r.metrics)
-    if (m.actor == ego->id && m.*field) return (m.*field)->value;
+    if (m.actor == ego->id && m.extreme(summary)) return m.extreme(summary)->value;
   return std::nullopt;
 }
 
@@ -79,14 +79,14 @@ RunResult run_with_reference(const RunRequest& req, Simulator& sim,
     return r.collision ? story_place(r.events, r.collision->time) : StoryPlace{};
   };
   rec.outcome = preventability(result.collision, rec.reference_collision, place(result), place(reference));
-  auto measured = [](const RunResult& r, auto field, const std::optional<double>& watched) {
-    const auto m = ego_min(r, field);
+  auto measured = [](const RunResult& r, std::string_view summary, const std::optional<double>& watched) {
+    const auto m = ego_min(r, summary);
     return m ? m : watched;
   };
-  rec.min_ttc = measured(result, &metrics::ActorSummary::min_ttc, result.ego_min_ttc);
-  rec.reference_min_ttc = measured(reference, &metrics::ActorSummary::min_ttc, reference.ego_min_ttc);
-  rec.min_gap = measured(result, &metrics::ActorSummary::min_gap, result.ego_min_gap);
-  rec.reference_min_gap = measured(reference, &metrics::ActorSummary::min_gap, reference.ego_min_gap);
+  rec.min_ttc = measured(result, "min_ttc", result.ego_min_ttc);
+  rec.reference_min_ttc = measured(reference, "min_ttc", reference.ego_min_ttc);
+  rec.min_gap = measured(result, "min_gap", result.ego_min_gap);
+  rec.reference_min_gap = measured(reference, "min_gap", reference.ego_min_gap);
   result.reference_run = rec;
   judge_preventable_collisions(result);
   write_result(req.out_dir, result);

@@ -6,6 +6,7 @@
 
 #include "core/files.hpp"
 #include "json/json_text.hpp"
+#include "metrics/metric_table.hpp"
 
 namespace orch {
 
@@ -42,23 +43,20 @@ nlohmann::ordered_json extreme_json(const std::optional<metrics::Extreme>& e, bo
   return j;
 }
 
+// Each actor's summaries, keyed and ordered as the metric table says (metrics/metric_table.hpp).
 nlohmann::ordered_json metrics_json(const std::vector<metrics::ActorSummary>& all) {
+  const auto& table = metrics::metric_table();
   nlohmann::ordered_json j = nlohmann::ordered_json::object();
   for (const auto& s : all) {
-    j[s.label.empty() ? std::to_string(s.actor) : s.label] = {{"min_ttc", extreme_json(s.min_ttc, true)},
-                                  {"min_thw", extreme_json(s.min_thw, true)},
-                                  {"min_gap", extreme_json(s.min_gap, true)},
-                                  {"max_drac", extreme_json(s.max_drac, true)},
-                                  {"min_follower_ttc", extreme_json(s.min_follower_ttc, true)},
-                                  {"min_follower_thw", extreme_json(s.min_follower_thw, true)},
-                                  {"min_dist", extreme_json(s.min_dist, true)},
-                                  {"min_pet", extreme_json(s.min_pet, true)},
-                                  {"max_decel", extreme_json(s.max_decel, false)},
-                                  {"max_abs_jerk", extreme_json(s.max_abs_jerk, false)},
-                                  {"max_lat_accel", extreme_json(s.max_lat_accel, false)},
-                                  {"max_speed", extreme_json(s.max_speed, false)},
-                                  {"standstill_time", rounded(s.standstill_time)},
-                                  {"lane_departure_time", rounded(s.lane_departure_time)}};
+    nlohmann::ordered_json one = nlohmann::ordered_json::object();
+    for (const std::size_t i : metrics::summary_rows()) {
+      const metrics::MetricDef& d = table[i];
+      const metrics::ActorSummary::Row row = i < s.rows.size() ? s.rows[i] : metrics::ActorSummary::Row{};
+      one[std::string(d.summary_key)] = d.summary == metrics::Summary::SecondsPositive
+                                            ? nlohmann::ordered_json(rounded(row.seconds))
+                                            : extreme_json(row.extreme, d.has_partner());
+    }
+    j[s.label.empty() ? std::to_string(s.actor) : s.label] = std::move(one);
   }
   return j;
 }

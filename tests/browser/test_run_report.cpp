@@ -11,6 +11,7 @@
 
 #include "browser/webdriver.hpp"
 #include "results/run_files.hpp"
+#include "run/metrics_recorder.hpp"
 #include "support/cli_runner.hpp"
 
 namespace fs = std::filesystem;
@@ -152,14 +153,16 @@ TEST_F(RunReportInBrowser, MetricsAndCriteriaOfTheEvaluationAppearWhenTheRunHasT
   const fs::path dir = copy / "run";
   fs::copy(highway_run(), dir);
   std::ofstream metrics(dir / "metrics.csv");
-  metrics << orch::kMetricsHeader << "\n";
+  metrics << orch::metrics::MetricsRecorder::header() << "\n";
+  // Empty cells for the columns after the first 14 (metrics added later).
+  const std::string later(orch::metrics_columns().size() - 14, ',');
   int rows = 0;
   for (int i = 0; i <= 400; ++i, ++rows) {
     const double time = 0.05 * (i + 1);
     // TTC exists only while closing in: empty cells elsewhere.
     const std::string ttc = i % 2 ? fmt::format("{:.3f}", 3.0 + i * 0.01) : "";
-    metrics << fmt::format("{:.3f},0,1,{:.3f},{:.3f},{},{:.3f},,0.1,0.0,0.0,0,{:.3f},1\n", time, 30.0 - i * 0.02, -1.5, ttc,
-                           1.2, 25.0);
+    metrics << fmt::format("{:.3f},0,1,{:.3f},{:.3f},{},{:.3f},,0.1,0.0,0.0,0,{:.3f},1{}\n", time, 30.0 - i * 0.02, -1.5,
+                           ttc, 1.2, 25.0, later);
   }
   metrics.close();
   nlohmann::json result = read_json(dir / "result.json");

@@ -246,13 +246,55 @@ TEST(ActorSummary, ExtremesWithTimeAndPartner) {
   m.kinematics.standstill = 0.5;
   m.lane_departure = 0;
   s.add(m, 0.05);
-  EXPECT_DOUBLE_EQ(s.min_ttc->value, 1);
-  EXPECT_DOUBLE_EQ(s.min_ttc->time, 2);
-  EXPECT_EQ(s.min_ttc->partner, "bg.7");
-  EXPECT_DOUBLE_EQ(s.max_decel->value, 3);
-  EXPECT_DOUBLE_EQ(s.max_decel->time, 1);
-  EXPECT_DOUBLE_EQ(s.lane_departure_time, 0.05);
-  EXPECT_DOUBLE_EQ(s.standstill_time, 0.05);
+  const auto& min_ttc = s.extreme("min_ttc");
+  ASSERT_TRUE(min_ttc);
+  EXPECT_DOUBLE_EQ(min_ttc->value, 1);
+  EXPECT_DOUBLE_EQ(min_ttc->time, 2);
+  EXPECT_EQ(min_ttc->partner, "bg.7");
+  const auto& max_decel = s.extreme("max_decel");
+  ASSERT_TRUE(max_decel);
+  EXPECT_DOUBLE_EQ(max_decel->value, 3);
+  EXPECT_DOUBLE_EQ(max_decel->time, 1);
+  EXPECT_DOUBLE_EQ(s.seconds("lane_departure_time"), 0.05);
+  EXPECT_DOUBLE_EQ(s.seconds("standstill_time"), 0.05);
+  EXPECT_FALSE(s.extreme("min_follower_ttc")) << "no follower in any step";
+  EXPECT_THROW((void)s.extreme("min_ttcc"), std::invalid_argument);
+}
+
+// follower_drac (docs/evaluation.md): the deceleration the follower needs not to hit the actor,
+// rel_speed^2 / (2 gap) while it closes in; its summary max_follower_drac is the largest value.
+TEST(FollowerDrac, TheFollowersNeededDecelerationAndItsWorstOverTheRun) {
+  const Polyline route = straight_x(0, 1000);
+  ActorSummary s;
+  ActorMetrics m;
+  // Step 1: the actor (4 m long, 10 m/s) at x 100, a background vehicle (4 m, 16 m/s) at x 80:
+  // gap 20 - (4 + 4)/2 = 16, closing at 16 - 10 = 6: 6^2 / (2 * 16) = 1.125 m/s^2.
+  m.time = 1;
+  Neighbours n = find_neighbours(route, {"0", {100, 0}, 0, 10, 4, 2}, {{"bg.3", {80, 0}, 0, 16, 4, 2}});
+  m.follower = n.follower;
+  EXPECT_DOUBLE_EQ(*metric_value(m, "follower_drac"), 1.125);
+  EXPECT_EQ(metric_partner(m, "follower_drac"), "bg.3");
+  s.add(m, 0.1);
+  // Step 2: another follower, actor "2" (5 m, 20 m/s) at x 92.5: gap 7.5 - 4.5 = 3, closing at
+  // 10: 100 / 6 = 16.667 m/s^2, the worst.
+  m.time = 2;
+  n = find_neighbours(route, {"0", {100, 0}, 0, 10, 4, 2}, {{"2", {92.5, 0}, 0, 20, 5, 2}});
+  m.follower = n.follower;
+  EXPECT_NEAR(*metric_value(m, "follower_drac"), 100.0 / 6.0, 1e-9);
+  s.add(m, 0.1);
+  // Step 3: the follower falls back (8 m/s behind 10 m/s): no DRAC.
+  m.time = 3;
+  n = find_neighbours(route, {"0", {100, 0}, 0, 10, 4, 2}, {{"bg.3", {80, 0}, 0, 8, 4, 2}});
+  m.follower = n.follower;
+  EXPECT_FALSE(metric_value(m, "follower_drac"));
+  s.add(m, 0.1);
+  const auto& worst = s.extreme("max_follower_drac");
+  ASSERT_TRUE(worst);
+  EXPECT_NEAR(worst->value, 100.0 / 6.0, 1e-9);
+  EXPECT_DOUBLE_EQ(worst->time, 2);
+  EXPECT_EQ(worst->partner, "2");
+  // The leader's DRAC is another metric: none here, no leader.
+  EXPECT_FALSE(s.extreme("max_drac"));
 }
 
 TEST(MetricNames, EveryNameHasAValueOrNone) {

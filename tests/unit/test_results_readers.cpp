@@ -7,11 +7,13 @@
 #include <functional>
 
 #include <fstream>
+#include <map>
 
 #include "core/errors.hpp"
 #include "report/net_shapes.hpp"
 #include "report/run_report.hpp"
 #include "results/run_files.hpp"
+#include "run/metrics_recorder.hpp"
 #include "run/trace_writer.hpp"
 #include "support/cli_runner.hpp"
 
@@ -30,6 +32,22 @@ std::string message_of(const std::function<void()>& f) {
 }
 
 // A run folder as a run writes it: result.json, trace.csv (two actors, three steps), run.log.
+// A metrics.csv in the writer's columns (the metric table's): each row's cells by column name,
+// the others empty, so the file keeps the writer's shape when a metric is added.
+std::string metrics_csv(const std::vector<std::map<std::string, std::string>>& rows) {
+  std::string text = metrics::MetricsRecorder::header() + "\n";
+  for (const auto& row : rows) {
+    const auto& columns = metrics_columns();
+    std::string line;
+    for (std::size_t c = 0; c < columns.size(); ++c) {
+      if (c > 0) line += ',';
+      if (const auto it = row.find(columns[c]); it != row.end()) line += it->second;
+    }
+    text += line + "\n";
+  }
+  return text;
+}
+
 void write_run(const test::TempDir& dir, const std::string& net_path) {
   nlohmann::json result = {{"verdict", "failure"}, {"reason", "stop"}, {"sim_time", 0.15}, {"step", 0.05},
                            {"scenes", {{{"scene_id", 0}, {"description", "open"}, {"enter_time", 0}}}},
@@ -144,7 +162,10 @@ TEST(RunReportData, ActorsAsColumnsWithTheirSizesAndTheLanesAroundTheirPaths) {
   EXPECT_EQ(data["problems"], nlohmann::json({"a problem"}));
 
   // The evaluation's metrics, per actor, when the run has them.
-  dir.write("metrics.csv", std::string(kMetricsHeader) + "\n0.050,0,3,3.000,-1.0,3.0,0.3,,0,0,0,0,3.0,3\n0.100,0,,,,,,,,,,,,\n");
+  dir.write("metrics.csv", metrics_csv({{{"time", "0.050"}, {"actor_id", "0"}, {"leader", "3"}, {"gap", "3.000"},
+                                           {"rel_speed", "-1.0"}, {"ttc", "3.0"}, {"thw", "0.3"}, {"min_dist", "3.0"},
+                                           {"min_dist_to", "3"}},
+                                          {{"time", "0.100"}, {"actor_id", "0"}}}));
   const auto with = report::run_report_data(read_run_files(dir.path()), {});
   EXPECT_EQ(with["metrics"]["0"]["gap"], nlohmann::json({3.0, nullptr}));
   EXPECT_EQ(with["metrics"]["0"]["ttc"], nlohmann::json({3.0, nullptr}));
