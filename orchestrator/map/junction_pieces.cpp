@@ -15,6 +15,9 @@ constexpr double kContainSample = 2.0;   // m between the samples of the contain
 constexpr double kContainSlack = 0.5;    // m a contained piece may reach past the other's ends
 constexpr double kContainDistance = 0.5; // m: noise between routes drawn "on the same lane"
 constexpr double kContainCos = 0.94;     // cos 20 deg
+// m: a route that ends (starts) inside a junction this close before (after) the start (end)
+// of a lane it is drawn along continues on (comes from) that lane.
+constexpr double kMaxEndGap = 3.0;
 
 // The points of `route` between arc lengths a < b (b may exceed the length of a closed
 // route: the stretch then runs across its closing point), cut exactly at both ends.
@@ -61,6 +64,52 @@ bool lies_along(const RoutePiece& inner, const RoutePiece& outer) {
     if (a.tangent_at(s).dot(b.tangent_at(pr.s)) < kContainCos) return false;
   }
   return true;
+}
+
+// A route that ends inside a junction (its passage reaches its last waypoint) has no lane
+// after it, so no connection carries its waypoints there and SUMO cannot drive it: it
+// continues on the lane leaving that junction which its last waypoint lies on, or lies just
+// before (within kMaxEndGap, along it). The same for a route that starts inside a junction,
+// with the lane entering it. The route is then driven by that lane too.
+void attach_loose_ends(const WaypointFile& wf, JunctionPieces& out) {
+  for (JunctionPassage& jp : out.passages) {
+    const WaypointRoute& route = wf.routes[jp.route];
+    for (const bool at_end : {true, false}) {
+      if ((at_end ? jp.after : jp.before) >= 0) continue;
+      const Polyline& line = route.line;
+      if (line.length() < 1.0) continue;
+      const Vec2 p = at_end ? line.points().back() : line.point(0);
+      const Vec2 dir = line.tangent_at(at_end ? line.length() : 0.0);
+      int best = -1;
+      double best_gap = kMaxEndGap;
+      for (std::size_t k = 0; k < out.pieces.size(); ++k) {
+        const RoutePiece& pc = out.pieces[k];
+        if ((at_end ? pc.from_zone : pc.to_zone) != jp.zone || pc.line.line.length() < 1.0) continue;
+        const Polyline& l = pc.line.line;
+        const Polyline::Projection pr = l.project(p);
+        if (l.tangent_at(pr.s).dot(dir) < kContainCos) continue;
+        // On the lane (beside it), or short of its start (past its end) straight along it.
+        const Vec2 tip = at_end ? l.point(0) : l.points().back();
+        const Vec2 along = l.tangent_at(at_end ? 0.0 : l.length());
+        const double ahead = (tip - p).dot(along) * (at_end ? 1.0 : -1.0);  // > 0: p lies short of the lane
+        double gap = 0;
+        if (ahead > 0) {
+          if (std::abs((p - tip).dot(left_normal(along))) > kContainDistance) continue;
+          gap = ahead;
+        } else if (pr.distance > kContainDistance || pr.before_start || pr.after_end) {
+          continue;
+        }
+        if (gap < best_gap || (best < 0 && gap <= best_gap)) {
+          best = static_cast<int>(k);
+          best_gap = gap;
+        }
+      }
+      if (best < 0) continue;
+      (at_end ? jp.after : jp.before) = best;
+      auto& routes = out.pieces[static_cast<std::size_t>(best)].routes;
+      if (std::find(routes.begin(), routes.end(), route.id) == routes.end()) routes.push_back(route.id);
+    }
+  }
 }
 
 }  // namespace
@@ -183,6 +232,7 @@ JunctionPieces cut_into_pieces(const WaypointFile& wf, const JunctionZones& zone
     if (jp.after >= 0) jp.after = index[static_cast<std::size_t>(owner[static_cast<std::size_t>(jp.after)])];
   }
   out.pieces = std::move(kept);
+  attach_loose_ends(wf, out);
   return out;
 }
 

@@ -167,9 +167,10 @@ class JunctionPlanner {
                        const JunctionPassage& p) const {
     const Polyline path(c.shape);
     const double length = route.line.length();
+    const bool closed = is_closed_route(route);  // only a closed route's passage wraps past its end
     for (std::size_t i = 0; i < route.points.size(); ++i) {
       const double s = route.line.s_at_index(i);
-      if (!(s >= p.s0 && s <= p.s1) && !(s + length >= p.s0 && s + length <= p.s1)) continue;
+      if (!(s >= p.s0 && s <= p.s1) && !(closed && s + length >= p.s0 && s + length <= p.s1)) continue;
       const double d = path.project(route.line.point(i)).distance;
       if (d > kMaxSharedPathMiss)
         throw MapError(fmt::format(
