@@ -285,10 +285,10 @@ TEST_F(XoscReader, AParameterDeclaredTwice) {
   const Scenario s = load(lane, lane + lane);
   EXPECT_EQ(std::count_if(s.parameters.begin(), s.parameters.end(), [](const Parameter& p) { return p.name == "Lane"; }),
             1);
-  EXPECT_NE(warnings_of(s).find("parameter \"Lane\" is declared a second time, as at line 12"), std::string::npos)
+  EXPECT_NE(warnings_of(s).find("parameter \"Lane\" is declared a second time, as at line 11"), std::string::npos)
       << warnings_of(s);
   EXPECT_NE(error(lane, lane + "<ParameterDeclaration name=\"Lane\" parameterType=\"integer\" value=\"-2\"/>")
-                .find("parameter \"Lane\" is declared twice, differently (first at line 12)"),
+                .find("parameter \"Lane\" is declared twice, differently (first at line 11)"),
             std::string::npos);
 }
 
