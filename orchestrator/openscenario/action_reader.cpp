@@ -15,14 +15,24 @@ DynamicsShape read_shape(Element& e) {
                                                    {"sinusoidal", DynamicsShape::Sinusoidal}});
 }
 
-TransitionDynamics read_dynamics(Element& e) {
+TransitionDynamics read_dynamics(Element& e, Context& context) {
   TransitionDynamics d;
   d.shape = read_shape(e);
   d.dimension = e.choice<DynamicsDimension>(
       "dynamicsDimension",
       {{"time", DynamicsDimension::Time}, {"distance", DynamicsDimension::Distance}, {"rate", DynamicsDimension::Rate}});
   d.value = e.number("value");
-  if (d.value < 0) e.fail_attribute("value", "a transition's time, distance or rate cannot be negative");
+  // The standard gives `value` the range [0..inf[. Real files write a deceleration as a negative
+  // rate (esmini's examples: value="-4"); esmini runs it by its magnitude, and so do we, with a
+  // warning. A negative time or distance has no such reading: it stays an error.
+  if (d.value < 0 && d.dimension == DynamicsDimension::Rate) {
+    context.warnings.warning(e.source().where(e.node(), "value"),
+                             fmt::format("a negative rate ({}): the standard gives TransitionDynamics value the "
+                                         "range [0..inf[; run with its magnitude {}, as esmini does",
+                                         d.value, -d.value));
+    d.value = -d.value;
+  }
+  if (d.value < 0) e.fail_attribute("value", "a transition's time or distance cannot be negative (the standard's range: [0..inf[)");
   if (e.has("followingMode")) e.fail_attribute("followingMode", "followingMode is not supported");
   e.finish();
   return d;
@@ -30,10 +40,10 @@ TransitionDynamics read_dynamics(Element& e) {
 
 namespace {
 
-SpeedAction read_speed(Element& e) {
+SpeedAction read_speed(Element& e, Context& context) {
   SpeedAction a;
   Element dynamics = e.child("SpeedActionDynamics");
-  a.dynamics = read_dynamics(dynamics);
+  a.dynamics = read_dynamics(dynamics, context);
   Element holder = e.child("SpeedActionTarget");
   Element target = holder.one_of({"AbsoluteTargetSpeed", "RelativeTargetSpeed"});
   holder.finish();
@@ -78,11 +88,11 @@ LongitudinalDistanceAction read_distance(Element& e) {
   return a;
 }
 
-LaneChangeAction read_lane_change(Element& e) {
+LaneChangeAction read_lane_change(Element& e, Context& context) {
   LaneChangeAction a;
   a.target_lane_offset = e.optional_number("targetLaneOffset");
   Element dynamics = e.child("LaneChangeActionDynamics");
-  a.dynamics = read_dynamics(dynamics);
+  a.dynamics = read_dynamics(dynamics, context);
   Element holder = e.child("LaneChangeTarget");
   Element target = holder.one_of({"RelativeTargetLane", "AbsoluteTargetLane"});
   holder.finish();
@@ -172,11 +182,11 @@ const std::vector<ActionEntry> kPrivateActions = {
     {"", "VisibilityAction", [](Element&, Element& e, Context&) -> PrivateAction { return read_visibility(e); }},
     // OpenSCENARIO 1.0 places ActivateControllerAction directly in PrivateAction.
     {"", "ActivateControllerAction", [](Element&, Element& e, Context&) -> PrivateAction { return read_activate(e); }},
-    {"LongitudinalAction", "SpeedAction", [](Element&, Element& e, Context&) -> PrivateAction { return read_speed(e); }},
+    {"LongitudinalAction", "SpeedAction", [](Element&, Element& e, Context& context) -> PrivateAction { return read_speed(e, context); }},
     {"LongitudinalAction", "LongitudinalDistanceAction",
      [](Element&, Element& e, Context&) -> PrivateAction { return read_distance(e); }},
     {"LateralAction", "LaneChangeAction",
-     [](Element&, Element& e, Context&) -> PrivateAction { return read_lane_change(e); }},
+     [](Element&, Element& e, Context& context) -> PrivateAction { return read_lane_change(e, context); }},
     {"LateralAction", "LaneOffsetAction",
      [](Element&, Element& e, Context&) -> PrivateAction { return read_lane_offset(e); }},
     {"ControllerAction", "ActivateControllerAction",

@@ -63,10 +63,37 @@ void read_catalog_locations(Element& locations, const std::string& scenario_dir,
   locations.finish();
 }
 
+// The standard resolves a CatalogReference by the Catalog's `name`. Files written for esmini
+// (which looks an entry up among the catalogs of the kind it needs) may name a catalog that
+// does not exist, e.g. "MiscObjectCatalog" for a file whose Catalog is named "MiscObject".
+// Where exactly one loaded catalog holds an entry of that name and of a kind the reference
+// needs, it is used, with a warning; otherwise the reference stays an error.
+std::map<std::string, std::map<std::string, CatalogEntry>>::iterator Context::find_by_kind(
+    Element& reference, const std::string& catalog_name, const std::string& entry_name,
+    const std::vector<std::string>& kinds) {
+  auto found = catalogs.end();
+  int matches = 0;
+  for (auto it = catalogs.begin(); it != catalogs.end(); ++it) {
+    const auto entry = it->second.find(entry_name);
+    if (entry == it->second.end()) continue;
+    if (std::find(kinds.begin(), kinds.end(), entry->second.node.name()) == kinds.end()) continue;
+    found = it;
+    ++matches;
+  }
+  if (matches != 1) return catalogs.end();
+  warnings.warning(reference.source().where(reference.node(), "catalogName"),
+                   fmt::format("no catalog named \"{}\" (the standard resolves catalogName by the Catalog's name); "
+                               "its entry \"{}\" is taken from catalog \"{}\", the one that holds such an entry, "
+                               "as esmini does",
+                               catalog_name, entry_name, found->first));
+  return found;
+}
+
 Element Context::resolve(Element& reference, const std::vector<std::string>& kinds) {
   const std::string catalog_name = reference.text("catalogName");
   const std::string entry_name = reference.text("entryName");
-  const auto catalog = catalogs.find(catalog_name);
+  auto catalog = catalogs.find(catalog_name);
+  if (catalog == catalogs.end()) catalog = find_by_kind(reference, catalog_name, entry_name, kinds);
   if (catalog == catalogs.end()) {
     std::vector<std::string> names;
     for (const auto& [n, c] : catalogs) names.push_back(n);

@@ -221,7 +221,8 @@ enum class Edge { None, Rising, Falling, RisingOrFalling };
 struct SimulationTimeCondition { Rule rule = Rule::GreaterOrEqual; double value = 0; };
 struct StoryboardElementStateCondition {
   std::string type;   // story, act, maneuverGroup, maneuver, event, action
-  std::string ref;    // element name
+  std::string ref;    // as written: a name, or a path of names "story::act::...::name"
+  std::string key;    // the element it resolves to (its `key`), set by the reader
   std::string state;  // startTransition, endTransition, ..., runningState, completeState
 };
 struct ParameterCondition { std::string parameter; Rule rule = Rule::EqualTo; std::string value; };
@@ -300,6 +301,7 @@ struct Trigger {
 // ---- Storyboard ---------------------------------------------------------------------
 struct Action {
   std::string name;
+  std::string key;  // unique in the storyboard: the path of names (see storyboard_reader.cpp)
   std::vector<std::string> actors;  // private actions: the maneuver group's; global actions: none
   PrivateAction action;
   Place place;
@@ -307,6 +309,7 @@ struct Action {
 enum class Priority { Overwrite, Skip, Parallel };
 struct Event {
   std::string name;
+  std::string key;  // unique in the storyboard: the path of names (see storyboard_reader.cpp)
   Priority priority = Priority::Overwrite;
   int maximum_execution_count = 1;
   std::vector<Action> actions;
@@ -314,10 +317,12 @@ struct Event {
 };
 struct Maneuver {
   std::string name;
+  std::string key;  // unique in the storyboard: the path of names (see storyboard_reader.cpp)
   std::vector<Event> events;
 };
 struct ManeuverGroup {
   std::string name;
+  std::string key;  // unique in the storyboard: the path of names (see storyboard_reader.cpp)
   int maximum_execution_count = 1;
   bool select_triggering_entities = false;
   std::vector<std::string> actors;
@@ -325,12 +330,14 @@ struct ManeuverGroup {
 };
 struct Act {
   std::string name;
+  std::string key;  // unique in the storyboard: the path of names (see storyboard_reader.cpp)
   std::vector<ManeuverGroup> groups;
   std::optional<Trigger> start_trigger;
   std::optional<Trigger> stop_trigger;
 };
 struct Story {
   std::string name;
+  std::string key;  // unique in the storyboard: the path of names (see storyboard_reader.cpp)
   std::vector<Act> acts;
 };
 struct InitAction {

@@ -37,6 +37,11 @@ class Context {
   // entry's parameters with the reference's assignments. `kind` is the element expected
   // ("Vehicle", "Controller", ...; several allowed for entities).
   Element resolve(Element& reference, const std::vector<std::string>& kinds);
+
+ private:
+  std::map<std::string, std::map<std::string, CatalogEntry>>::iterator find_by_kind(
+      Element& reference, const std::string& catalog_name, const std::string& entry_name,
+      const std::vector<std::string>& kinds);
 };
 
 // One ParameterDeclaration ("parameterType") or VariableDeclaration ("variableType").
@@ -92,7 +97,7 @@ std::pair<std::string, std::string> declared_variable(Element& at, const Context
 
 // Closed sets shared by several readers.
 Rule read_rule(Element& e);
-TransitionDynamics read_dynamics(Element& e);
+TransitionDynamics read_dynamics(Element& e, Context& context);
 DynamicsShape read_shape(Element& e);
 
 }  // namespace orch::openscenario::reading

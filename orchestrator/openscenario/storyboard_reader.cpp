@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include "core/suggest.hpp"
+#include "openscenario/element_path.hpp"
 #include "openscenario/reader_context.hpp"
 
 namespace orch::openscenario::reading {
@@ -101,19 +102,55 @@ class StoryboardReader {
     return name;
   }
 
-  void declare(const std::string& type, Element& e, const std::string& name) {
-    if (!names_[type].insert(name).second) e.fail(fmt::format("a second {} named \"{}\"", type, name));
+  // Names a storyboard element: its key is the path of names from its Story down ("s::a::g"),
+  // unique however often a name repeats in other parents (the standard allows that). Siblings
+  // of one type and name break the standard's rule; they run as distinct elements (as in
+  // esmini) with a warning, and a reference to them is ambiguous (resolve_reference).
+  std::string declare(const std::string& type, Element& e, const std::string& name) {
+    std::vector<std::string> path = path_;
+    path.push_back(name);
+    std::string key = join_path(path);
+    if (!keys_.insert({type, key}).second) {
+      context_.warnings.warning(e.source().where(e.node(), "name"),
+                                fmt::format("a second {} named \"{}\" in the same parent: the standard wants the names "
+                                            "of siblings unique; both run, a reference to them is ambiguous",
+                                            type, name));
+      for (int n = 2;; ++n)
+        if (keys_.insert({type, fmt::format("{}#{}", key, n)}).second) {
+          key = fmt::format("{}#{}", key, n);
+          break;
+        }
+    }
+    declared_[type].push_back({std::move(path), key, e.place().line});
+    return key;
   }
 
+  // Holds `name` on the path of the elements read inside it.
+  struct Nested {
+    Nested(std::vector<std::string>& path, const std::string& name) : path_(path) { path_.push_back(name); }
+    ~Nested() { path_.pop_back(); }
+    Nested(const Nested&) = delete;
+    Nested& operator=(const Nested&) = delete;
+    std::vector<std::string>& path_;
+  };
+
+  // An empty trigger (no ConditionGroup) is read as none: the standard keeps empty triggers
+  // only "for the sake of downward compatibility" with 1.0, where an Act had to have a
+  // StartTrigger (docs/openscenario.md, "Empty triggers"). So an empty StartTrigger starts its
+  // element as an absent one does, an empty StopTrigger never stops it, as in esmini.
   std::optional<Trigger> trigger(Element& owner, const char* name) {
     auto t = owner.optional_child(name);
     if (!t) return std::nullopt;
-    return read_trigger(*t, context_);
+    Trigger read = read_trigger(*t, context_);
+    if (read.groups.empty()) return std::nullopt;
+    return read;
   }
 
   Story read_story(Element& outer) {
-    Story story{outer.text("name"), {}};
-    declare("story", outer, story.name);
+    Story story;
+    story.name = outer.text("name");
+    story.key = declare("story", outer, story.name);
+    const Nested inside(path_, story.name);
     Element e = open_scope(outer, context_, story.name);  // its parameters: "<story>/<name>"
     for (Element act : e.children("Act")) story.acts.push_back(read_act(act));
     if (story.acts.empty()) e.fail("a Story needs at least one Act");
@@ -124,12 +161,14 @@ class StoryboardReader {
   Act read_act(Element& e) {
     Act act;
     act.name = e.text("name");
-    declare("act", e, act.name);
+    act.key = declare("act", e, act.name);
+    const Nested inside(path_, act.name);
     for (Element g : e.children("ManeuverGroup")) act.groups.push_back(read_group(g));
     if (act.groups.empty()) e.fail("an Act needs at least one ManeuverGroup");
+    const bool has_start_trigger = static_cast<bool>(e.node().child("StartTrigger"));
     act.start_trigger = trigger(e, "StartTrigger");
     // Optional since 1.1: an Act without one starts with its Story (the runtime's fires()).
-    if (!act.start_trigger && scenario_.rev_minor == 0) e.fail("an Act needs a StartTrigger (OpenSCENARIO 1.0)");
+    if (!has_start_trigger && scenario_.rev_minor == 0) e.fail("an Act needs a StartTrigger (OpenSCENARIO 1.0)");
     act.stop_trigger = trigger(e, "StopTrigger");
     e.finish();
     return act;
@@ -138,7 +177,8 @@ class StoryboardReader {
   ManeuverGroup read_group(Element& e) {
     ManeuverGroup g;
     g.name = e.text("name");
-    declare("maneuverGroup", e, g.name);
+    g.key = declare("maneuverGroup", e, g.name);
+    const Nested inside(path_, g.name);
     g.maximum_execution_count = e.integer("maximumExecutionCount");
     if (g.maximum_execution_count < 1) e.fail_attribute("maximumExecutionCount", "must be at least 1");
     Element actors = e.child("Actors");
@@ -167,8 +207,10 @@ class StoryboardReader {
   }
 
   Maneuver read_maneuver(Element& outer, const std::vector<std::string>& actors, bool own_declarations) {
-    Maneuver m{outer.text("name"), {}};
-    declare("maneuver", outer, m.name);
+    Maneuver m;
+    m.name = outer.text("name");
+    m.key = declare("maneuver", outer, m.name);
+    const Nested inside(path_, m.name);
     // Its parameters: "<maneuver>/<name>".
     Element e = own_declarations ? open_scope(outer, context_, m.name) : outer;
     for (Element ev : e.children("Event")) m.events.push_back(read_event(ev, actors));
@@ -180,7 +222,8 @@ class StoryboardReader {
   Event read_event(Element& e, const std::vector<std::string>& actors) {
     Event ev;
     ev.name = e.text("name");
-    declare("event", e, ev.name);
+    ev.key = declare("event", e, ev.name);
+    const Nested inside(path_, ev.name);
     ev.priority = e.choice<Priority>("priority", {{"overwrite", Priority::Overwrite},
                                                   {"override", Priority::Overwrite},
                                                   {"skip", Priority::Skip},
@@ -190,7 +233,7 @@ class StoryboardReader {
     for (Element a : e.children("Action")) {
       Action action;
       action.name = a.text("name");
-      declare("action", a, action.name);
+      action.key = declare("action", a, action.name);
       action.place = a.place();
       Element kind = a.one_of({"PrivateAction", "GlobalAction", "UserDefinedAction"});
       if (kind.name() == "UserDefinedAction") unsupported(kind);
@@ -211,19 +254,33 @@ class StoryboardReader {
     return ev;
   }
 
-  // Every StoryboardElementStateCondition names an element of its type that exists.
-  void check_trigger(const std::optional<Trigger>& t, const std::string& file) {
+  // Every StoryboardElementStateCondition names one element of its type: by its name, or by
+  // the end of its path of names ("event::action") where the name alone is not unique.
+  void check_trigger(std::optional<Trigger>& t, const std::string& file) {
     if (!t) return;
-    for (const auto& group : t->groups)
-      for (const Condition& c : group) {
-        if (const auto* s = std::get_if<StoryboardElementStateCondition>(&c.kind)) {
-          const auto& known = names_[s->type];
-          if (!known.contains(s->ref)) {
-            const std::vector<std::string> choices(known.begin(), known.end());
-            throw ScenarioError(SourceLocation{file, c.place.path, c.place.line},
-                                fmt::format("no {} named \"{}\" in the storyboard{}", s->type, s->ref,
-                                            did_you_mean(s->ref, choices)));
+    for (auto& group : t->groups)
+      for (Condition& c : group) {
+        if (auto* s = std::get_if<StoryboardElementStateCondition>(&c.kind)) {
+          const SourceLocation where{file, c.place.path, c.place.line};
+          std::vector<std::pair<std::vector<std::string>, std::string>> elements;
+          for (const DeclaredElement& d : declared_[s->type]) elements.emplace_back(d.path, d.key);
+          const ReferenceMatch match = resolve_reference(s->ref, elements);
+          if (match.keys.empty()) {
+            std::vector<std::string> choices;
+            for (const DeclaredElement& d : declared_[s->type]) choices.push_back(d.path.back());
+            throw ScenarioError(where, fmt::format("no {} named \"{}\" in the storyboard{}", s->type, s->ref,
+                                                   did_you_mean(split_path(s->ref).back(), choices)));
           }
+          if (match.keys.size() > 1) {
+            const DeclaredElement& a = declared(s->type, match.keys[0]);
+            const DeclaredElement& b = declared(s->type, match.keys[1]);
+            throw ScenarioError(
+                where, fmt::format("\"{}\" names more than one {}: \"{}\" (line {}) and \"{}\" (line {}); name one by "
+                                   "its path, e.g. storyboardElementRef=\"{}\"",
+                                   s->ref, s->type, join_path(a.path), a.line, join_path(b.path), b.line,
+                                   join_path(a.path)));
+          }
+          s->key = match.keys.front();
         }
         if (const auto* b = std::get_if<ByEntityCondition>(&c.kind)) {
           for (const std::string& name : b->triggering_entities) check_entity(name, c, file);
@@ -309,23 +366,35 @@ class StoryboardReader {
     init = std::move(ordered);
   }
 
-  void check_state_references(const Storyboard& board) {
+  void check_state_references(Storyboard& board) {
     const std::string& file = scenario_.file;
     check_trigger(board.stop_trigger, file);
-    for (const Story& story : board.stories)
-      for (const Act& act : story.acts) {
+    for (Story& story : board.stories)
+      for (Act& act : story.acts) {
         check_trigger(act.start_trigger, file);
         check_trigger(act.stop_trigger, file);
-        for (const ManeuverGroup& g : act.groups)
-          for (const Maneuver& m : g.maneuvers)
-            for (const Event& ev : m.events) check_trigger(ev.start_trigger, file);
+        for (ManeuverGroup& g : act.groups)
+          for (Maneuver& m : g.maneuvers)
+            for (Event& ev : m.events) check_trigger(ev.start_trigger, file);
       }
+  }
+
+  struct DeclaredElement {
+    std::vector<std::string> path;  // names from the Story down to the element
+    std::string key;
+    int line = 0;
+  };
+  const DeclaredElement& declared(const std::string& type, const std::string& key) {
+    const auto& all = declared_[type];
+    return *std::find_if(all.begin(), all.end(), [&](const DeclaredElement& d) { return d.key == key; });
   }
 
   const Scenario& scenario_;
   Context& context_;
   std::vector<std::string> entity_names_;
-  std::map<std::string, std::set<std::string>> names_;
+  std::vector<std::string> path_;                              // names of the elements being read
+  std::set<std::pair<std::string, std::string>> keys_;         // (type, key) given out
+  std::map<std::string, std::vector<DeclaredElement>> declared_;  // by type, in file order
 };
 
 }  // namespace

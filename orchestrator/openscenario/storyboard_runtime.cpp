@@ -63,7 +63,8 @@ struct StoryboardRuntime::Impl {
   bool finished = false;
   std::map<std::string, EntityState> entities;
   std::vector<TransitionLog> log;
-  std::map<std::pair<std::string, std::string>, Record> records;
+  std::map<std::pair<std::string, std::string>, Record> records;        // by (type, key)
+  std::map<std::pair<std::string, std::string>, std::string> names;     // (type, key) -> name
   std::map<const Condition*, ConditionMemory> memory;
   std::vector<RunningAction> running;
   std::map<std::string, Parameter> parameters;  // values as the parameter actions set them (by key)
@@ -75,6 +76,22 @@ struct StoryboardRuntime::Impl {
     for (const Parameter& p : s.parameters) parameters[p.name] = p;
     for (const Parameter& p : s.local_parameters) parameters[p.name] = p;  // "<owner>/<name>"
     for (const Parameter& v : s.variables) variables[v.name] = v;
+    for (const Story& story : s.storyboard.stories) {
+      names[{"story", story.key}] = story.name;
+      for (const Act& act : story.acts) {
+        names[{"act", act.key}] = act.name;
+        for (const ManeuverGroup& g : act.groups) {
+          names[{"maneuverGroup", g.key}] = g.name;
+          for (const Maneuver& m : g.maneuvers) {
+            names[{"maneuver", m.key}] = m.name;
+            for (const Event& e : m.events) {
+              names[{"event", e.key}] = e.name;
+              for (const Action& a : e.actions) names[{"action", a.key}] = a.name;
+            }
+          }
+        }
+      }
+    }
   }
 
   double last_dt = 0;  // the last step's
@@ -85,12 +102,14 @@ struct StoryboardRuntime::Impl {
 
   Record& record(const std::string& type, const std::string& name) { return records[{type, name}]; }
 
-  void transition(const std::string& type, const std::string& name, const std::string& what, ElementState to) {
-    Record& r = record(type, name);
+  // `key`: the element's (unique) key; the log names it by its name, as the file does.
+  void transition(const std::string& type, const std::string& key, const std::string& what, ElementState to) {
+    Record& r = record(type, key);
     r.state = to;
     r.transitions.push_back({what, step_index, ++transitions_made});
     if (r.transitions.size() > 8) r.transitions.erase(r.transitions.begin());
-    log.push_back({t, type, name, what});
+    const auto name = names.find({type, key});
+    log.push_back({t, type, name == names.end() ? key : name->second, what});
   }
 
   // ---- conditions ---------------------------------------------------------------------
@@ -103,7 +122,7 @@ struct StoryboardRuntime::Impl {
             if (std::abs(t - kind.value) < 1e-9) return satisfies(kind.rule, kind.value, kind.value);
             return satisfies(kind.rule, t, kind.value);
           } else if constexpr (std::is_same_v<T, StoryboardElementStateCondition>) {
-            const Record& r = record(kind.type, kind.ref);
+            const Record& r = record(kind.type, kind.key.empty() ? kind.ref : kind.key);
             if (kind.state == "standbyState") return r.state == ElementState::Standby;
             if (kind.state == "runningState") return r.state == ElementState::Running;
             if (kind.state == "completeState") return r.state == ElementState::Complete;
@@ -271,22 +290,22 @@ struct StoryboardRuntime::Impl {
 
   // ---- storyboard elements ------------------------------------------------------------
   void start_event(const Event& e) {
-    Record& r = record("event", e.name);
+    Record& r = record("event", e.key);
     ++r.executions;
-    transition("event", e.name, "startTransition", ElementState::Running);
+    transition("event", e.key, "startTransition", ElementState::Running);
     for (const Action& a : e.actions) {
-      transition("action", a.name, "startTransition", ElementState::Running);
+      transition("action", a.key, "startTransition", ElementState::Running);
       // Global actions have no actors: they run once, for no entity ("").
       const std::vector<std::string> actors = a.actors.empty() ? std::vector<std::string>{""} : a.actors;
       for (const std::string& actor : actors) {
         ActionContext ctx = context();
         // An action that takes over an entity's motion ends the one it replaces.
-        for (const std::string& replaced : start_action(a.action, actor, a.name, ctx, running))
+        for (const std::string& replaced : start_action(a.action, actor, a.key, ctx, running))
           if (record("action", replaced).state == ElementState::Running)
             transition("action", replaced, "stopTransition", ElementState::Complete);
       }
-      if (std::none_of(running.begin(), running.end(), [&](const RunningAction& r2) { return r2.action == a.name; }))
-        transition("action", a.name, "endTransition", ElementState::Complete);
+      if (std::none_of(running.begin(), running.end(), [&](const RunningAction& r2) { return r2.action == a.key; }))
+        transition("action", a.key, "endTransition", ElementState::Complete);
     }
   }
 
@@ -297,18 +316,18 @@ struct StoryboardRuntime::Impl {
   }
 
   void stop_event(const Event& e) {
-    for (const Action& a : e.actions) stop_action(a.name);
-    transition("event", e.name, "stopTransition", ElementState::Complete);
+    for (const Action& a : e.actions) stop_action(a.key);
+    transition("event", e.key, "stopTransition", ElementState::Complete);
   }
 
   void start_group(const ManeuverGroup& g) {
-    ++record("maneuverGroup", g.name).executions;
-    transition("maneuverGroup", g.name, "startTransition", ElementState::Running);
+    ++record("maneuverGroup", g.key).executions;
+    transition("maneuverGroup", g.key, "startTransition", ElementState::Running);
     for (const Maneuver& m : g.maneuvers) {
-      transition("maneuver", m.name, "startTransition", ElementState::Running);
+      transition("maneuver", m.key, "startTransition", ElementState::Running);
       for (const Event& e : m.events) {
-        record("event", e.name) = Record{};
-        for (const Action& a : e.actions) record("action", a.name).state = ElementState::Standby;
+        record("event", e.key) = Record{};
+        for (const Action& a : e.actions) record("action", a.key).state = ElementState::Standby;
       }
     }
   }
@@ -317,14 +336,14 @@ struct StoryboardRuntime::Impl {
     for (const ManeuverGroup& g : act.groups) {
       for (const Maneuver& m : g.maneuvers) {
         for (const Event& e : m.events)
-          if (record("event", e.name).state != ElementState::Complete) stop_event(e);
-        if (record("maneuver", m.name).state != ElementState::Complete)
-          transition("maneuver", m.name, "stopTransition", ElementState::Complete);
+          if (record("event", e.key).state != ElementState::Complete) stop_event(e);
+        if (record("maneuver", m.key).state != ElementState::Complete)
+          transition("maneuver", m.key, "stopTransition", ElementState::Complete);
       }
-      if (record("maneuverGroup", g.name).state != ElementState::Complete)
-        transition("maneuverGroup", g.name, "stopTransition", ElementState::Complete);
+      if (record("maneuverGroup", g.key).state != ElementState::Complete)
+        transition("maneuverGroup", g.key, "stopTransition", ElementState::Complete);
     }
-    transition("act", act.name, "stopTransition", ElementState::Complete);
+    transition("act", act.key, "stopTransition", ElementState::Complete);
   }
 
   bool complete(const std::string& type, const std::string& name) {
@@ -336,39 +355,39 @@ struct StoryboardRuntime::Impl {
     for (const Story& story : scenario.storyboard.stories) {
       bool acts_done = true;
       for (const Act& act : story.acts) {
-        if (record("act", act.name).state == ElementState::Running) {
+        if (record("act", act.key).state == ElementState::Running) {
           bool groups_done = true;
           for (const ManeuverGroup& g : act.groups) {
-            if (record("maneuverGroup", g.name).state != ElementState::Running) continue;
+            if (record("maneuverGroup", g.key).state != ElementState::Running) continue;
             bool maneuvers_done = true;
             for (const Maneuver& m : g.maneuvers) {
-              if (record("maneuver", m.name).state != ElementState::Running) continue;
+              if (record("maneuver", m.key).state != ElementState::Running) continue;
               bool events_done = true;
               for (const Event& e : m.events) {
-                Record& r = record("event", e.name);
+                Record& r = record("event", e.key);
                 if (r.state == ElementState::Running &&
-                    std::all_of(e.actions.begin(), e.actions.end(), [&](const Action& a) { return complete("action", a.name); })) {
+                    std::all_of(e.actions.begin(), e.actions.end(), [&](const Action& a) { return complete("action", a.key); })) {
                   const bool again = r.executions < e.maximum_execution_count;
-                  transition("event", e.name, "endTransition", again ? ElementState::Standby : ElementState::Complete);
+                  transition("event", e.key, "endTransition", again ? ElementState::Standby : ElementState::Complete);
                 }
-                events_done = events_done && complete("event", e.name);
+                events_done = events_done && complete("event", e.key);
               }
-              if (events_done) transition("maneuver", m.name, "endTransition", ElementState::Complete);
-              maneuvers_done = maneuvers_done && complete("maneuver", m.name);
+              if (events_done) transition("maneuver", m.key, "endTransition", ElementState::Complete);
+              maneuvers_done = maneuvers_done && complete("maneuver", m.key);
             }
             if (maneuvers_done) {
-              const bool again = record("maneuverGroup", g.name).executions < g.maximum_execution_count;
-              transition("maneuverGroup", g.name, "endTransition", ElementState::Complete);
+              const bool again = record("maneuverGroup", g.key).executions < g.maximum_execution_count;
+              transition("maneuverGroup", g.key, "endTransition", ElementState::Complete);
               if (again) start_group(g);
             }
-            groups_done = groups_done && complete("maneuverGroup", g.name);
+            groups_done = groups_done && complete("maneuverGroup", g.key);
           }
-          if (groups_done) transition("act", act.name, "endTransition", ElementState::Complete);
+          if (groups_done) transition("act", act.key, "endTransition", ElementState::Complete);
         }
-        acts_done = acts_done && complete("act", act.name);
+        acts_done = acts_done && complete("act", act.key);
       }
-      if (acts_done && record("story", story.name).state == ElementState::Running)
-        transition("story", story.name, "endTransition", ElementState::Complete);
+      if (acts_done && record("story", story.key).state == ElementState::Running)
+        transition("story", story.key, "endTransition", ElementState::Complete);
     }
   }
 
@@ -379,34 +398,34 @@ struct StoryboardRuntime::Impl {
       return;
     }
     for (const Story& story : scenario.storyboard.stories) {
-      if (record("story", story.name).state != ElementState::Running) continue;
+      if (record("story", story.key).state != ElementState::Running) continue;
       for (const Act& act : story.acts) {
-        const ElementState state = record("act", act.name).state;
+        const ElementState state = record("act", act.key).state;
         if (state == ElementState::Standby && fires(act.start_trigger)) {
-          transition("act", act.name, "startTransition", ElementState::Running);
+          transition("act", act.key, "startTransition", ElementState::Running);
           for (const ManeuverGroup& g : act.groups) start_group(g);
         } else if (state == ElementState::Running && act.stop_trigger && fires(act.stop_trigger)) {
           stop_act(act);
           continue;
         }
-        if (record("act", act.name).state != ElementState::Running) continue;
+        if (record("act", act.key).state != ElementState::Running) continue;
         for (const ManeuverGroup& g : act.groups)
           for (const Maneuver& m : g.maneuvers) {
-            if (record("maneuver", m.name).state != ElementState::Running) continue;
+            if (record("maneuver", m.key).state != ElementState::Running) continue;
             for (const Event& e : m.events) {
-              if (record("event", e.name).state != ElementState::Standby || !fires(e.start_trigger)) continue;
+              if (record("event", e.key).state != ElementState::Standby || !fires(e.start_trigger)) continue;
               const auto running_other = [&] {
                 return std::any_of(m.events.begin(), m.events.end(), [&](const Event& o) {
-                  return &o != &e && record("event", o.name).state == ElementState::Running;
+                  return &o != &e && record("event", o.key).state == ElementState::Running;
                 });
               };
               if (e.priority == Priority::Skip && running_other()) {
-                transition("event", e.name, "skipTransition", ElementState::Standby);
+                transition("event", e.key, "skipTransition", ElementState::Standby);
                 continue;
               }
               if (e.priority == Priority::Overwrite)
                 for (const Event& o : m.events)
-                  if (&o != &e && record("event", o.name).state == ElementState::Running) stop_event(o);
+                  if (&o != &e && record("event", o.key).state == ElementState::Running) stop_event(o);
               start_event(e);
             }
           }
@@ -424,7 +443,7 @@ struct StoryboardRuntime::Impl {
     for (const auto& [tractor, trailer] : TrailerLinks(trailers))
       connect_trailer(scenario, entities, trailers, tractor, trailer, roads);
     for (const Story& story : scenario.storyboard.stories)
-      transition("story", story.name, "startTransition", ElementState::Running);
+      transition("story", story.key, "startTransition", ElementState::Running);
   }
 
   void step(double dt) {
@@ -474,7 +493,9 @@ bool StoryboardRuntime::finished() const { return impl_->finished; }
 const std::map<std::string, EntityState>& StoryboardRuntime::entities() const { return impl_->entities; }
 const std::vector<TransitionLog>& StoryboardRuntime::log() const { return impl_->log; }
 ElementState StoryboardRuntime::state(const std::string& type, const std::string& name) const {
-  const auto it = impl_->records.find({type, name});
+  auto it = impl_->records.find({type, name});  // by key
+  for (const auto& [id, element_name] : impl_->names)  // else the first element of that name
+    if (it == impl_->records.end() && id.first == type && element_name == name) it = impl_->records.find(id);
   return it == impl_->records.end() ? ElementState::Standby : it->second.state;
 }
 

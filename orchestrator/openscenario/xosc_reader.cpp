@@ -42,17 +42,30 @@ bool holds(Rule rule, const std::string& type, const std::string& value, const s
 
 // Declarations in order, then the overrides, then every ConstraintGroup (OR of ANDs) on the
 // final values: a constraint may use other parameters.
-std::vector<Parameter> read_parameters(Element& root, const LoadOptions& options, ParameterScope& scope) {
+std::vector<Parameter> read_parameters(Element& root, const LoadOptions& options, Context& context) {
+  ParameterScope& scope = context.global;
   std::vector<Parameter> parameters;
+  std::vector<int> lines;  // of `parameters`' declarations
   auto declarations = root.optional_child("ParameterDeclarations");
   std::vector<Element> elements = declarations ? declarations->children("ParameterDeclaration") : std::vector<Element>{};
   if (declarations) declarations->finish();
   for (Element& d : elements) {
     Parameter p = reading::read_declaration(d);
-    for (const Parameter& other : parameters)
-      if (other.name == p.name) d.fail_attribute("name", fmt::format("parameter \"{}\" is declared twice", p.name));
+    const auto earlier = std::find_if(parameters.begin(), parameters.end(), [&](const Parameter& o) { return o.name == p.name; });
+    if (earlier != parameters.end()) {
+      // A parameter is named by its name in its scope: a second declaration that says the same
+      // changes nothing (esmini's follow_reference.xosc repeats one), one that differs is ambiguous.
+      const int line = lines[static_cast<std::size_t>(earlier - parameters.begin())];
+      if (earlier->type != p.type || earlier->value != p.value)
+        d.fail_attribute("name", fmt::format("parameter \"{}\" is declared twice, differently (first at line {})",
+                                             p.name, line));
+      context.warnings.warning(d.source().where(d.node(), "name"),
+                               fmt::format("parameter \"{}\" is declared a second time, as at line {}", p.name, line));
+      continue;
+    }
     scope.set(p.name, p.type, p.value, p.name);
     parameters.push_back(p);
+    lines.push_back(d.place().line);
   }
   std::vector<std::string> names;
   for (const Parameter& p : parameters) names.push_back(p.name);
@@ -161,7 +174,7 @@ Scenario load_scenario(const std::string& path, const LoadOptions& options) {
     root.fail("this is a parameter variation file (ParameterValueDistribution), not a scenario; "
               "check it with `orchestrator validate`, run it with `orchestrator batch` or `sample`");
   if (root.optional_child("Catalog")) root.fail("this is a catalog file, not a scenario");
-  scenario.parameters = read_parameters(root, options, context.global);
+  scenario.parameters = read_parameters(root, options, context);
   scenario.variables = read_variables(root);
   context.variables = scenario.variables;
   const std::string dir = fs::path(path).parent_path().string();

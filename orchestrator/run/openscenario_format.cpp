@@ -248,6 +248,10 @@ class OpenScenarioFormat : public RunFormat {
 void OpenScenarioFormat::open(RunResult& result, RunLog& log, SimulatorConfig& config) {
   result.scenario = {req_.scenario_file, sha256_of_file(req_.scenario_file)};
   scenario_.emplace(openscenario::load_scenario(req_.scenario_file, {req_.parameter_overrides}));
+  for (const auto& d : scenario_->warnings.items()) {  // what the reader accepted with a warning
+    result.warnings.push_back(d.format());
+    log.note(d.format());
+  }
   result.title = std::filesystem::path(req_.scenario_file).stem().string();
   result.description = scenario_->description;
   if (scenario_->road_file.empty())

@@ -2,6 +2,7 @@
 // folder, read into the model; then one broken variant per kind of error.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 
 #include "core/errors.hpp"
@@ -251,6 +252,59 @@ TEST_F(XoscReader, ReferencesAreCheckedAtLoad) {
             std::string::npos);
   EXPECT_NE(error("./road.xodr", "./missing.xodr").find("no OpenDRIVE file"), std::string::npos);
   EXPECT_NE(error("value=\"${$Speed_kph / 3.6}\"", "value=\"${$Speed_kph / }\"").find("expected a value"),
+            std::string::npos);
+}
+
+// Every warning the reader gave, formatted, in one text.
+std::string warnings_of(const Scenario& s) {
+  std::string all;
+  for (const Diagnostic& d : s.warnings.items()) all += d.format() + "\n";
+  return all;
+}
+
+// Real files (esmini's examples) write decelerations as negative rates; the standard's range is
+// [0..inf[: the magnitude is run, with a warning that says so. A negative time stays an error.
+TEST_F(XoscReader, ANegativeRateIsRunByItsMagnitudeWithAWarning) {
+  const Scenario s = load("dynamicsDimension=\"rate\" value=\"2\"", "dynamicsDimension=\"rate\" value=\"-2\"");
+  const Event& event = s.storyboard.stories.at(0).acts.at(0).groups.at(0).maneuvers.at(0).events.at(0);
+  EXPECT_DOUBLE_EQ(std::get<SpeedAction>(event.actions.at(0).action).dynamics.value, 2.0);
+  const std::string warnings = warnings_of(s);
+  EXPECT_NE(warnings.find("a negative rate (-2): the standard gives TransitionDynamics value the range [0..inf["),
+            std::string::npos)
+      << warnings;
+  EXPECT_NE(error("dynamicsShape=\"step\" dynamicsDimension=\"time\" value=\"0\"",
+                  "dynamicsShape=\"step\" dynamicsDimension=\"time\" value=\"-1\"")
+                .find("a transition's time or distance cannot be negative"),
+            std::string::npos);
+}
+
+// One parameter declared twice in the scenario's ParameterDeclarations: the same declaration
+// again changes nothing (a warning); a different one is ambiguous (an error naming the first).
+TEST_F(XoscReader, AParameterDeclaredTwice) {
+  const std::string lane = "<ParameterDeclaration name=\"Lane\" parameterType=\"integer\" value=\"-1\"/>";
+  const Scenario s = load(lane, lane + lane);
+  EXPECT_EQ(std::count_if(s.parameters.begin(), s.parameters.end(), [](const Parameter& p) { return p.name == "Lane"; }),
+            1);
+  EXPECT_NE(warnings_of(s).find("parameter \"Lane\" is declared a second time, as at line 11"), std::string::npos)
+      << warnings_of(s);
+  EXPECT_NE(error(lane, lane + "<ParameterDeclaration name=\"Lane\" parameterType=\"integer\" value=\"-2\"/>")
+                .find("parameter \"Lane\" is declared twice, differently (first at line 11)"),
+            std::string::npos);
+}
+
+// catalogName is the Catalog's name (here "vehicles"). A name no catalog has, where exactly one
+// catalog holds an entry of that name and kind, takes that entry (as esmini, which looks entries
+// up by kind), with a warning; an entry no catalog holds stays the error.
+TEST_F(XoscReader, ACatalogNamedLooselyIsFoundByItsEntry) {
+  const std::string other = "<CatalogReference catalogName=\"vehicles\" entryName=\"car\"/>";
+  const Scenario s = load(other, "<CatalogReference catalogName=\"VehicleCatalog\" entryName=\"car\"/>");
+  EXPECT_DOUBLE_EQ(s.entities.at(1).box.length, 5.0);
+  EXPECT_NE(warnings_of(s).find("no catalog named \"VehicleCatalog\" (the standard resolves catalogName by the "
+                                "Catalog's name); its entry \"car\" is taken from catalog \"vehicles\""),
+            std::string::npos)
+      << warnings_of(s);
+  EXPECT_NE(error(other, "<CatalogReference catalogName=\"VehicleCatalog\" entryName=\"truck\"/>")
+                .find("no catalog named \"VehicleCatalog\" in the CatalogLocations"),
             std::string::npos);
 }
 

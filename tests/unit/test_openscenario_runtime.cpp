@@ -5,6 +5,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "core/errors.hpp"
 #include "opendrive/xodr_reader.hpp"
 #include "openscenario/storyboard_runtime.hpp"
 #include "openscenario/xosc_reader.hpp"
@@ -43,7 +44,10 @@ std::string event(const std::string& name, const std::string& priority, const st
 // whose maneuver (actor A) holds `events`, and a stop trigger at `stop` s.
 class Runtime : public ::testing::Test {
  protected:
-  void load(const std::string& events, double stop = 100.0, int group_count = 1) {
+  // `act_trigger`: the Act's StartTrigger element (default: true from 0 s on).
+  void load(const std::string& events, double stop = 100.0, int group_count = 1,
+            const std::string& act_trigger = "<StartTrigger><ConditionGroup>" + time_condition("ActStart", 0, "none") +
+                                             "</ConditionGroup></StartTrigger>") {
     const std::string text = R"(<?xml version="1.0"?><OpenSCENARIO>
 <FileHeader revMajor="1" revMinor="2" date="2024-01-01T00:00:00" author="t" description="runtime"/>
 <RoadNetwork><LogicFile filepath="road.xodr"/></RoadNetwork>
@@ -51,8 +55,7 @@ class Runtime : public ::testing::Test {
 <Storyboard><Init><Actions>)" + place("A", 10, -1, 10) + place("B", 50, -2, 10) + R"(</Actions></Init>
 <Story name="S"><Act name="Act"><ManeuverGroup name="G" maximumExecutionCount=")" + std::to_string(group_count) + R"(">
 <Actors selectTriggeringEntities="false"><EntityRef entityRef="A"/></Actors><Maneuver name="M">)" + events +
-                             R"(</Maneuver></ManeuverGroup><StartTrigger><ConditionGroup>)" + time_condition("ActStart", 0, "none") +
-                             R"(</ConditionGroup></StartTrigger></Act></Story>
+                             R"(</Maneuver></ManeuverGroup>)" + act_trigger + R"(</Act></Story>
 <StopTrigger><ConditionGroup>)" + time_condition("Stop", stop) + R"(</ConditionGroup></StopTrigger></Storyboard></OpenSCENARIO>)";
     dir_.write("road.xodr", kStraightTwoLaneRoad);
     scenario_ = load_scenario(dir_.write("s.xosc", text).string());
@@ -185,6 +188,52 @@ TEST_F(Runtime, RelativeDistanceFreespaceTriggers) {
   run_until(3);
   EXPECT_EQ(times("Brake", "startTransition"), std::vector<double>{1.55});
   EXPECT_NEAR(a().speed, 0.0, 1e-12);
+}
+
+std::string state_condition(const std::string& type, const std::string& ref, const std::string& state) {
+  return R"(<Condition name="After" delay="0" conditionEdge="none"><ByValueCondition><StoryboardElementStateCondition
+    storyboardElementType=")" + type + R"(" storyboardElementRef=")" + ref + R"(" state=")" + state +
+         R"("/></ByValueCondition></Condition>)";
+}
+
+// Two actions named Go in different events (the standard allows it): each is its own element,
+// and a reference qualified by its event's name ("Second::Go") follows that one only.
+TEST_F(Runtime, OneNameInTwoEventsIsTwoElements) {
+  load(event("First", "parallel", speed_action("Go", 12, "linear", "time", 1.0), time_condition("T1", 1.0)) +
+       event("Second", "parallel", speed_action("Go", 14, "linear", "time", 2.0), time_condition("T2", 2.0)) +
+       event("Then", "parallel", speed_action("Last", 20, "step", "time", 0),
+             state_condition("action", "Second::Go", "endTransition")));
+  run_until(6);
+  EXPECT_EQ(times("Go", "startTransition"), (std::vector<double>{1.0, 2.0}));
+  EXPECT_EQ(times("Go", "endTransition"), (std::vector<double>{2.0, 4.0}));
+  EXPECT_EQ(times("Then", "startTransition"), std::vector<double>{4.0});  // not at 2.0, the first Go's end
+  EXPECT_NEAR(a().speed, 20.0, 1e-12);
+}
+
+TEST_F(Runtime, AnAmbiguousReferenceIsAnErrorNamingBoth) {
+  try {
+    load(event("First", "parallel", speed_action("Go", 12, "step", "time", 0), time_condition("T1", 1.0)) +
+         event("Second", "parallel", speed_action("Go", 14, "step", "time", 0), time_condition("T2", 2.0)) +
+         event("Then", "parallel", speed_action("Last", 20, "step", "time", 0),
+               state_condition("action", "Go", "endTransition")));
+    FAIL() << "an ambiguous reference was accepted";
+  } catch (const ScenarioError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("\"Go\" names more than one action: \"S::Act::G::M::First::Go\" (line "), std::string::npos)
+        << what;
+    EXPECT_NE(what.find("and \"S::Act::G::M::Second::Go\" (line "), std::string::npos) << what;
+  }
+}
+
+// An empty trigger is kept by the standard for 1.0's sake only (an Act had to have one): an
+// empty StartTrigger starts the Act as an absent one does, with its Story (as esmini does).
+TEST_F(Runtime, AnEmptyActStartTriggerStartsTheActAtOnce) {
+  load(event("E", "overwrite", speed_action("Go", 20, "step", "time", 0), time_condition("T", 1.0)), 100.0, 1,
+       "<StartTrigger/>");
+  run_until(2);
+  EXPECT_EQ(times("Act", "startTransition"), std::vector<double>{0.0});
+  EXPECT_EQ(times("E", "startTransition"), std::vector<double>{1.0});
+  EXPECT_NEAR(a().speed, 20.0, 1e-12);
 }
 
 std::string entity_condition(const std::string& name, const std::string& inner) {
