@@ -236,10 +236,12 @@ TEST_F(RunReportInBrowser, AnOpenScenarioRunShowsItsEntitiesByNameWithTheEgoFirs
   const auto drawn = b.eval(
       "return [...document.querySelectorAll('#map-overview polyline.trajectory')].map(p => p.dataset.actor).sort();");
   EXPECT_EQ(drawn, nlohmann::json({"CutIn", "Ego"}));
-  // The speed chart has a line per entity, the ego's (the ALKSController one) first.
+  // The speed chart has a line per entity, the ego's (the ALKSController one) first, with who
+  // drove it and why.
   const auto labels = b.eval(
       "return Chart.getChart(document.getElementById('chart-speed')).data.datasets.map(d => d.label);");
-  EXPECT_EQ(labels, nlohmann::json({"ego Ego", "CutIn"}));
+  EXPECT_EQ(labels, nlohmann::json({"ego Ego — driven by SUMO (controller ALKSController is a system under test)",
+                                    "CutIn"}));
   // The replay puts the ego's box where the trace has it.
   const orch::RunFiles run = orch::read_run_files(out);
   const auto& t = *run.trace;

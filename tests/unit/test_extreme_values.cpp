@@ -207,6 +207,21 @@ TEST(Plausible, TheOpenDriveReaderRefusesImplausibleLengthsAndLaneIds) {
   EXPECT_NE(read("-2000", "0", "-1").find("geometry length must be > 0 m, found -2000"), std::string::npos)
       << read("-2000", "0", "-1");
   EXPECT_NE(read("0", "0", "-1").find("geometry length must be > 0 m"), std::string::npos);
+  // The soak's seed 841508811: 2 m of reference line on a road of 2,000 m (its positions lay
+  // off SUMO's net, and libsumo crashed).
+  std::string short_line = road;
+  short_line.replace(short_line.find("LENGTH"), 6, "2000");
+  for (const auto& [from, to] : {std::pair{std::string("LENGTH"), std::string("2")}, {"X", "0"}, {"LINK", "-1"}})
+    for (auto at = short_line.find(from); at != std::string::npos; at = short_line.find(from))
+      short_line.replace(at, from.size(), to);
+  try {
+    (void)opendrive::read_xodr_text(short_line, "r.xodr");
+    ADD_FAILURE() << "a road longer than its reference line was read";
+  } catch (const ScenarioError& e) {
+    EXPECT_NE(std::string(e.what()).find("the road is 2000 m long but its planView geometries cover 2 m"),
+              std::string::npos)
+        << e.what();
+  }
   // A lane wider than a kilometre anywhere along its width record: 3,000 km at its start (the
   // soak: a run of minutes), a slope of 9.2e18 (the soak: an abort), a cubic that bulges to
   // 1.2 km in the middle of a 100 m road. A taper from 3.5 m to 0 m still reads.

@@ -408,10 +408,10 @@ TEST_F(StoryboardActions, ElementsNotRunAreErrorsNamingThem) {
   EXPECT_NE(load_error(event("Sync", R"(<SynchronizeAction masterEntityRef="A"/>)", at_time(1)))
                 .find("SynchronizeAction in PrivateAction is an OpenSCENARIO element the orchestrator does not run"),
             std::string::npos);
-  EXPECT_NE(load_error(event("Nurbs", R"(<RoutingAction><FollowTrajectoryAction><Trajectory name="T" closed="false"><Shape><Nurbs order="2"/></Shape></Trajectory>
+  EXPECT_NE(load_error(event("Clothoids", R"(<RoutingAction><FollowTrajectoryAction><Trajectory name="T" closed="false"><Shape><ClothoidSpline/></Shape></Trajectory>
 <TimeReference><None/></TimeReference><TrajectoryFollowingMode followingMode="position"/></FollowTrajectoryAction></RoutingAction>)",
                              at_time(1)))
-                .find("Nurbs in Shape is an OpenSCENARIO element the orchestrator does not run"),
+                .find("ClothoidSpline in Shape is an OpenSCENARIO element the orchestrator does not run"),
             std::string::npos);
   EXPECT_NE(load_error(event("Clear", kSlow,
                              by_entity("A", R"(<RelativeClearanceCondition oppositeLanes="false" distanceForward="5" distanceBackward="5" freeSpace="true"/>)")))
