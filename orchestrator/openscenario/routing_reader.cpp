@@ -139,33 +139,32 @@ Trajectory read_trajectory_or_reference(Element& e, Context& context) {
 
 }  // namespace
 
-AssignRouteAction read_assign_route(Element& e, Context& context) {
-  Element source = e.one_of({"Route", "CatalogReference"});
-  AssignRouteAction a;
+namespace {
+
+// The Route inside `holder`: written inline (with its own ParameterDeclarations) or a
+// CatalogReference into a RouteCatalog.
+AssignRouteAction read_route_of(Element& holder, Context& context) {
+  Element source = holder.one_of({"Route", "CatalogReference"});
   if (source.name() == "CatalogReference") {
     Element entry = context.resolve(source, {"Route"});
     source.finish();
-    a = read_route(entry);
-  } else {
-    Element scoped = open_scope(source, context, "");  // an inline Route's own ParameterDeclarations
-    a = read_route(scoped);
+    return read_route(entry);
   }
+  Element scoped = open_scope(source, context, "");  // an inline Route's own ParameterDeclarations
+  return read_route(scoped);
+}
+
+}  // namespace
+
+AssignRouteAction read_assign_route(Element& e, Context& context) {
+  AssignRouteAction a = read_route_of(e, context);
   e.finish();
   return a;
 }
 
 std::shared_ptr<const position::RouteWaypoints> read_route_ref(Element& route_ref, Context& context) {
-  Element source = route_ref.one_of({"Route", "CatalogReference"});
+  AssignRouteAction a = read_route_of(route_ref, context);
   route_ref.finish();
-  AssignRouteAction a;
-  if (source.name() == "CatalogReference") {
-    Element entry = context.resolve(source, {"Route"});
-    source.finish();
-    a = read_route(entry);
-  } else {
-    Element scoped = open_scope(source, context, "");
-    a = read_route(scoped);
-  }
   auto route = std::make_shared<position::RouteWaypoints>();
   route->name = a.name;
   for (std::size_t i = 0; i < a.waypoints.size(); ++i)
