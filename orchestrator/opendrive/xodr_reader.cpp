@@ -272,25 +272,25 @@ class Reader {
                      [](const LaneSection& a, const LaneSection& b) { return a.s < b.s; });
     for (const pugi::xml_node section : lanes.children("laneSection"))
       check_lane_widths(section, section_length(road, number(section, "s")));
-    road.elevations = profile(node.child("elevationProfile"), "elevation", road.length, kMaxHeight,
+    road.elevations = profile(node.child("elevationProfile"), "elevation", "s", road.length, kMaxHeight,
                               "the road's height reaches {:g} m: no road lies more than {:g} m above or below sea level");
     road.superelevations =
-        profile(node.child("lateralProfile"), "superelevation", road.length, kMaxRoll,
+        profile(node.child("lateralProfile"), "superelevation", "s", road.length, kMaxRoll,
                 "the road's roll reaches {:g} rad: at most {:g} rad (75 degrees), where a banked track's lanes still "
                 "have a width seen from above");
     return road;
   }
 
-  // The records of a road's elevation or superelevation profile, sorted by s; each record
-  // stays within `limit` up to the next one (the same check as lane widths).
-  std::vector<CubicRecord> profile(const pugi::xml_node& holder, const char* element, double road_length, double limit,
-                                   const char* message) const {
+  // The cubic records `element` of `holder` (a road's elevations, a lane's widths), sorted by
+  // their start; each stays within `limit` in magnitude up to the next one or `end`.
+  std::vector<CubicRecord> profile(const pugi::xml_node& holder, const char* element, const char* start, double end_of_last,
+                                   double limit, const char* message) const {
     std::vector<std::pair<CubicRecord, pugi::xml_node>> records;
-    for (const pugi::xml_node e : holder.children(element)) records.emplace_back(cubic(e, "s"), e);
+    for (const pugi::xml_node e : holder.children(element)) records.emplace_back(cubic(e, start), e);
     std::stable_sort(records.begin(), records.end(), [](const auto& a, const auto& b) { return a.first.s < b.first.s; });
     std::vector<CubicRecord> out;
     for (std::size_t i = 0; i < records.size(); ++i) {
-      const double end = i + 1 < records.size() ? records[i + 1].first.s : road_length;
+      const double end = i + 1 < records.size() ? records[i + 1].first.s : end_of_last;
       const double largest = records[i].first.largest_magnitude(std::max(0.0, end - records[i].first.s));
       if (!(largest <= limit))
         throw ScenarioError(src_.where(records[i].second, "a"), fmt::format(fmt::runtime(message), largest, limit));
@@ -311,21 +311,9 @@ class Reader {
   // slope `b` of 9.2e18 (an abort).
   void check_lane_widths(const pugi::xml_node& section, double section_length) const {
     for (const char* side : {"left", "right"})
-      for (const pugi::xml_node lane : section.child(side).children("lane")) {
-        std::vector<std::pair<CubicRecord, pugi::xml_node>> records;
-        for (const pugi::xml_node w : lane.children("width")) records.emplace_back(cubic(w, "sOffset"), w);
-        std::stable_sort(records.begin(), records.end(),
-                         [](const auto& a, const auto& b) { return a.first.s < b.first.s; });
-        for (std::size_t i = 0; i < records.size(); ++i) {
-          const double end = i + 1 < records.size() ? records[i + 1].first.s : section_length;
-          const double widest = records[i].first.largest_magnitude( std::max(0.0, end - records[i].first.s));
-          if (!(widest <= kMaxLaneWidth))
-            throw ScenarioError(src_.where(records[i].second, "a"),
-                                fmt::format("lane width reaches {:g} m within its record: a lane is at most {:g} m "
-                                            "wide",
-                                            widest, kMaxLaneWidth));
-        }
-      }
+      for (const pugi::xml_node lane : section.child(side).children("lane"))
+        (void)profile(lane, "width", "sOffset", section_length, kMaxLaneWidth,
+                      "lane width reaches {:g} m within its record: a lane is at most {:g} m wide");
   }
 
   const XmlSource& src_;
