@@ -16,6 +16,7 @@
 #include "batch/batch_runner.hpp"
 #include "batch/sampling.hpp"
 #include "batch/variation_batch.hpp"
+#include "reference_driver/ego_model.hpp"
 #include "cli/commands.hpp"
 #include "cli/subcommand.hpp"
 #include "core/errors.hpp"
@@ -177,8 +178,8 @@ Handler setup_batch(CLI::App& cmd) {
   cmd.add_option("--wrapper", o->wrapper, "Start each run through this program (e.g. nice)");
   cmd.add_flag("--video", o->video, "Write video.mp4 of every failing run (sumo-gui, ffmpeg)");
   cmd.add_flag("--ssm", o->ssm, "Pass --ssm to every run: SUMO's SSM device on the ego (ssm.xml)");
-  cmd.add_option("--ego-model", o->ego_model, "What drives the ego in every run: sumo or r157 (run --ego-model)")
-      ->check(CLI::IsMember({"sumo", "r157"}));
+  cmd.add_option("--ego-model", o->ego_model, "What drives the ego in every run: sumo, r157 or cruise (run --ego-model)")
+      ->check(CLI::IsMember(ego_model_names()));
   cmd.add_flag("--reference-run", o->reference_run,
                "Give every run a reference run with the R157 reference driver (run --reference-run): the "
                "`preventable` column");

@@ -3,6 +3,7 @@
 #include <CLI/CLI.hpp>
 #include <memory>
 
+#include "reference_driver/ego_model.hpp"
 #include "cli/commands.hpp"
 #include "cli/subcommand.hpp"
 
@@ -56,9 +57,10 @@ Handler setup_run(CLI::App& cmd) {
   r->add_option("--param", run->parameters, "NAME=VALUE: set an OpenSCENARIO parameter (repeatable)")
       ->allow_extra_args(false);
   r->add_option("--ego-model", run->ego_model,
-                "What drives the ego when no plug-in does: sumo (SUMO's car-following model, default) or r157 (the UN "
-                "R157 reference driver, docs/reference-driver.md)")
-      ->check(CLI::IsMember({"sumo", "r157"}));
+                "What drives the ego when no plug-in does: sumo (SUMO's car-following model, default), r157 (the UN "
+                "R157 reference driver, docs/reference-driver.md) or cruise (keeps its set speed, brakes for nothing: a "
+                "system under test that does not react)")
+      ->check(CLI::IsMember(ego_model_names()));
   r->add_flag("--reference-run", run->reference_run,
               "Run the scenario again with the R157 reference driver (into reference/) and judge whether a collision "
               "was preventable");

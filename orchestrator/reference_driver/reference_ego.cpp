@@ -36,6 +36,18 @@ PerceivedObject in_path_frame(const Polyline& line, double ego_s, double window,
   return o;
 }
 
+// The cruise model's speed: towards the set speed whatever is ahead, at the reference
+// driver's comfortable acceleration and deceleration (a ScenarioExecutor ego starts standing);
+// only the end of its path stops it, at the comfortable deceleration (as SUMO stops the
+// built-in ego at its end_position).
+double cruise_speed(const DriverView& view, const R157Parameters& p) {
+  double wanted = view.set_speed;
+  if (view.path_end)
+    wanted = std::min(wanted, std::sqrt(2 * p.comfort_deceleration * std::max(0.0, *view.path_end - view.ego.s)));
+  return std::clamp(wanted, view.ego.speed - p.comfort_deceleration * view.step,
+                    view.ego.speed + p.comfort_acceleration * view.step);
+}
+
 }  // namespace
 
 double NearbyMotion::accel(const std::string& id, double time, double speed) {
@@ -109,9 +121,9 @@ void EgoWatch::step(const sim::WorldSnapshot& snap, const std::vector<sim::Track
 }
 
 ReferenceEgo::ReferenceEgo(R157Parameters parameters, DrivingPath path, std::string ego, ObjectKinds kinds, double step,
-                           double set_speed)
+                           double set_speed, OwnModel model)
     : driver_(parameters), path_(std::move(path)), ego_(std::move(ego)), kinds_(std::move(kinds)), step_(step),
-      set_speed_(set_speed) {}
+      set_speed_(set_speed), model_(model) {}
 
 void ReferenceEgo::observe(const std::vector<sim::Command>& commands) {
   for (const auto& c : commands) {
@@ -136,6 +148,7 @@ std::vector<sim::Command> ReferenceEgo::drive(const sim::WorldSnapshot& snap,
   path_s_ = view->ego.s;
   view->step = step_;
   view->set_speed = set_speed_;
+  if (model_ == OwnModel::Cruise) return {sim::DriveSpeed{ego_, cruise_speed(*view, driver_.parameters())}};
   const Decision d = driver_.step(*view);
   for (const auto& e : d.events) events.push_back(e);
   return {sim::DriveSpeed{ego_, d.speed}};

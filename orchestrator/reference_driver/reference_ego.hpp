@@ -73,10 +73,14 @@ class EgoWatch {
   Exposure exposure_;
 };
 
+// Which of the orchestrator's own models drives: the R157 reference driver, or cruise (the set
+// speed whatever is ahead: a system under test that does not react).
+enum class OwnModel { R157, Cruise };
+
 class ReferenceEgo {
  public:
   ReferenceEgo(R157Parameters parameters, DrivingPath path, std::string ego, ObjectKinds kinds, double step,
-               double set_speed);
+               double set_speed, OwnModel model = OwnModel::R157);
 
   // The scenario's commands of this step: a desired speed for the ego (its insertion's
   // max_speed, SetMaxSpeed) becomes the driver's set speed, a stop (SetStop) the end of its path.
@@ -95,6 +99,7 @@ class ReferenceEgo {
   ObjectKinds kinds_;
   double step_;
   double set_speed_;
+  OwnModel model_;
   double path_s_ = -1;  // not located yet
   NearbyMotion nearby_motion_;
 };

@@ -268,9 +268,9 @@ void OpenScenarioFormat::open(RunResult& result, RunLog& log, SimulatorConfig& c
   ego_ = chosen.entity;
   check_external_ego(*scenario_, ego_, req_.ego_link != nullptr);
   ego_model_ = ego_model_of(req_, *scenario_, ego_);
-  if (req_.ego_link && ego_model_.r157())
-    throw OrchError("--ego-port: an external ego drives the ego; the R157 reference driver (--ego-model r157 or "
-                    "an R157ReferenceDriver controller) cannot drive it too");
+  if (req_.ego_link && ego_model_.own_model())
+    throw OrchError("--ego-port: an external ego drives the ego; the orchestrator's own model (--ego-model " +
+                    ego_model_.name + " or an R157ReferenceDriver controller) cannot drive it too");
   const EgoDriving driving = ego_driving(chosen, {req_.ego_model_given ? req_.ego_model.name : "",
                                                   req_.ego_model.r157(), req_.ego_link != nullptr});
   ego_driven_ = driving.driven;
@@ -281,7 +281,9 @@ void OpenScenarioFormat::open(RunResult& result, RunLog& log, SimulatorConfig& c
                  : req_.ego_link ? fmt::format("driven by SUMO's car-following model until an ActivateControllerAction "
                                                "hands it to the external ego ({})", driving.why)
                                  : fmt::format("driven by {} ({})",
-                                               ego_model_.r157() ? "the UN R157 reference driver" : "SUMO",
+                                               ego_model_.r157()     ? "the UN R157 reference driver"
+                                               : ego_model_.cruise() ? "the cruise model (its set speed, no braking)"
+                                                                     : "SUMO",
                                                driving.why);
   log.note(ego_.empty() ? fmt::format("no ego: {}", chosen.rule)
                         : fmt::format("{}: {}; the ego of metrics and the report because {}{}", ego_, ego_summary_,
@@ -310,7 +312,7 @@ double OpenScenarioFormat::take_step(const sim::WorldSnapshot& snap, RunResult& 
                          : !ego_driven_ ? OpenScenarioEgo::Driver::Storyboard
                                         : actors_->ego_drive().driver(runtime_->entities().at(ego_));
   const bool model_drives = model_drives_ego_ && ego_driver == OpenScenarioEgo::Driver::Sumo;
-  ego_label_ = model_drives ? "r157"
+  ego_label_ = model_drives ? ego_model_.name.c_str()
                : !ego_driven_ && !ego_.empty() && actors_->is_sumo_driven(ego_) ? "sumo"  // an activated controller
                                                                                : OpenScenarioEgo::label(ego_driver);
   note_ego_hand_over(t, log);

@@ -15,6 +15,12 @@ using reference_driver::ObjectKind;
 using reference_driver::ObjectKinds;
 using reference_driver::ReferenceEgo;
 
+namespace {
+reference_driver::OwnModel own_model_of(const EgoModelChoice& choice) {
+  return choice.cruise() ? reference_driver::OwnModel::Cruise : reference_driver::OwnModel::R157;
+}
+}  // namespace
+
 reference_driver::R157Parameters r157_parameters(const EgoModelChoice& choice) {
   reference_driver::R157Parameters p;
   try {
@@ -27,7 +33,7 @@ reference_driver::R157Parameters r157_parameters(const EgoModelChoice& choice) {
 
 std::optional<ReferenceEgo> reference_ego_for(const EgoModelChoice& choice, const engine::Engine& engine,
                                               const LaneMap& lanes, double step) {
-  if (!choice.r157()) return std::nullopt;
+  if (!choice.own_model()) return std::nullopt;
   const engine::ActorSlot* ego = nullptr;
   ObjectKinds kinds;
   for (const auto& slot : engine.actors().slots()) {
@@ -36,7 +42,7 @@ std::optional<ReferenceEgo> reference_ego_for(const EgoModelChoice& choice, cons
     if (slot.tracked.kind == ActorKind::Obstacle) kinds[slot.tracked.sumo_id] = ObjectKind::Obstacle;
   }
   const WaypointRoute* route = ego ? engine.route_of(ego->spec.id) : nullptr;
-  if (!route) throw OrchError("--ego-model r157: the ego has no route to drive (the engine has not placed it)");
+  if (!route) throw OrchError("--ego-model " + choice.name + ": the ego has no route to drive (the engine has not placed it)");
   DrivingPath path;
   path.line = route->line;
   // The ego's end_position as the engine tells SUMO to stop there: the same place.
@@ -52,7 +58,7 @@ std::optional<ReferenceEgo> reference_ego_for(const EgoModelChoice& choice, cons
   if (const RouteLanes* rl = lanes.route(route->id); rl && !rl->lanes.empty())
     path.lane_width = lanes.lane(rl->lanes.front()).width;
   return ReferenceEgo(r157_parameters(choice), std::move(path), ego->tracked.sumo_id, std::move(kinds), step,
-                      route->speed_at(0));
+                      route->speed_at(0), own_model_of(choice));
 }
 
 DrivingPath lane_path(const opendrive::RoadNetwork& roads, const openscenario::EntityState& start) {
@@ -86,8 +92,9 @@ ObjectKinds object_kinds(const openscenario::Scenario& scenario) {
 std::optional<ReferenceEgo> reference_ego_for(const EgoModelChoice& choice, const openscenario::Scenario& scenario,
                                               const opendrive::RoadNetwork& roads, const std::string& ego,
                                               const openscenario::EntityState& start, double step) {
-  if (!choice.r157() || ego.empty() || !start.placed) return std::nullopt;
-  return ReferenceEgo(r157_parameters(choice), lane_path(roads, start), ego, object_kinds(scenario), step, start.speed);
+  if (!choice.own_model() || ego.empty() || !start.placed) return std::nullopt;
+  return ReferenceEgo(r157_parameters(choice), lane_path(roads, start), ego, object_kinds(scenario), step, start.speed,
+                      own_model_of(choice));
 }
 
 }  // namespace orch

@@ -145,12 +145,14 @@ class ScenarioExecutorFormat : public RunFormat {
   std::vector<sim::Command> start(RunResult& result, RunLog& log) override {
     engine::StepOutput out = engine_->start();
     log_events(log, result, out.events);
-    // The R157 reference driver drives the ego unless a plug-in does (--ego-model r157); it
-    // follows the ego's route, known once the engine has placed it.
+    // The orchestrator's own model (--ego-model r157 or cruise) drives the ego unless a plug-in
+    // does; it follows the ego's route, known once the engine has placed it.
     if (!req_.ego_link) reference_ego_ = reference_ego_for(req_.ego_model, *engine_, *lanes_, req_.step);
     if (reference_ego_) {
-      log.note("ego driven by the UN R157 reference driver (--ego-model r157)");
-      trace_->set_model_driven(in_->scenario.ego.id, "r157");
+      log.note(req_.ego_model.cruise()
+                   ? "ego driven by the cruise model (--ego-model cruise): its route's speed, no braking for anything"
+                   : "ego driven by the UN R157 reference driver (--ego-model r157)");
+      trace_->set_model_driven(in_->scenario.ego.id, req_.ego_model.name);
     }
     tracked_ = engine_->tracked();
     return std::move(out.commands);

@@ -24,7 +24,7 @@ void TraceWriter::record(const engine::Engine& engine, std::optional<sim::ActorI
     if (!a.present) continue;
     const char* driver = plugin_driven == a.id    ? "plugin"
                          : engine.scripted(a.id)  ? "script"
-                         : model_driven_ == a.id ? model_label_
+                         : model_driven_ == a.id ? model_label_.c_str()
                                                   : "sumo";
     file_.print("{:.3f},{},{},{:.3f},{:.3f},{:.4f},{:.3f},{:.3f},{},{},{:.3f},{:.3f},{},{},{}\n", snap.time,
                engine.scene(), a.id, a.position.x(), a.position.y(), a.heading, a.speed, a.accel, a.edge, a.lane,

@@ -25,9 +25,9 @@ class TraceWriter : public RunObserver {
   TraceWriter(const std::filesystem::path& path, const LaneMap& lanes, const engine::Engine& engine);
 
   // The actor a built-in ego model drives (driver `label`, e.g. "r157") instead of SUMO's.
-  void set_model_driven(sim::ActorId id, const char* label) {
+  void set_model_driven(sim::ActorId id, std::string label) {
     model_driven_ = id;
-    model_label_ = label;
+    model_label_ = std::move(label);
   }
   // `plugin_driven`: the actor an external ego plug-in drove in this step (driver "plugin").
   void record(const engine::Engine& engine, std::optional<sim::ActorId> plugin_driven = std::nullopt);
@@ -48,7 +48,7 @@ class TraceWriter : public RunObserver {
   const engine::Engine& engine_;
   std::unordered_map<std::string, int> lane_index_;  // SUMO lane id -> LaneMap index
   std::optional<sim::ActorId> model_driven_;
-  const char* model_label_ = "sumo";
+  std::string model_label_ = "sumo";
   long long rows_ = 0;
 };
 

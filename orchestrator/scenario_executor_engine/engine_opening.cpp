@@ -128,6 +128,12 @@ void Engine::place_other(const OtherOpening& o) {
       *position::PositionResolver(map_.waypoints).resolve(p.position(scenario_.ego.id), placed, slot.model.length).route;
   const WaypointRoute* route = place.route;
   const double s = place.s;
+  // A start before its route begins has no lane to stand on (SUMO would hold the vehicle off
+  // the network; libsumo 1.15 then crashes when it is read).
+  if (s < 0)
+    throw ScenarioError(p.where, fmt::format("actor {} would start {:.1f} m before the start of its route {}: "
+                                             "choose a smaller distance behind its target, or another start",
+                                             o.actor, -s, route->id));
   std::map<ActorId, double> speeds;
   for (const auto& a : current_.actors) speeds[a.id] = a.speed;
   const double v0 = initial_speed(o.start_speed, speeds);

@@ -176,4 +176,16 @@ TEST_F(BatchReportInBrowser, WithMetricsThePointsTakeTheColourOfAChosenMetricAnd
   const auto labels = b.eval("return Chart.getChart(document.querySelector('canvas.histogram')).data.labels;");
   ASSERT_EQ(labels.size(), 16u) << labels.dump();
   EXPECT_EQ(std::set<std::string>(labels.begin(), labels.end()).size(), 16u) << labels.dump();
+
+  // A minimum TTC that is the same in every run tells them not apart: the default colour is
+  // a measure that varies.
+  for (const auto& [seed, run] : runs) {
+    const fs::path file = out / run["run_dir"].get<std::string>() / "result.json";
+    nlohmann::json result = read_json(file);
+    result["metrics"]["0"] = {{"min_ttc", 0.0}, {"max_decel", 1.0 + static_cast<double>(seed - 100)}};
+    std::ofstream(file) << result.dump(2);
+  }
+  ASSERT_EQ(run_cli({"report", out.string()}).exit_code, 0);
+  b.open(out / "report.html");
+  EXPECT_EQ(b.eval("return document.querySelector('select.color-by').value;"), "0.max_decel");
 }

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <set>
 
 #include "support/cli_runner.hpp"
 #include "support/ego_plugin_run.hpp"
@@ -185,3 +186,40 @@ TEST(ReferenceDriverCli, APluginEgoThatDoesNotBrakeCollidesPreventably) {
   }
 }
 
+
+// The ScenarioExecutor twin of ego_does_not_brake_outcomes.xosc (issue 26): three parameter sets
+// of scenarios/nightly/logical_4aae47a9-..., run with the cruise ego (its route's speed, no
+// braking) and a reference run: a car drives away (no_collision), a car brakes to a stop 40 m
+// ahead (the cruise ego hits it, the R157 driver stops: preventable), a car runs into the ego
+// from behind (both are hit: unavoidable).
+TEST(ReferenceDriverCli, TheCruiseEgoBatchGivesAllThreeVerdicts) {
+  TempDir dir;
+  for (const char* f : {"ego_does_not_brake.template.json", "logical_4aae47a9-c775-4dd8-9373-02c03b91dd6b.json",
+                        "logical_4aae47a9-c775-4dd8-9373-02c03b91dd6b_parameters.json"})
+    fs::copy_file(source_path(std::string("scenarios/nightly/") + f), dir / f);
+  const auto r = run_cli({"batch", (dir / "logical_4aae47a9-c775-4dd8-9373-02c03b91dd6b_parameters.json").string(),
+                          "--ego-model", "cruise", "--reference-run", "--jobs", "2", "--out", (dir / "out").string()});
+  ASSERT_NE(r.exit_code, 2) << r.output;
+  std::multiset<std::string> outcomes;
+  for (const auto& run : fs::directory_iterator(dir / "out" / "runs")) {
+    const auto result = read_json(run.path() / "result.json");
+    outcomes.insert(result["preventable"].get<std::string>());
+    EXPECT_EQ(result["ego_model"], "cruise") << run.path();
+    const Trace trace(run.path() / "trace.csv");
+    for (const auto& row : trace.actor(0)) ASSERT_EQ(row.str("driver"), "cruise") << run.path();
+    EXPECT_NE(slurp(run.path() / "run.log").find("ego driven by the cruise model"), std::string::npos);
+    if (result["preventable"] == "no_collision") continue;
+    EXPECT_EQ(result["collision"]["with"], "actor 1") << result.dump(1);
+    // The cruise ego never brakes: its speed never falls while it drives (it starts standing).
+    const auto speeds = ego_speeds(run.path() / "trace.csv");
+    for (std::size_t i = 1; i < speeds.size(); ++i) ASSERT_GE(speeds[i], speeds[i - 1] - 1e-3) << run.path() << " row " << i;
+    if (result["preventable"] == "unavoidable")
+      EXPECT_EQ(result["reference_collision"]["with"], "actor 1") << result.dump(1);
+    else
+      EXPECT_TRUE(result["reference_collision"].is_null()) << result.dump(1);
+  }
+  EXPECT_EQ(outcomes, (std::multiset<std::string>{"no_collision", "preventable", "unavoidable"}));
+  const std::string csv = slurp(dir / "out" / "metrics.csv");
+  for (const char* outcome : {",no_collision", ",preventable", ",unavoidable"})
+    EXPECT_NE(csv.find(outcome), std::string::npos) << outcome << "\n" << csv;
+}

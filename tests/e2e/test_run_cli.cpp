@@ -206,6 +206,23 @@ TEST(RunCli, InvalidScenarioIsAnErrorWithTheFileLineAndPointer) {
   EXPECT_EQ(result["timing"]["orchestrator_s"].get<double>(), 0.0);
 }
 
+// An actor placed by a distance behind its target that would stand before its route begins:
+// an error naming the place (libsumo 1.15 crashed reading such a vehicle).
+TEST(RunCli, AStartBeforeTheRouteBeginsIsAnError) {
+  TempDir out;
+  std::string text = slurp(source_path("scenarios/collision_stop_in_front.json"));
+  const std::string key = "\"distance\": 11,";
+  ASSERT_NE(text.find(key), std::string::npos);
+  text.replace(text.find(key), key.size(), "\"distance\": -400,");
+  const auto file = out.write("behind.json", text);
+  const auto r = run_scenario(file.string(), out);
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  const std::string reason = read_json(out / "result.json")["reason"];
+  EXPECT_NE(reason.find("behind.json:"), std::string::npos) << reason;
+  EXPECT_NE(reason.find("/scenario/opening_scene/others/1/start_position"), std::string::npos) << reason;
+  EXPECT_NE(reason.find("before the start of its route Waypoint03"), std::string::npos) << reason;
+}
+
 TEST(RunCli, UnknownMapIsAnError) {
   TempDir out;
   std::string text = slurp(source_path("scenarios/alks_lead_brake.json"));

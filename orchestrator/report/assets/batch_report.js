@@ -42,7 +42,11 @@
     // A summary's `partner` is an actor id, not a measure: nothing to colour by.
     const metricNames = [...new Set(mine.flatMap(r => Object.keys(r.metrics || {})
       .filter(k => typeof r.metrics[k] === 'number' && !k.endsWith('.partner'))))].sort();
-    const preferred = metricNames.find(n => /min_?ttc(\.value)?$/i.test(n)) || metricNames[0] || '';
+    // Colour by default by a measure that tells the runs apart: the minimum TTC, whether a
+    // collision was preventable, any other; one that is the same in every run colours nothing.
+    const varies = n => new Set(mine.map(r => metricOf(r, n)).filter(v => v !== null)).size > 1;
+    const preferred = metricNames.filter(varies).find(n => /min_?ttc(\.value)?$/i.test(n)) ||
+      metricNames.filter(varies).find(n => /preventable/i.test(n)) || metricNames.find(varies) || '';
     const select = el('select', { class: 'color-by' }, el('option', { value: '', text: 'verdict' }),
       metricNames.map(n => el('option', { value: n, text: n, selected: n === preferred ? '' : null })));
     const grid = el('div', { class: 'scatter-grid' });
