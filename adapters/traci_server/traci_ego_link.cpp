@@ -174,12 +174,11 @@ class TraciEgoLink final : public EgoLink {
   // lockstep costs a few system calls per message, so one wait and one recv, not a wait
   // and a recv for the header and again for the body.
   std::string fill_inbox(std::size_t count, Clock::time_point deadline) {
-    std::array<char, 16384> chunk{};
     while (inbox_.size() < count) {
       boost::system::error_code ec;
-      const std::size_t got = socket_->read_some(asio::buffer(chunk), ec);  // non-blocking (connect)
+      const std::size_t got = socket_->read_some(asio::buffer(read_chunk_), ec);  // non-blocking (connect)
       if (!ec) {
-        inbox_.append(chunk.data(), got);
+        inbox_.append(read_chunk_.data(), got);
         continue;
       }
       if (ec != asio::error::would_block && ec != asio::error::try_again)
@@ -300,6 +299,8 @@ class TraciEgoLink final : public EgoLink {
   tcp::acceptor acceptor_{io_};
   std::optional<tcp::socket> socket_;
   std::string inbox_;  // bytes the plug-in sent that are not handled yet
+  // What one recv fills; a member, not zeroed per call (that cost more than a step's TraCI work).
+  std::array<char, 16384> read_chunk_;
   EgoLinkReport report_;
   std::string problem_;
   double now_ = 0;

@@ -7,6 +7,8 @@ on the same net with the same step and SUMO options. Prints steps per second of 
 their ratio (orchestrator / plain SUMO): the figure docs/ego-plugin.md quotes.
 
   ego_lockstep.py --orchestrator build/bin/orchestrator [--steps 2000]
+  ego_lockstep.py --instructions     # both servers under valgrind's callgrind: instructions per step
+                                     # (independent of the machine's load; 300 and 1300 steps, the difference)
 (run with /usr/bin/python3 and PYTHONPATH=/usr/share/sumo/tools; ego_bench.sh does that)
 """
 import argparse
@@ -69,13 +71,15 @@ def loop(conn, steps, pid):
     return steps / (time.perf_counter() - start), cpu_us
 
 
-def bench_orchestrator(binary, steps, tmp):
+def bench_orchestrator(binary, steps, tmp, wrap=()):
     scenario = os.path.join(tmp, "bench.json")
     with open(scenario, "w") as f:
         json.dump(SCENARIO, f)
     port = free_port()
-    proc = subprocess.Popen([binary, "run", scenario, "--out", os.path.join(tmp, "out"), "-q",
-                             "--ego-port", str(port)], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    proc = subprocess.Popen(list(wrap) + [binary, "run", scenario, "--out", os.path.join(tmp, "out"), "-q",
+                                          "--no-report", "--ego-port", str(port), "--ego-wait", "300",
+                                          "--ego-timeout", "300"],
+                            stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
     return drive(proc, port, steps, warm_up=False)
 
 
@@ -95,7 +99,7 @@ def drive(proc, port, steps, warm_up):
             proc.kill()
 
 
-def bench_plain_sumo(steps, tmp):
+def bench_plain_sumo(steps, tmp, wrap=()):
     # The road's edges in order (the map may split it where lanes start or end); SUMO routes
     # the trip from the first to the last.
     with open(NET) as f:
@@ -107,7 +111,7 @@ def bench_plain_sumo(steps, tmp):
                 % (edges[0], edges[-1]))
     port = free_port()
     # The orchestrator's SUMO options (orchestrator/run/simulator.cpp), so both simulate alike.
-    proc = subprocess.Popen(["sumo", "-n", NET, "-r", routes, "--remote-port", str(port), "--step-length", "0.05",
+    proc = subprocess.Popen(list(wrap) + ["sumo", "-n", NET, "-r", routes, "--remote-port", str(port), "--step-length", "0.05",
                              "--seed", "42", "--lateral-resolution", "0.8", "--collision.action", "warn",
                              "--collision.check-junctions", "true", "--time-to-teleport", "-1", "--no-step-log",
                              "true", "--duration-log.disable", "true"],
@@ -115,12 +119,34 @@ def bench_plain_sumo(steps, tmp):
     return drive(proc, port, steps, warm_up=True)
 
 
+def instructions_per_step(bench, tmp, name):
+    """Instructions the server executes per lockstep step: callgrind's totals of a 1300-step
+    and a 300-step run, their difference over 1000 steps (start-up and shut-down cancel)."""
+    totals = []
+    for steps in (300, 1300):
+        out = os.path.join(tmp, "%s_%d.callgrind" % (name, steps))
+        bench(steps, tmp, ["valgrind", "--tool=callgrind", "--callgrind-out-file=" + out])
+        with open(out) as f:
+            totals.append(int(re.search(r"^(?:summary|totals): (\d+)", f.read(), re.M).group(1)))
+    return (totals[1] - totals[0]) / 1000
+
+
 def main():
     p = argparse.ArgumentParser()
     p.add_argument("--orchestrator", default=os.path.join(ROOT, "build", "bin", "orchestrator"))
     p.add_argument("--steps", type=int, default=2000)
     p.add_argument("--repeat", type=int, default=5, help="interleaved pairs")
+    p.add_argument("--instructions", action="store_true", help="instructions per step under callgrind instead")
     a = p.parse_args()
+    if a.instructions:
+        with tempfile.TemporaryDirectory() as tmp:
+            orch = instructions_per_step(lambda n, t, w: bench_orchestrator(a.orchestrator, n, t, w), tmp, "orch")
+            plain = instructions_per_step(bench_plain_sumo, tmp, "sumo")
+        print("lockstep server instructions per step (callgrind, 1000 steps):")
+        print("  orchestrator --ego-port : %8.0f" % orch)
+        print("  plain sumo --remote-port: %8.0f" % plain)
+        print("  ratio                   : %8.2f" % (orch / plain))
+        return 0
     # Interleaved pairs: a slow spell of the shared machine hits both sides of a pair.
     orch, plain, orch_cpu, plain_cpu = [], [], [], []
     with tempfile.TemporaryDirectory() as tmp:
