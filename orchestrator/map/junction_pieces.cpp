@@ -112,6 +112,41 @@ void attach_loose_ends(const WaypointFile& wf, JunctionPieces& out) {
   }
 }
 
+// A route that still ends (starts) inside a junction, with no lane there to continue it
+// (a street drawn to end on a crossing road, at the edge of the map), would leave its last
+// (first) waypoints on no lane. Its own lane goes on to the route's end instead, as a dead
+// end through that junction, when no other route drives that lane: the route takes no part
+// in the junction, whose other routes are connected as before.
+void end_lanes_in_junctions(const WaypointFile& wf, JunctionPieces& out) {
+  std::vector<JunctionPassage> kept;
+  for (const JunctionPassage& jp : out.passages) {
+    const bool loose_end = jp.after < 0 && jp.before >= 0;
+    const bool loose_start = jp.before < 0 && jp.after >= 0;
+    const WaypointRoute& route = wf.routes[jp.route];
+    const int k = loose_end ? jp.before : jp.after;
+    if ((!loose_end && !loose_start) || is_closed_route(route) ||
+        out.pieces[static_cast<std::size_t>(k)].routes.size() != 1 ||
+        out.pieces[static_cast<std::size_t>(k)].route != jp.route) {
+      kept.push_back(jp);
+      continue;
+    }
+    RoutePiece& piece = out.pieces[static_cast<std::size_t>(k)];
+    std::vector<WaypointPoint> pts = piece.line.points;
+    if (loose_end) {
+      std::vector<WaypointPoint> tail = stretch(route, jp.s0, route.line.length());
+      pts.insert(pts.end(), tail.begin() + 1, tail.end());
+      piece.to_zone = -1;
+    } else {
+      std::vector<WaypointPoint> head = stretch(route, 0.0, jp.s1);
+      head.insert(head.end(), pts.begin() + 1, pts.end());
+      pts = std::move(head);
+      piece.from_zone = -1;
+    }
+    piece.line = make_line(piece.line.id, std::move(pts));
+  }
+  out.passages = std::move(kept);
+}
+
 }  // namespace
 
 JunctionPieces cut_into_pieces(const WaypointFile& wf, const JunctionZones& zones) {
@@ -233,6 +268,7 @@ JunctionPieces cut_into_pieces(const WaypointFile& wf, const JunctionZones& zone
   }
   out.pieces = std::move(kept);
   attach_loose_ends(wf, out);
+  end_lanes_in_junctions(wf, out);
   return out;
 }
 
