@@ -18,6 +18,8 @@ constexpr double kContainCos = 0.94;     // cos 20 deg
 // m: a route that ends (starts) inside a junction this close before (after) the start (end)
 // of a lane it is drawn along continues on (comes from) that lane.
 constexpr double kMaxEndGap = 3.0;
+// m: the shortest dead-end lane (and connection) made for a route ending inside a junction.
+constexpr double kMinLooseLane = 1.0;
 
 // The points of `route` between arc lengths a < b (b may exceed the length of a closed
 // route: the stretch then runs across its closing point), cut exactly at both ends.
@@ -124,9 +126,33 @@ void end_lanes_in_junctions(const WaypointFile& wf, JunctionPieces& out) {
     const bool loose_start = jp.before < 0 && jp.after >= 0;
     const WaypointRoute& route = wf.routes[jp.route];
     const int k = loose_end ? jp.before : jp.after;
-    if ((!loose_end && !loose_start) || is_closed_route(route) ||
-        out.pieces[static_cast<std::size_t>(k)].routes.size() != 1 ||
+    if ((!loose_end && !loose_start) || is_closed_route(route)) {
+      kept.push_back(jp);
+      continue;
+    }
+    if (out.pieces[static_cast<std::size_t>(k)].routes.size() != 1 ||
         out.pieces[static_cast<std::size_t>(k)].route != jp.route) {
+      // Its lane is driven by other routes too, which go on through the junction: the route
+      // gets a dead-end lane of its own for the second half of its passage (the first half
+      // is its connection from the shared lane), or the first half when it starts there.
+      if (jp.s1 - jp.s0 >= 2 * kMinLooseLane) {
+        JunctionPassage cut = jp;
+        const double mid = (jp.s0 + jp.s1) / 2;
+        const int index = static_cast<int>(out.pieces.size());
+        if (loose_end) {
+          out.pieces.push_back({make_line(fmt::format("{}.end", route.id), stretch(route, mid, jp.s1)), jp.route,
+                                {route.id}, jp.zone, -1});
+          cut.s1 = mid;
+          cut.after = index;
+        } else {
+          out.pieces.push_back({make_line(fmt::format("{}.start", route.id), stretch(route, jp.s0, mid)), jp.route,
+                                {route.id}, -1, jp.zone});
+          cut.s0 = mid;
+          cut.before = index;
+        }
+        kept.push_back(cut);
+        continue;
+      }
       kept.push_back(jp);
       continue;
     }
