@@ -105,7 +105,7 @@ def measure(args):
                                stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
             elapsed = time.monotonic() - t0
             m = re.search(r"(\d+) junctions?", p.stdout)
-            e = re.search(r"(\d+) edges, (\d+) lanes", p.stdout)
+            e = re.search(r"(\d+) edges \(.*?\), (\d+) lanes", p.stdout)
             net = list((Path(tmp) / "map").glob("*.net.xml"))
             size = net[0].stat().st_size / 1024 if net else 0
             print(f"{scale:>5} {len(doc['waypoints']):>6} {points:>7} {m.group(1) if m else '-':>9} "

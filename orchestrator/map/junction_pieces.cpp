@@ -18,6 +18,8 @@ constexpr double kContainCos = 0.94;     // cos 20 deg
 // m: a route that ends (starts) inside a junction this close before (after) the start (end)
 // of a lane it is drawn along continues on (comes from) that lane.
 constexpr double kMaxEndGap = 3.0;
+// m: the shortest dead-end lane (and connection) made for a route ending inside a junction.
+constexpr double kMinLooseLane = 1.0;
 
 // The points of `route` between arc lengths a < b (b may exceed the length of a closed
 // route: the stretch then runs across its closing point), cut exactly at both ends.
@@ -110,6 +112,65 @@ void attach_loose_ends(const WaypointFile& wf, JunctionPieces& out) {
       if (std::find(routes.begin(), routes.end(), route.id) == routes.end()) routes.push_back(route.id);
     }
   }
+}
+
+// A route that still ends (starts) inside a junction, with no lane there to continue it
+// (a street drawn to end on a crossing road, at the edge of the map), would leave its last
+// (first) waypoints on no lane. Its own lane goes on to the route's end instead, as a dead
+// end through that junction, when no other route drives that lane: the route takes no part
+// in the junction, whose other routes are connected as before.
+void end_lanes_in_junctions(const WaypointFile& wf, JunctionPieces& out) {
+  std::vector<JunctionPassage> kept;
+  for (const JunctionPassage& jp : out.passages) {
+    const bool loose_end = jp.after < 0 && jp.before >= 0;
+    const bool loose_start = jp.before < 0 && jp.after >= 0;
+    const WaypointRoute& route = wf.routes[jp.route];
+    const int k = loose_end ? jp.before : jp.after;
+    if ((!loose_end && !loose_start) || is_closed_route(route)) {
+      kept.push_back(jp);
+      continue;
+    }
+    if (out.pieces[static_cast<std::size_t>(k)].routes.size() != 1 ||
+        out.pieces[static_cast<std::size_t>(k)].route != jp.route) {
+      // Its lane is driven by other routes too, which go on through the junction: the route
+      // gets a dead-end lane of its own for the second half of its passage (the first half
+      // is its connection from the shared lane), or the first half when it starts there.
+      if (jp.s1 - jp.s0 >= 2 * kMinLooseLane) {
+        JunctionPassage cut = jp;
+        const double mid = (jp.s0 + jp.s1) / 2;
+        const int index = static_cast<int>(out.pieces.size());
+        if (loose_end) {
+          out.pieces.push_back({make_line(fmt::format("{}.end", route.id), stretch(route, mid, jp.s1)), jp.route,
+                                {route.id}, jp.zone, -1});
+          cut.s1 = mid;
+          cut.after = index;
+        } else {
+          out.pieces.push_back({make_line(fmt::format("{}.start", route.id), stretch(route, jp.s0, mid)), jp.route,
+                                {route.id}, -1, jp.zone});
+          cut.s0 = mid;
+          cut.before = index;
+        }
+        kept.push_back(cut);
+        continue;
+      }
+      kept.push_back(jp);
+      continue;
+    }
+    RoutePiece& piece = out.pieces[static_cast<std::size_t>(k)];
+    std::vector<WaypointPoint> pts = piece.line.points;
+    if (loose_end) {
+      std::vector<WaypointPoint> tail = stretch(route, jp.s0, route.line.length());
+      pts.insert(pts.end(), tail.begin() + 1, tail.end());
+      piece.to_zone = -1;
+    } else {
+      std::vector<WaypointPoint> head = stretch(route, 0.0, jp.s1);
+      head.insert(head.end(), pts.begin() + 1, pts.end());
+      pts = std::move(head);
+      piece.from_zone = -1;
+    }
+    piece.line = make_line(piece.line.id, std::move(pts));
+  }
+  out.passages = std::move(kept);
 }
 
 }  // namespace
@@ -233,6 +294,7 @@ JunctionPieces cut_into_pieces(const WaypointFile& wf, const JunctionZones& zone
   }
   out.pieces = std::move(kept);
   attach_loose_ends(wf, out);
+  end_lanes_in_junctions(wf, out);
   return out;
 }
 

@@ -20,6 +20,7 @@ constexpr double kMaxNeighbourSpacing = 6.0;   // m (route_corridors.hpp: kMaxLa
 constexpr double kCell = 6.0;                  // m, grid cell >= every query radius
 constexpr double kProbe = 0.5;                 // m before an entry / after an exit
 constexpr int kMaxAlignRounds = 20;
+constexpr double kMinEndPiece = 1.0;            // m: a shorter end of a route stays in its junction
 constexpr double kMaxReturnGap = 30.0;         // m: a shorter stretch from a junction back to it joins it
 
 struct SegmentRef {
@@ -208,9 +209,11 @@ class ZoneFinder {
       if (merged.size() == 1 && merged.front().s1 - merged.front().s0 >= length - kMinPieceLength)
         merged.front().s1 = merged.front().s0 + length - kMinPieceLength;
     } else {
-      // Near the route's own ends a short leftover piece would be a stub: the passage reaches the end.
-      if (merged.front().s0 < kMinPieceLength) merged.front().s0 = 0;
-      if (merged.back().s1 > length - kMinPieceLength) merged.back().s1 = length;
+      // Near the route's own ends a leftover shorter than kMinEndPiece would be a stub: the
+      // passage reaches the end. A longer one stays a lane of its own (a dead end, or folded
+      // into the lane it is drawn along), so the route's last waypoints lie on a lane.
+      if (merged.front().s0 < kMinEndPiece) merged.front().s0 = 0;
+      if (merged.back().s1 > length - kMinEndPiece) merged.back().s1 = length;
     }
     iv = std::move(merged);
   }
