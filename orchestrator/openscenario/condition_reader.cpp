@@ -179,9 +179,10 @@ const std::vector<std::pair<std::string, EntityReader>> kEntityConditions = {
        h.entity = e.text("entityRef");
        h.freespace = e.boolean("freespace");
        h.coordinate_system = read_coordinate_system(e);
-       read_along_route(e, h.coordinate_system, nullptr);
-       if (e.has("relativeDistanceType") && e.text("relativeDistanceType") != "longitudinal")
-         e.fail_attribute("relativeDistanceType", "only a longitudinal headway is supported");
+       // Not given: "interpreted as euclideanDistance" (the standard, TimeHeadwayCondition).
+       h.distance_type =
+           e.optional_choice<std::string>("relativeDistanceType", kDistanceTypes).value_or("euclidianDistance");
+       read_along_route(e, h.coordinate_system, &h.distance_type);
        h.rule = read_rule(e);
        h.value = e.number("value");
        return h;

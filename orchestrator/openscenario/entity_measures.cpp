@@ -47,6 +47,22 @@ double time_to_collision(const Body& from, const Body& to, const opendrive::Road
   return now / closing;
 }
 
+std::optional<double> distance_ahead(const Body& from, const Body& to, const opendrive::RoadNetwork& roads,
+                                     const std::string& distance_type, const std::string& coordinate_system,
+                                     bool freespace) {
+  double along = 0;
+  if (coordinate_system == "entity") {
+    const double h = from.state->pose.heading;
+    along = (to.state->pose.x - from.state->pose.x) * std::cos(h) + (to.state->pose.y - from.state->pose.y) * std::sin(h);
+  } else {
+    const int direction =
+        from.state->road_id.empty() ? 1 : travel_direction(roads.road(from.state->road_id), from.state->lane);
+    along = (to.state->s - from.state->s) * direction;
+  }
+  if (along <= 1e-6) return std::nullopt;  // level with it to rounding: not ahead either
+  return relative_distance(from, to, distance_type, coordinate_system, freespace);
+}
+
 bool boxes_overlap(const Body& a, const Body& b) { return sim::boxes_touch(box_of(a), box_of(b)); }
 
 double relative_distance(const Body& from, const Body& to, const std::string& distance_type,

@@ -1,6 +1,8 @@
 #pragma once
 // Distances between two entities for conditions and actions: in the first entity's frame
 // or along the road, between reference points or between bounding boxes (freespace).
+#include <optional>
+
 #include "openscenario/entity_motion.hpp"
 #include "openscenario/model.hpp"
 
@@ -16,6 +18,17 @@ struct Body {
 // Freespace distances are between the boxes, 0 when they overlap. Always >= 0.
 double relative_distance(const Body& from, const Body& to, const std::string& distance_type,
                          const std::string& coordinate_system, bool freespace);
+
+// relative_distance towards an entity ahead of `from`; none when `to` is not ahead (its
+// reference point at most 1 um in front of `from`'s, along `from`'s heading in the entity
+// frame, along its direction of travel on the road in road / lane coordinates).
+// TimeHeadwayCondition needs it: the standard (1.3, TimeHeadwayCondition) assumes the
+// reference entity "to be leading/ahead" and measures "the time it takes the triggering
+// entity to reach the current position of the reference entity", which does not exist for
+// one behind or alongside.
+std::optional<double> distance_ahead(const Body& from, const Body& to, const opendrive::RoadNetwork& roads,
+                                     const std::string& distance_type, const std::string& coordinate_system,
+                                     bool freespace);
 
 // Time until that distance reaches 0 at today's velocities: distance / closing rate, the
 // rate from both bodies moved on at their speed and heading for kTtcHorizon seconds (exact

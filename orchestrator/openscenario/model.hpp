@@ -247,6 +247,7 @@ struct TimeHeadwayCondition {
   std::string entity;
   bool freespace = false;
   std::string coordinate_system = "entity";
+  std::string distance_type = "euclidianDistance";  // the standard's default when not given
   Rule rule = Rule::LessThan;
   double value = 0;
 };

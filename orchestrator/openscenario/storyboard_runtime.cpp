@@ -207,9 +207,10 @@ struct StoryboardRuntime::Impl {
           } else if constexpr (std::is_same_v<T, TimeHeadwayCondition>) {
             const EntityState& other = entities.at(k.entity);
             if (!other.placed || self.speed <= 0) return false;
-            const double d = relative_distance(me, {&other, &scenario.entity(k.entity)->box}, "longitudinal",
-                                               k.coordinate_system, k.freespace);
-            return satisfies(k.rule, d / self.speed, k.value);
+            // A reference entity not ahead has no headway (the triggering entity never reaches it).
+            const std::optional<double> d = distance_ahead(me, {&other, &scenario.entity(k.entity)->box}, roads,
+                                                           k.distance_type, k.coordinate_system, k.freespace);
+            return d && satisfies(k.rule, *d / self.speed, k.value);
           } else if constexpr (std::is_same_v<T, TimeToCollisionCondition>) {
             if (k.entity) {
               const EntityState& other = entities.at(*k.entity);
@@ -391,9 +392,40 @@ struct StoryboardRuntime::Impl {
     }
   }
 
+  // The Storyboard's StopTrigger stops what still executes (the standard 1.3, 8.2: the
+  // stopTransition leaves runningState or standbyState when "an issued stop trigger" stops
+  // the element; 8.4.2: an Event "transfers to completeState with stopTransition" when "a stop
+  // trigger is issued by the enclosing Act or Storyboard"): running actions and running or
+  // standby events stop; a maneuver, group, act or story whose children are then all complete
+  // has ended (endTransition, as settle() ends it), one still waiting in standby (an Act whose
+  // start trigger never fired) stops.
+  void stop_storyboard() {
+    for (const Story& story : scenario.storyboard.stories) {
+      if (record("story", story.key).state != ElementState::Running) continue;
+      for (const Act& act : story.acts) {
+        const ElementState act_state = record("act", act.key).state;
+        if (act_state == ElementState::Standby) transition("act", act.key, "stopTransition", ElementState::Complete);
+        if (act_state != ElementState::Running) continue;
+        for (const ManeuverGroup& g : act.groups) {
+          if (record("maneuverGroup", g.key).state != ElementState::Running) continue;
+          for (const Maneuver& m : g.maneuvers) {
+            if (record("maneuver", m.key).state != ElementState::Running) continue;
+            for (const Event& e : m.events)
+              if (record("event", e.key).state != ElementState::Complete) stop_event(e);
+            transition("maneuver", m.key, "endTransition", ElementState::Complete);
+          }
+          transition("maneuverGroup", g.key, "endTransition", ElementState::Complete);
+        }
+        transition("act", act.key, "endTransition", ElementState::Complete);
+      }
+      transition("story", story.key, "endTransition", ElementState::Complete);
+    }
+  }
+
   void evaluate_storyboard() {
     if (fires(scenario.storyboard.stop_trigger)) {
       finished = true;
+      stop_storyboard();
       log.push_back({t, "storyboard", "", "stopTransition"});
       return;
     }

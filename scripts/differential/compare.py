@@ -24,8 +24,15 @@ TOLERANCE = 0.10    # m
 STEP = 0.05         # s: transitions agree within one step
 TRANSITIONS = ("startTransition", "endTransition", "stopTransition", "skipTransition")
 # esmini logs its Init actions as "Init <entity> <ActionType>" (the standard gives them no
-# names and no transitions; we do not log them).
-PEER_INIT = re.compile(r"^Init \S+ \w+Action$")
+# names and no transitions; we do not log them): also an entity name with spaces ("Init ego
+# jerk LongitudinalAction"), a global action without entity ("Init EnvironmentAction") and the
+# copies it makes for the ghost of its own follow-ghost controller ("Init Ego
+# TeleportAction_ghost-copy", acting on its helper entity Ego_ghost, not on the storyboard's).
+PEER_INIT = re.compile(r"^Init (.+ )?[A-Z]\w*Action(_ghost-copy)?$")
+# Actions esmini's own controllers inject into a run (its NaturalDriver's lane changes:
+# "Adding action LaneChangeAction_0", then that name's transitions): no element of the file's
+# storyboard, so not transitions of the standard; left out.
+PEER_INJECTED = re.compile(r"^\[\d+\.\d+\] \[info\] Adding action (.+?)\s*$")
 PEER_LINE = re.compile(r"^\[(\d+\.\d+)\] \[info\] (.+) (\w+State) -> (\w+Transition) -> (\w+State)\s*$")
 # esmini calls the Storyboard element "storyBoard"; our log gives it no name (type storyboard).
 # Its start (at 0 s in both) is not in our log: only its stop is compared.
@@ -106,10 +113,14 @@ def read_our_transitions(result_json: pathlib.Path) -> list:
 
 
 def read_peer_transitions(log_txt: pathlib.Path) -> list:
-    out = []
+    out, injected = [], set()
     for line in log_txt.read_text(errors="replace").splitlines():
+        added = PEER_INJECTED.match(line)
+        if added:
+            injected.add(added.group(1))
+            continue
         m = PEER_LINE.match(line)
-        if not m or m.group(4) not in TRANSITIONS or PEER_INIT.match(m.group(2)):
+        if not m or m.group(4) not in TRANSITIONS or PEER_INIT.match(m.group(2)) or m.group(2) in injected:
             continue
         name = PEER_NAMES.get(m.group(2), m.group(2))
         if name == STORYBOARD and m.group(4) == "startTransition":

@@ -128,6 +128,26 @@ class Comparison(unittest.TestCase):
                              ["B at 1.00 s: ours (330.000, -5.250), peer absent"] if differs else [])
 
 
+    def test_peer_init_actions_and_actions_its_controllers_inject_are_no_transitions(self):
+        # esmini's Init actions in every form it logs them, and a lane change its NaturalDriver
+        # controller adds: none is an element of the storyboard, so none is compared.
+        log = PEER_LOG + "\n".join([
+            "[0.000] [info] Init ego jerk LongitudinalAction initState -> startTransition -> runningState",
+            "[0.000] [info] Init EnvironmentAction runningState -> stopTransition -> completeState",
+            "[0.000] [info] Init Ego TeleportAction_ghost-copy initState -> startTransition -> runningState",
+            "[0.000] [info] Adding action LaneChangeAction_0",
+            "[0.000] [info] LaneChangeAction_0 initState -> startTransition -> runningState",
+            "[2.000] [info] LaneChangeAction_0 runningState -> endTransition -> completeState", ""])
+        c = Outputs(self.root, ours_events=OUR_EVENTS, peer_log=log).compare()
+        self.assertTrue(c.matches, [d.text() for d in c.differences])
+        self.assertEqual(c.transitions, 4)
+        # An element of the storyboard that merely starts with "Init" is compared.
+        (self.root / "named").mkdir()
+        c = Outputs(self.root / "named", ours_events=OUR_EVENTS,
+                    peer_log=PEER_LOG + "[1.000] [info] Init speed initState -> startTransition -> runningState\n").compare()
+        self.assertEqual([d.text() for d in c.differences], ["Init speed startTransition at 1.00 s: ours none, peer 1.00 s"])
+
+
 class PeerCsv(unittest.TestCase):
     def test_dat2csv_rows_without_its_banner_and_only_up_to_the_compared_time(self):
         with tempfile.TemporaryDirectory() as tmp:

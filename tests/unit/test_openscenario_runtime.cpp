@@ -285,5 +285,87 @@ TEST_F(Runtime, HeadwayFallsWhenTheLeaderSlows) {
   EXPECT_NEAR(times("Close", "startTransition")[0], 1.0, 1e-9);
 }
 
+
+// A marking event: starts (and its action ends at once, moving nothing) when `condition` holds.
+std::string mark_event(const std::string& name, const std::string& condition) {
+  const std::string action = R"(<Action name=")" + name + R"(Action"><PrivateAction><ControllerAction>
+    <ActivateControllerAction lateral="false" longitudinal="false"/></ControllerAction></PrivateAction></Action>)";
+  return event(name, "parallel", action, condition);
+}
+
+// A headway condition of `triggering` towards `reference`, evaluated on every step (no edge).
+std::string headway_condition(const std::string& name, const std::string& triggering, const std::string& reference,
+                              const std::string& attributes) {
+  return R"(<Condition name=")" + name + R"(" delay="0" conditionEdge="none"><ByEntityCondition>
+    <TriggeringEntities triggeringEntitiesRule="any"><EntityRef entityRef=")" + triggering + R"("/></TriggeringEntities>
+    <EntityCondition><TimeHeadwayCondition entityRef=")" + reference + R"(" )" + attributes +
+         "/></EntityCondition></ByEntityCondition></Condition>";
+}
+
+// The standard (1.3, TimeHeadwayCondition): "The reference entity is assumed to be
+// leading/ahead" and the headway is "the time it takes the triggering entity to reach the
+// current position of the reference entity": towards an entity behind there is none, so no
+// rule holds (a headway measured as an unsigned distance made B's 40 m to A behind it a 4 s
+// headway, and cut-ins of esmini's examples started at once).
+TEST_F(Runtime, AnEntityBehindHasNoTimeHeadway) {
+  // B is 40 m ahead of A (s 50 and 10), both at 10 m/s.
+  const std::string road = R"(coordinateSystem="road" relativeDistanceType="longitudinal" freespace="false")";
+  load(mark_event("Behind", headway_condition("BehindC", "B", "A", road + R"( value="100" rule="lessThan")")) +
+       mark_event("Ahead", headway_condition("AheadC", "A", "B", road + R"( value="100" rule="lessThan")")) +
+       mark_event("BehindFar", headway_condition("BehindFarC", "B", "A", road + R"( value="1" rule="greaterThan")")));
+  run_until(2);
+  EXPECT_TRUE(times("Behind", "startTransition").empty());
+  EXPECT_TRUE(times("BehindFar", "startTransition").empty());
+  EXPECT_EQ(times("Ahead", "startTransition"), std::vector<double>{0.0});  // 40 m / 10 m/s = 4 s
+}
+
+// Without relativeDistanceType the headway is over the euclidean distance (the standard,
+// TimeHeadwayCondition: "If not provided, value is interpreted as euclideanDistance"); A and B
+// are 40 m apart along the road and 3.5 m across it: 4.015 s euclidean, 4.0 s longitudinal.
+TEST_F(Runtime, TimeHeadwayIsEuclideanUnlessTheFileSaysOtherwise) {
+  load(mark_event("Euclidean", headway_condition("EC", "A", "B", R"(freespace="false" value="4.01" rule="greaterThan")")) +
+       mark_event("Longitudinal",
+                  headway_condition("LC", "A", "B",
+                                    R"(freespace="false" relativeDistanceType="longitudinal" value="4.01" rule="greaterThan")")) +
+       mark_event("OldAlongRoute",  // 1.0: alongRoute="true" is the distance along the road
+                  headway_condition("OC", "A", "B", R"(freespace="false" alongRoute="true" value="4.01" rule="greaterThan")")));
+  run_until(1);
+  EXPECT_EQ(times("Euclidean", "startTransition"), std::vector<double>{0.0});
+  EXPECT_TRUE(times("Longitudinal", "startTransition").empty());
+  EXPECT_TRUE(times("OldAlongRoute", "startTransition").empty());
+}
+
+// The Storyboard's StopTrigger stops what still executes (the standard 1.3, 8.2 and 8.4.2):
+// the running action and its event, the event still waiting for its trigger; the maneuver,
+// group, act and story then have no executing child left and end; the Storyboard stops last.
+TEST_F(Runtime, TheStoryboardStopStopsRunningAndWaitingElements) {
+  load(event("Slow", "parallel", speed_action("SlowAction", 0, "linear", "time", 50), time_condition("T", 1.0)) +
+           event("Never", "parallel", speed_action("NeverAction", 5, "step", "time", 0), time_condition("N", 1000.0)),
+       5.0);
+  run_until(10);
+  ASSERT_TRUE(runtime_->finished());
+  std::vector<std::string> at_stop;
+  for (const TransitionLog& l : runtime_->log())
+    if (std::abs(l.time - 5.0) < 1e-9) at_stop.push_back(l.name + " " + l.transition);
+  EXPECT_EQ(at_stop, (std::vector<std::string>{"SlowAction stopTransition", "Slow stopTransition",
+                                               "Never stopTransition", "M endTransition", "G endTransition",
+                                               "Act endTransition", "S endTransition", " stopTransition"}));
+  EXPECT_EQ(runtime_->state("event", "Never"), ElementState::Complete);
+  EXPECT_TRUE(times("NeverAction", "stopTransition").empty());  // never started: nothing to stop
+}
+
+// An Act still waiting for its start trigger when the Storyboard stops leaves standbyState
+// with a stopTransition (8.2); its Story then ends.
+TEST_F(Runtime, TheStoryboardStopStopsAnActStillInStandby) {
+  load(event("E", "parallel", speed_action("Go", 5, "step", "time", 0), time_condition("T", 1.0)), 5.0, 1,
+       "<StartTrigger><ConditionGroup>" + time_condition("Late", 1000.0) + "</ConditionGroup></StartTrigger>");
+  run_until(10);
+  ASSERT_EQ(times("Act", "stopTransition").size(), 1u);
+  EXPECT_NEAR(times("Act", "stopTransition")[0], 5.0, 1e-9);
+  ASSERT_EQ(times("S", "endTransition").size(), 1u);
+  EXPECT_NEAR(times("S", "endTransition")[0], 5.0, 1e-9);
+  EXPECT_TRUE(times("E", "stopTransition").empty());  // its maneuver never started
+}
+
 }  // namespace
 }  // namespace orch::openscenario
