@@ -200,7 +200,7 @@ struct AppearanceAction { std::string element; };
 struct EnvironmentAction { std::string name; };
 // Trailers (1.3): the actor tows `trailer` from now on / no trailer any more.
 // SynchronizeAction (openscenario/synchronize.hpp): reach `position` when the master `entity`
-// reaches `master_position`; tolerances in m (absent: kSynchronizeTolerance, as esmini).
+// reaches `master_position`; tolerances in m (absent: kSynchronizeTolerance).
 struct SynchronizeFinalSpeed {
   bool relative = false;  // RelativeSpeedToMaster (delta or factor), else AbsoluteSpeed
   bool factor = false;
