@@ -11,6 +11,7 @@
 #include "core/files.hpp"
 #include "core/process.hpp"
 #include "core/sumo_output.hpp"
+#include "opendrive/netconvert_workarounds.hpp"
 #include "xml/xml_source.hpp"
 
 namespace orch::opendrive {
@@ -19,7 +20,7 @@ namespace fs = std::filesystem;
 namespace {
 
 // Bump when the conversion changes, so that old cache entries are not reused.
-constexpr std::string_view kConversionVersion = "opendrive-sumo-net 1";
+constexpr std::string_view kConversionVersion = "opendrive-sumo-net 2";
 
 bool carries_traffic(std::string_view lane_type) {
   for (const std::string_view t : {"driving", "entry", "exit", "onRamp", "offRamp", "mwyEntry", "mwyExit"})
@@ -66,8 +67,9 @@ std::string lane_type_map_xml() {
   return out + "</types>\n";
 }
 
-std::string with_lane_speeds(const std::string& xodr_text, const std::string& file_name) {
-  const xml::XmlSource source = xml::XmlSource::parse(xodr_text, file_name);
+namespace {
+
+void add_lane_speeds(const xml::XmlSource& source) {
   for (pugi::xml_node road : source.root().children("road")) {
     double speed = speed_for_road_type(road.child("type").attribute("type").as_string(""));
     if (const pugi::xml_node record = road.child("type").child("speed")) {
@@ -85,9 +87,29 @@ std::string with_lane_speeds(const std::string& xodr_text, const std::string& fi
           record.append_attribute("unit") = "m/s";
         }
   }
+}
+
+std::string printed(const xml::XmlSource& source) {
   std::ostringstream out;
   source.root().root().print(out, "  ", pugi::format_default, pugi::encoding_utf8);
   return out.str();
+}
+
+}  // namespace
+
+std::string with_lane_speeds(const std::string& xodr_text, const std::string& file_name) {
+  const xml::XmlSource source = xml::XmlSource::parse(xodr_text, file_name);
+  add_lane_speeds(source);
+  return printed(source);
+}
+
+NetconvertInput netconvert_input(const std::string& xodr_text, const std::string& file_name) {
+  const xml::XmlSource source = xml::XmlSource::parse(xodr_text, file_name);
+  NetconvertInput input;
+  input.warnings = apply_netconvert_workarounds(source);
+  add_lane_speeds(source);
+  input.text = printed(source);
+  return input;
 }
 
 fs::path default_net_cache() {
@@ -104,11 +126,13 @@ SumoNet convert_to_sumo_net(const fs::path& xodr_file, const fs::path& cache_roo
   const fs::path dir = cache_root / net.key;
   net.net_file = dir / "net.net.xml";
   std::error_code ec;
+  NetconvertInput input = netconvert_input(text, xodr_file.string());  // bad XML fails here
+  net.warnings = std::move(input.warnings);  // also for a cached net: the run reports them every time
   if (fs::is_regular_file(net.net_file, ec)) {
     net.from_cache = true;
     return net;
   }
-  const std::string converted = with_lane_speeds(text, xodr_file.string());  // bad XML fails here
+  const std::string& converted = input.text;
   // Built in a private folder and renamed into place: parallel runs of a batch may convert
   // the same road at once; one rename wins and the others find the finished entry.
   const fs::path work = cache_root / fmt::format("{}.tmp{}", net.key, ::getpid());

@@ -7,6 +7,9 @@
 #include <filesystem>
 #include <string>
 #include <string_view>
+#include <vector>
+
+#include "core/diagnostics.hpp"
 
 namespace orch::opendrive {
 
@@ -14,6 +17,8 @@ struct SumoNet {
   std::filesystem::path net_file;
   std::string key;          // SHA-256 of the .xodr bytes and the conversion settings
   bool from_cache = false;  // false: netconvert ran now
+  // What the copy netconvert reads leaves out or rewrites (netconvert_workarounds.hpp).
+  std::vector<Diagnostic> warnings;
 };
 
 // Converts `xodr_file` into `cache_root`/<key>/ (or finds it there). Throws MapError with
@@ -32,5 +37,13 @@ std::string lane_type_map_xml();
 
 // The .xodr text netconvert reads: speed records added where lanes of moving traffic lack them.
 std::string with_lane_speeds(const std::string& xodr_text, const std::string& file_name);
+
+// What convert_to_sumo_net gives netconvert: the lane speeds above, and the content netconvert
+// refuses rewritten (netconvert_workarounds.hpp), each rewrite a warning.
+struct NetconvertInput {
+  std::string text;
+  std::vector<Diagnostic> warnings;
+};
+NetconvertInput netconvert_input(const std::string& xodr_text, const std::string& file_name);
 
 }  // namespace orch::opendrive

@@ -154,6 +154,45 @@ AssignControllerAction read_assign_controller(Element& e, Context& context) {
   return a;
 }
 
+SynchronizeFinalSpeed read_final_speed(Element& holder) {
+  Element speed = holder.one_of({"AbsoluteSpeed", "RelativeSpeedToMaster"});
+  holder.finish();
+  SynchronizeFinalSpeed f;
+  f.relative = speed.name() == "RelativeSpeedToMaster";
+  f.value = speed.number("value");
+  if (f.relative) f.factor = speed.choice<bool>("speedTargetValueType", {{"delta", false}, {"factor", true}});
+  // 1.1: the steady state, one of two elements directly in the speed (the SteadyState group).
+  if (auto distance = speed.optional_child("TargetDistanceSteadyState")) {
+    f.steady_distance = distance->number("distance");
+    distance->finish();
+  }
+  if (auto time = speed.optional_child("TargetTimeSteadyState")) {
+    if (f.steady_distance) time->fail("give one steady state: TargetDistanceSteadyState or TargetTimeSteadyState");
+    f.steady_time = time->number("time");
+    time->finish();
+  }
+  if ((f.steady_distance && *f.steady_distance < 0) || (f.steady_time && *f.steady_time < 0))
+    speed.fail("a steady state's distance or time cannot be negative");
+  speed.finish();
+  return f;
+}
+
+SynchronizeAction read_synchronize(Element& e) {
+  SynchronizeAction a;
+  a.entity = e.text("masterEntityRef");
+  a.tolerance_master = e.optional_number("targetToleranceMaster");
+  a.tolerance = e.optional_number("targetTolerance");
+  if (a.tolerance_master && *a.tolerance_master < 0) e.fail_attribute("targetToleranceMaster", "a tolerance cannot be negative");
+  if (a.tolerance && *a.tolerance < 0) e.fail_attribute("targetTolerance", "a tolerance cannot be negative");
+  Element master = e.child("TargetPositionMaster");
+  a.master_position = read_position(master);
+  Element target = e.child("TargetPosition");
+  a.position = read_position(target);
+  if (auto final_speed = e.optional_child("FinalSpeed")) a.final_speed = read_final_speed(*final_speed);
+  e.finish();
+  return a;
+}
+
 VisibilityAction read_visibility(Element& e) {
   VisibilityAction a{e.boolean("graphics"), e.boolean("traffic"), e.optional_boolean("sensors").value_or(true)};
   e.finish();
@@ -180,6 +219,7 @@ const std::vector<ActionEntry> kPrivateActions = {
        return TeleportAction{read_position(position)};
      }},
     {"", "VisibilityAction", [](Element&, Element& e, Context&) -> PrivateAction { return read_visibility(e); }},
+    {"", "SynchronizeAction", [](Element&, Element& e, Context&) -> PrivateAction { return read_synchronize(e); }},
     // OpenSCENARIO 1.0 places ActivateControllerAction directly in PrivateAction.
     {"", "ActivateControllerAction", [](Element&, Element& e, Context&) -> PrivateAction { return read_activate(e); }},
     {"LongitudinalAction", "SpeedAction", [](Element&, Element& e, Context& context) -> PrivateAction { return read_speed(e, context); }},

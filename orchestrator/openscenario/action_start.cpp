@@ -12,6 +12,7 @@
 #include "openscenario/lane_offset.hpp"
 #include "openscenario/nurbs.hpp"
 #include "openscenario/route_plan.hpp"
+#include "openscenario/synchronize_motion.hpp"
 #include "openscenario/text_number.hpp"
 #include "openscenario/trajectory_follow.hpp"
 #include "openscenario/transition_shape.hpp"
@@ -234,7 +235,7 @@ std::vector<std::string> start_action(const PrivateAction& action, const std::st
         ++it;
       }
     }
-    if (takes_time || continuous) running.push_back({action_name, entity, domain, continuous, &action});
+    if (takes_time || continuous) running.push_back({action_name, entity, domain, continuous, &action, std::nullopt});
   };
   std::visit(
       [&](const auto& a) {
@@ -358,6 +359,12 @@ std::vector<std::string> start_action(const PrivateAction& action, const std::st
           connect_trailer(ctx.scenario, ctx.entities, ctx.trailers, entity, a.entity, ctx.roads);
         } else if constexpr (std::is_same_v<T, DisconnectTrailerAction>) {
           disconnect_trailer(ctx.entities, ctx.trailers, entity);
+        } else if constexpr (std::is_same_v<T, SynchronizeAction>) {
+          if (!state.placed) throw MapError(fmt::format("entity \"{}\" has no position yet", entity));
+          SynchronizeRun run = start_synchronize(a, ctx);
+          state.speed_profile.reset();
+          take_over(MotionDomain::Longitudinal, true, false);
+          running.back().synchronize = std::move(run);
         } else if constexpr (std::is_same_v<T, AppearanceAction> || std::is_same_v<T, EnvironmentAction>) {
           // No effect on motion: SUMO has no lights or weather here (model.hpp).
         } else {
@@ -376,7 +383,9 @@ std::vector<std::string> update_running_actions(ActionContext& ctx, std::vector<
     EntityState& state = ctx.entities.at(it->entity);
     bool done = false;
     if (it->domain == MotionDomain::Longitudinal) {
-      if (const auto* distance = std::get_if<LongitudinalDistanceAction>(it->spec)) {
+      if (const auto* synchronize = std::get_if<SynchronizeAction>(it->spec)) {
+        done = step_synchronize(*synchronize, *it->synchronize, it->entity, ctx);
+      } else if (const auto* distance = std::get_if<LongitudinalDistanceAction>(it->spec)) {
         if (!has_limits(*distance)) longitudinal_distance(*distance, state, ctx, it->entity);  // continuous: keep it
         else done = approach_distance(*distance, state, ctx, it->entity) && !it->continuous;
       } else if (state.speed_profile && state.speed_profile->done(ctx.t)) {

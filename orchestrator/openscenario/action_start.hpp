@@ -8,6 +8,7 @@
 #include "map/position_resolver.hpp"
 #include "openscenario/entity_motion.hpp"
 #include "openscenario/model.hpp"
+#include "openscenario/synchronize.hpp"
 #include "openscenario/trailer_motion.hpp"
 
 namespace orch::openscenario {
@@ -40,6 +41,7 @@ struct RunningAction {
   MotionDomain domain = MotionDomain::Longitudinal;
   bool continuous = false;  // never ends on its own (continuous targets)
   const PrivateAction* spec = nullptr;
+  std::optional<SynchronizeRun> synchronize;  // a SynchronizeAction's targets and phase
 };
 
 // Starts `action` for `entity` ("" for global actions): immediate actions take effect now; actions that take time

@@ -199,6 +199,21 @@ struct VariableModifyAction {
 struct AppearanceAction { std::string element; };
 struct EnvironmentAction { std::string name; };
 // Trailers (1.3): the actor tows `trailer` from now on / no trailer any more.
+// SynchronizeAction (openscenario/synchronize.hpp): reach `position` when the master `entity`
+// reaches `master_position`; tolerances in m (absent: kSynchronizeTolerance).
+struct SynchronizeFinalSpeed {
+  bool relative = false;  // RelativeSpeedToMaster (delta or factor), else AbsoluteSpeed
+  bool factor = false;
+  double value = 0;
+  std::optional<double> steady_distance, steady_time;  // TargetDistance/TimeSteadyState
+};
+struct SynchronizeAction {
+  std::string entity;  // masterEntityRef
+  Position master_position;
+  Position position;
+  std::optional<double> tolerance_master, tolerance;
+  std::optional<SynchronizeFinalSpeed> final_speed;
+};
 struct ConnectTrailerAction { std::string entity; };  // the trailer (checked like every `entity`)
 struct DisconnectTrailerAction {};
 using PrivateAction = std::variant<TeleportAction, SpeedAction, LaneChangeAction, LaneOffsetAction,
@@ -206,7 +221,7 @@ using PrivateAction = std::variant<TeleportAction, SpeedAction, LaneChangeAction
                                    VisibilityAction, FollowTrajectoryAction, AssignRouteAction, AcquirePositionAction,
                                    AddEntityAction, DeleteEntityAction, ParameterSetAction, ParameterModifyAction,
                                    VariableSetAction, VariableModifyAction, ConnectTrailerAction,
-                                   DisconnectTrailerAction, AppearanceAction, EnvironmentAction>;
+                                   DisconnectTrailerAction, AppearanceAction, EnvironmentAction, SynchronizeAction>;
 // Which alternatives are global actions (they take no actors).
 template <class T>
 inline constexpr bool kIsGlobalAction =

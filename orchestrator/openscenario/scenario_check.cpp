@@ -15,6 +15,10 @@ void collect(const PrivateAction& action, const Place& place,
   if (const auto* teleport = std::get_if<TeleportAction>(&action)) positions.emplace_back(&teleport->position, place);
   if (const auto* add = std::get_if<AddEntityAction>(&action)) positions.emplace_back(&add->position, place);
   if (const auto* acquire = std::get_if<AcquirePositionAction>(&action)) positions.emplace_back(&acquire->position, place);
+  if (const auto* sync = std::get_if<SynchronizeAction>(&action)) {
+    positions.emplace_back(&sync->master_position, place);
+    positions.emplace_back(&sync->position, place);
+  }
   if (const auto* route = std::get_if<AssignRouteAction>(&action))
     for (const Position& p : route->waypoints) positions.emplace_back(&p, place);
 }

@@ -34,6 +34,7 @@ std::vector<std::string> referenced_entities(const PrivateAction& action) {
       [&](const auto& a) {
         using T = std::decay_t<decltype(a)>;
         if constexpr (requires { a.position; }) position_entities(a.position, names);
+        if constexpr (requires { a.master_position; }) position_entities(a.master_position, names);
         if constexpr (requires { a.entity; }) names.push_back(a.entity);
         if constexpr (requires { a.relative_to; })
           if (a.relative_to) names.push_back(*a.relative_to);

@@ -261,6 +261,10 @@ void OpenScenarioFormat::open(RunResult& result, RunLog& log, SimulatorConfig& c
   roads_.emplace(opendrive::read_xodr_file(scenario_->road_file));
   const opendrive::SumoNet net = opendrive::convert_to_sumo_net(scenario_->road_file, opendrive::default_net_cache());
   result.net = {net.net_file.string(), sha256_of_file(net.net_file)};
+  for (const Diagnostic& d : net.warnings) {  // what the SUMO net leaves out of the road
+    result.warnings.push_back(d.format());
+    log.note(d.format());
+  }
   log.note(fmt::format("road {} -> SUMO net {} ({})", scenario_->road_file, net.net_file.string(),
                        net.from_cache ? "cached" : "converted now"));
   lanes_.emplace(*roads_, net.net_file.string());

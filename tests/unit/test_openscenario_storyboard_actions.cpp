@@ -405,8 +405,8 @@ TEST_F(StoryboardActions, LongitudinalDistanceWithinItsLimits) {
 }
 
 TEST_F(StoryboardActions, ElementsNotRunAreErrorsNamingThem) {
-  EXPECT_NE(load_error(event("Sync", R"(<SynchronizeAction masterEntityRef="A"/>)", at_time(1)))
-                .find("SynchronizeAction in PrivateAction is an OpenSCENARIO element the orchestrator does not run"),
+  EXPECT_NE(load_error(event("Profile", R"(<LongitudinalAction><SpeedProfileAction followingMode="position"/></LongitudinalAction>)", at_time(1)))
+                .find("SpeedProfileAction in LongitudinalAction is an OpenSCENARIO element the orchestrator does not run"),
             std::string::npos);
   EXPECT_NE(load_error(event("Clothoids", R"(<RoutingAction><FollowTrajectoryAction><Trajectory name="T" closed="false"><Shape><ClothoidSpline/></Shape></Trajectory>
 <TimeReference><None/></TimeReference><TrajectoryFollowingMode followingMode="position"/></FollowTrajectoryAction></RoutingAction>)",
