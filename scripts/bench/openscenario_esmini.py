@@ -134,7 +134,8 @@ def table(rows):
     medians = []
     for r in rows:
         if "orch" not in r:
-            lines.append("| %s | %s | %s | | | | | | |" % (r["file"], r["road"], r["note"]))
+            note = " ".join(r["note"].split())  # one table row: netconvert's errors span lines
+            lines.append("| %s | %s | %s | | | | | | |" % (r["file"], r["road"], note))
             continue
         wall, med = ratio_text(r["orch"], r["esmini"], 0)
         cpu, _ = ratio_text(r["orch"], r["esmini"], 1)
