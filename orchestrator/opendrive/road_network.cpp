@@ -12,12 +12,11 @@
 namespace orch::opendrive {
 
 const CubicRecord* record_at(const std::vector<CubicRecord>& records, double s) {
-  const CubicRecord* found = nullptr;
-  for (const CubicRecord& r : records) {
-    if (r.s <= s + 1e-9) found = &r;
-    else break;
-  }
-  return found;
+  // Binary search (records sorted by s, as the reader sorts them): the first record
+  // starting past s, and the one before it.
+  const auto past = std::partition_point(records.begin(), records.end(),
+                                         [&](const CubicRecord& r) { return r.s <= s + 1e-9; });
+  return past == records.begin() ? nullptr : &*(past - 1);
 }
 
 double CubicRecord::largest_magnitude(double length) const {

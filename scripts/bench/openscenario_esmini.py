@@ -8,9 +8,10 @@ Each file first runs once in the orchestrator (a probe: it converts the road to 
 which later runs find cached, and tells whether the file runs at all: a run whose verdict is
 `error` is listed as not running and not timed). Then `--repeat` interleaved pairs: esmini
 (`--headless --fixed_timestep 0.05 --disable_stdout`, nothing recorded) and the orchestrator
-(`run FILE -q --no-report --step 0.05`). The row gives the best wall time of each, the
-median of the pairs' own ratios (orchestrator / esmini) with their range, and the same for
-CPU time (user + system of the finished process). A process still running after
+(`run FILE -q --no-report --traffic none --step 0.05`). The row gives the best wall time
+and the best CPU time (user + system of the finished process, less disturbed than the wall
+time on a loaded machine) of each, and the median of the pairs' own ratios (orchestrator /
+esmini) with their range, of wall and of CPU time. A process still running after
 `--timeout` seconds is stopped and the row says so.
 
 Usage: scripts/bench/openscenario_esmini.py [--binary build/bin/orchestrator]
@@ -82,7 +83,7 @@ def esmini_end(log):
 def run_file(a, kind, xosc, work):
     name = os.path.splitext(os.path.basename(xosc))[0]
     out = os.path.join(work, name)
-    orch_cmd = [a.binary, "run", xosc, "--out", out, "-q", "--no-report", "--step", "%g" % STEP]
+    orch_cmd = [a.binary, "run", xosc, "--out", out, "-q", "--no-report", "--traffic", "none", "--step", "%g" % STEP]
     esmini_log = os.path.join(work, name + ".esmini.txt")
     esmini_cmd = [a.esmini, "--headless", "--fixed_timestep", "%g" % STEP, "--osc", xosc, "--disable_stdout",
                   "--logfile_path", esmini_log]
@@ -109,6 +110,8 @@ def run_file(a, kind, xosc, work):
             (esm if who == "esmini" else orch).append(timed(cmd, log, a.timeout))
     if any(e[2] is None for e in esm):
         row["note"] = "esmini still running after %d s" % a.timeout
+    elif any(e[2] != 0 for e in esm):
+        row["note"] = "esmini exit code %s" % ",".join(str(e[2]) for e in esm)
     row["esmini_time"] = esmini_end(esmini_log)
     row["orch"], row["esmini"] = orch, esm
     print("  %s: orchestrator %s s, esmini %s s" % (row["file"], " ".join("%.2f" % o[0] for o in orch),
@@ -126,21 +129,23 @@ def ratio_text(num, den, index):
 
 def table(rows):
     lines = ["| file | road | simulated (orchestrator / esmini) | orchestrator wall | esmini wall | "
-             "orch / esmini, wall | orch / esmini, CPU |", "|---|---|---|---|---|---|---|"]
+             "orch / esmini, wall | orchestrator CPU | esmini CPU | orch / esmini, CPU |",
+             "|---|---|---|---|---|---|---|---|---|"]
     medians = []
     for r in rows:
         if "orch" not in r:
-            lines.append("| %s | %s | %s | | | | |" % (r["file"], r["road"], r["note"]))
+            note = " ".join(r["note"].split())  # one table row: netconvert's errors span lines
+            lines.append("| %s | %s | %s | | | | | | |" % (r["file"], r["road"], note))
             continue
         wall, med = ratio_text(r["orch"], r["esmini"], 0)
         cpu, _ = ratio_text(r["orch"], r["esmini"], 1)
         if med is not None and "note" not in r:
             medians.append((med, r["file"]))
         et = r.get("esmini_time")
-        lines.append("| %s | %s | %.2f s / %s%s | %.2f s | %.2f s | %s | %s |" % (
+        lines.append("| %s | %s | %.2f s / %s%s | %.2f s | %.2f s | %s | %.2f s | %.2f s | %s |" % (
             r["file"], r["road"], r["sim_time"] or 0, "%.2f s" % et if et is not None else "?",
             " (%s)" % r["note"] if "note" in r else "", min(o[0] for o in r["orch"]), min(e[0] for e in r["esmini"]),
-            wall, cpu))
+            wall, min(o[1] for o in r["orch"]), min(e[1] for e in r["esmini"]), cpu))
     summary = ""
     if medians:
         medians.sort()
@@ -163,14 +168,15 @@ def main():
     work = a.keep or tempfile.mkdtemp(prefix="orch_osc_esmini_")
     os.makedirs(work, exist_ok=True)
     os.environ.setdefault("SUMO_HOME", "/usr/share/sumo")
-    header = machine()
+    header = machine() + ", " + time.strftime("%Y-%m-%d %H:%M", time.gmtime()) + " UTC"
     print(header, file=sys.stderr)
     rows = []
     for kind, xosc in corpus():
         if a.only and not any(s in os.path.basename(xosc) for s in a.only):
             continue
         rows.append(run_file(a, kind, xosc, work))
-    print("Machine: " + header + "; finished with load average %.1f" % os.getloadavg()[0])
+    print("Machine: " + header + "; finished with load average %.1f, %s UTC" % (
+        os.getloadavg()[0], time.strftime("%Y-%m-%d %H:%M", time.gmtime())))
     print(table(rows))
 
 

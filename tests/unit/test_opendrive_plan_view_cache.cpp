@@ -5,6 +5,7 @@
 // against a walk over every point, and to_road against projecting onto every road.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <optional>
@@ -86,6 +87,66 @@ TEST(OpenDrivePlanViewCache, Poly3PosesMatchTheDirectEvaluationAndLieOnTheCurve)
     arc += ((i == 0 || i == n) ? 1 : (i % 2 ? 4 : 2)) * std::sqrt(1 + dv * dv);
   }
   EXPECT_NEAR(static_cast<double>(arc * u / n / 3), 40.0, 1e-9);
+}
+
+// A fixed, sized set of random records of every kind (seeded: the same 200 records every
+// run), each evaluated through the plan view (binary search, table, one quadrature piece)
+// and by the direct integration from the record's start, at 50 random s and at its ends.
+TEST(OpenDrivePlanViewCache, RandomRecordsMatchTheDirectIntegrationEverywhere) {
+  std::mt19937 rng(20261126);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  const auto between = [&](double lo, double hi) { return lo + (hi - lo) * unit(rng); };
+  for (int n = 0; n < 200; ++n) {
+    const double length = between(0.5, 1500.0);
+    Shape shape;
+    switch (n % 5) {
+      case 0: shape = Line{}; break;
+      case 1: shape = Arc{between(-0.2, 0.2)}; break;
+      case 2: shape = Spiral{between(-0.05, 0.05), between(-0.05, 0.05)}; break;
+      case 3: shape = Poly3{between(-2, 2), between(-0.3, 0.3), between(-1e-3, 1e-3), between(-1e-6, 1e-6)}; break;
+      default:
+        shape = ParamPoly3{0, length, between(-5, 5), between(-5, 5), 0, 0, between(-20, 20), between(-20, 20), true};
+    }
+    // Three records: the random one between two lines, so the search by s is exercised too.
+    std::vector<Geometry> g;
+    g.push_back(Geometry{0.0, {between(-1e4, 1e4), between(-1e4, 1e4), between(-M_PI, M_PI)}, 10.0, Line{}});
+    g.push_back(Geometry{10.0, evaluate(g[0], 10.0), length, shape});
+    g.push_back(Geometry{10.0 + length, evaluate(g[1], length), 10.0, Line{}});
+    const PlanView view(g);
+    std::vector<double> at{0.0, 1e-12, length / 2, length - 1e-9, length};
+    for (int i = 0; i < 50; ++i) at.push_back(between(0.0, length));
+    for (const double ds : at) {
+      const Pose2 direct = evaluate(g[1], ds);
+      const double s = 10.0 + ds;
+      const Pose2 got = view.pose(s);
+      // At the record's end the next record (a line from the direct end pose) answers.
+      EXPECT_NEAR(got.x, direct.x, 1e-9) << "record " << n << " ds=" << ds;
+      EXPECT_NEAR(got.y, direct.y, 1e-9) << "record " << n << " ds=" << ds;
+      if (ds < length) {
+        EXPECT_NEAR(got.heading, direct.heading, 1e-12) << "record " << n << " ds=" << ds;
+        EXPECT_NEAR(view.curvature(s), curvature(g[1], ds), 1e-12) << "record " << n << " ds=" << ds;
+      }
+    }
+  }
+}
+
+TEST(OpenDrivePlanViewCache, ProfileRecordSearchIsTheLastRecordStartingAtOrBeforeS) {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> start(0.0, 500.0);
+  for (int n = 0; n < 50; ++n) {
+    std::vector<CubicRecord> records(static_cast<std::size_t>(n));
+    for (CubicRecord& r : records) r.s = std::round(start(rng));  // repeated starts too
+    std::sort(records.begin(), records.end(), [](const auto& a, const auto& b) { return a.s < b.s; });
+    for (int q = 0; q < 200; ++q) {
+      const double s = q % 4 == 0 && n > 0 ? records[static_cast<std::size_t>(q) % records.size()].s : start(rng) - 10;
+      const CubicRecord* want = nullptr;  // the walk the search replaced
+      for (const CubicRecord& r : records) {
+        if (r.s <= s + 1e-9) want = &r;
+        else break;
+      }
+      EXPECT_EQ(record_at(records, s), want) << n << " records, s=" << s;
+    }
+  }
 }
 
 // line 100 m, spiral 0 -> 0.02 over 50 m, arc 0.02 for 60 m, spiral back to 0 over 50 m,
