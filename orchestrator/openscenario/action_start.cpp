@@ -38,6 +38,24 @@ EntityPoseLookup poses(ActionContext& ctx) {
   };
 }
 
+// A road or lane position without an Orientation: the entity faces its lane's driving
+// direction, the way the runtime then moves it (update_pose), as esmini places it. The road's
+// own heading would face an entity on a left lane (right-hand traffic) backwards at the start,
+// and a trailer placed behind it would stand in front of it.
+bool faces_driving_direction(const position::Position& p) {
+  return std::visit(
+      [](const auto& kind) {
+        using T = std::decay_t<decltype(kind)>;
+        if constexpr (std::is_same_v<T, position::LanePosition> || std::is_same_v<T, position::RoadPosition> ||
+                      std::is_same_v<T, position::RelativeLanePosition> ||
+                      std::is_same_v<T, position::RelativeRoadPosition>)
+          return !kind.orientation.has_value();
+        else
+          return false;
+      },
+      p);
+}
+
 void teleport(const TeleportAction& a, EntityState& state, ActionContext& ctx, const std::string& entity) {
   const ResolvedPosition r = ctx.resolver.resolve(a.position, poses(ctx));
   if (!r.road || !r.lane)
@@ -52,7 +70,7 @@ void teleport(const TeleportAction& a, EntityState& state, ActionContext& ctx, c
   state.lateral_profile.reset();
   state.lateral_rate = 0;
   update_pose(state, ctx.roads);
-  state.pose.heading = r.pose.heading;  // the position's own orientation
+  if (!faces_driving_direction(a.position)) state.pose.heading = r.pose.heading;  // the position's own orientation
 }
 
 double target_speed(const SpeedAction& a, ActionContext& ctx) {
