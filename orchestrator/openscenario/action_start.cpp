@@ -67,6 +67,8 @@ void teleport(const TeleportAction& a, EntityState& state, ActionContext& ctx, c
   state.s = r.road->s;
   state.lane = *r.lane;
   state.offset = r.road->t - road.lane_center_t(state.lane, state.s);
+  state.direction = faces_driving_direction(a.position) ? travel_direction(road, state.lane)
+                                                        : direction_of_heading(road, state.s, r.pose.heading);
   state.lateral_profile.reset();
   state.lateral_rate = 0;
   update_pose(state, ctx.roads);
@@ -80,9 +82,9 @@ double target_speed(const SpeedAction& a, ActionContext& ctx) {
   return rel.factor ? reference * rel.value : reference + rel.value;
 }
 
-// Lane `value` lanes to the left (in the driving direction) of `lane`.
-int lane_to_the_left(const opendrive::Road& road, int lane, int value) {
-  return shifted_lane(lane, travel_direction(road, lane) * value);
+// Lane `value` lanes to the left of `from`'s lane, in the direction `from` drives.
+int lane_to_the_left(const opendrive::Road& road, const EntityState& from, int value) {
+  return shifted_lane(from.lane, travel_direction(from, road) * value);
 }
 
 bool has_limits(const LongitudinalDistanceAction& a) {
@@ -102,7 +104,7 @@ DistanceTarget distance_target(const LongitudinalDistanceAction& a, const Entity
   const EntityState& ref = placed(ctx, a.entity);
   if (!state.placed) throw MapError(fmt::format("entity \"{}\" has no position yet", entity));
   const opendrive::Road& road = ctx.roads.road(ref.road_id);
-  const int direction = travel_direction(road, ref.lane);
+  const int direction = travel_direction(ref, road);
   double gap = a.distance ? *a.distance : *a.time_gap * ref.speed;
   const bool ahead = a.displacement == "leadingReferencedEntity" ||
                      (a.displacement == "any" && (state.s - ref.s) * direction >= 0);
@@ -121,6 +123,7 @@ void longitudinal_distance(const LongitudinalDistanceAction& a, EntityState& sta
   const DistanceTarget target = distance_target(a, state, ctx, entity);
   state.road_id = target.ref->road_id;
   state.s = target.s;
+  state.direction = target.direction;
   state.speed = target.ref->speed;
   update_pose(state, ctx.roads);
 }
@@ -272,7 +275,7 @@ std::vector<std::string> start_action(const PrivateAction& action, const std::st
           const EntityState& from = a.relative_to ? placed(ctx, *a.relative_to) : state;
           if (!state.placed) throw MapError(fmt::format("entity \"{}\" has no position yet", entity));
           const opendrive::Road& road = ctx.roads.road(state.road_id);
-          const int target = a.relative_to ? lane_to_the_left(road, from.lane, a.lane) : a.lane;
+          const int target = a.relative_to ? lane_to_the_left(road, from, a.lane) : a.lane;
           state.path.reset();
           const double start_offset = state.t - road.lane_center_t(target, state.s);
           const double end_offset = a.target_lane_offset.value_or(0.0);
