@@ -82,6 +82,16 @@ double target_speed(const SpeedAction& a, ActionContext& ctx) {
   return rel.factor ? reference * rel.value : reference + rel.value;
 }
 
+// A speed change at a rate: no faster than the vehicle's Performance allows (maxAcceleration
+// speeding up, maxDeceleration slowing down), its physical limits. esmini caps the rate so too
+// (acc-test.xosc asks a car of maxAcceleration 5 m/s^2 for 10 m/s^2).
+TransitionDynamics within_performance(TransitionDynamics dynamics, const Entity* entity, double change) {
+  if (dynamics.dimension != DynamicsDimension::Rate || entity == nullptr || !entity->performance) return dynamics;
+  const double limit = change >= 0 ? entity->performance->max_acceleration : entity->performance->max_deceleration;
+  if (limit > 0) dynamics.value = std::min(dynamics.value, limit);
+  return dynamics;
+}
+
 // Lane `value` lanes to the left of `from`'s lane, in the direction `from` drives.
 int lane_to_the_left(const opendrive::Road& road, const EntityState& from, int value) {
   return shifted_lane(from.lane, travel_direction(from, road) * value);
@@ -264,7 +274,9 @@ std::vector<std::string> start_action(const PrivateAction& action, const std::st
           teleport(a, state, ctx, entity);
         } else if constexpr (std::is_same_v<T, SpeedAction>) {
           const double to = target_speed(a, ctx);
-          const double duration = transition_duration(a.dynamics, to - state.speed, state.speed, to);
+          const double duration =
+              transition_duration(within_performance(a.dynamics, ctx.scenario.entity(entity), to - state.speed),
+                                  to - state.speed, state.speed, to);
           const bool continuous = std::holds_alternative<RelativeTargetSpeed>(a.target) &&
                                   std::get<RelativeTargetSpeed>(a.target).continuous;
           state.speed_profile.reset();

@@ -187,5 +187,18 @@ TEST_F(RuntimeValues, AnEntityChangingIntoTheOncomingLaneKeepsItsDirection) {
   EXPECT_NEAR(std::cos(a.pose.heading), 1.0, 1e-9);
 }
 
+// esmini's acc-test.xosc: a SpeedAction at a rate the vehicle's Performance does not allow
+// (20 m/s^2 for a car of maxAcceleration 10) runs at the vehicle's limit.
+TEST_F(RuntimeValues, ASpeedRateIsCappedByTheVehiclesPerformance) {
+  const std::string events = R"(<Event name="Go" priority="parallel"><Action name="Faster"><PrivateAction><LongitudinalAction><SpeedAction>
+    <SpeedActionDynamics dynamicsShape="linear" dynamicsDimension="rate" value="20"/><SpeedActionTarget><AbsoluteTargetSpeed value="30"/></SpeedActionTarget>
+    </SpeedAction></LongitudinalAction></PrivateAction></Action>)" + at_time("GoStart", 1) + "</Event>";
+  load(vehicle("A"), place("A", 100, -1, 10), events);
+  run_until(*runtime_, 2.0);
+  EXPECT_NEAR(runtime_->entities().at("A").speed, 20.0, 1e-6);  // 1 s at 10 m/s^2 (not 30 m/s after 1 s)
+  run_until(*runtime_, 3.5);
+  EXPECT_NEAR(runtime_->entities().at("A").speed, 30.0, 1e-6);
+}
+
 }  // namespace
 }  // namespace orch::openscenario
