@@ -56,6 +56,21 @@ bool faces_driving_direction(const position::Position& p) {
       p);
 }
 
+// The height above the road a position gives: dz above its reference entity (RelativeObject /
+// RelativeWorld: "relative position in the z axis"), else on the road.
+double height_of(const position::Position& p, ActionContext& ctx) {
+  return std::visit(
+      [&](const auto& kind) {
+        using T = std::decay_t<decltype(kind)>;
+        if constexpr (std::is_same_v<T, position::RelativeObjectPosition> ||
+                      std::is_same_v<T, position::RelativeWorldPosition>)
+          return ctx.entities.at(kind.entity).height + kind.dz;
+        else
+          return 0.0;
+      },
+      p);
+}
+
 void teleport(const TeleportAction& a, EntityState& state, ActionContext& ctx, const std::string& entity) {
   const ResolvedPosition r = ctx.resolver.resolve(a.position, poses(ctx));
   if (!r.road || !r.lane)
@@ -67,6 +82,7 @@ void teleport(const TeleportAction& a, EntityState& state, ActionContext& ctx, c
   state.s = r.road->s;
   state.lane = *r.lane;
   state.offset = r.road->t - road.lane_center_t(state.lane, state.s);
+  state.height = height_of(a.position, ctx);
   state.direction = faces_driving_direction(a.position) ? travel_direction(road, state.lane)
                                                         : direction_of_heading(road, state.s, r.pose.heading);
   state.lateral_profile.reset();

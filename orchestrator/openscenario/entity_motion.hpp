@@ -45,6 +45,9 @@ struct EntityState {
   // direction. Set where it is placed (from its heading), kept through lane changes (a car
   // changing into the oncoming lane keeps going its way), taken from the lane graph at links.
   int direction = 0;
+  // Height of the reference point above the road surface: a relative position's dz (a bike
+  // carried on a car, esmini's drop-bike.xosc); 0 on the road.
+  double height = 0;
   opendrive::Pose2 pose;  // reference point in the inertial frame
   std::optional<SpeedProfile> speed_profile;
   std::optional<LateralProfile> lateral_profile;

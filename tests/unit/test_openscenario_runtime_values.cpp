@@ -200,5 +200,21 @@ TEST_F(RuntimeValues, ASpeedRateIsCappedByTheVehiclesPerformance) {
   EXPECT_NEAR(runtime_->entities().at("A").speed, 30.0, 1e-6);
 }
 
+// esmini's drop-bike.xosc: a bike placed 0.2 m above a car by a RelativeObjectPosition's dz
+// ("relative position in the z axis") rides at that height; a teleport 0.1 m below it is
+// 0.1 m above the road (before, dz was ignored: every entity was on the road).
+TEST_F(RuntimeValues, ARelativePositionsDzIsTheEntitysHeightAboveTheRoad) {
+  const std::string down = R"(<Event name="Drop" priority="parallel"><Action name="Down"><PrivateAction><TeleportAction><Position>
+    <RelativeObjectPosition entityRef="B" dx="20" dy="0" dz="-0.1"/></Position></TeleportAction></PrivateAction></Action>)" +
+                           at_time("DropStart", 1) + "</Event>";
+  const std::string on_a = R"(<Private entityRef="B"><PrivateAction><TeleportAction><Position>
+    <RelativeObjectPosition entityRef="A" dx="0" dy="-0.6" dz="0.2"/></Position></TeleportAction></PrivateAction></Private>)";
+  load(vehicle("A") + vehicle("B"), place("A", 100, -1, 10) + on_a, down);
+  EXPECT_NEAR(runtime_->entities().at("B").height, 0.2, 1e-12);
+  EXPECT_NEAR(runtime_->entities().at("A").height, 0.0, 1e-12);
+  run_until(*runtime_, 2.0);
+  EXPECT_NEAR(runtime_->entities().at("A").height, 0.1, 1e-12);  // 0.1 m below B
+}
+
 }  // namespace
 }  // namespace orch::openscenario
