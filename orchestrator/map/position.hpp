@@ -40,8 +40,10 @@ struct Orientation {
   double h = 0;
 };
 struct WorldPosition { double x = 0, y = 0; std::optional<double> h; };
-struct RelativeWorldPosition { std::string entity; double dx = 0, dy = 0; std::optional<Orientation> orientation; };
-struct RelativeObjectPosition { std::string entity; double dx = 0, dy = 0; std::optional<Orientation> orientation; };
+// dz: height above the reference entity's (OpenSCENARIO's dz; the storyboard keeps it as the
+// entity's height above the road, the map resolves positions in the road plane).
+struct RelativeWorldPosition { std::string entity; double dx = 0, dy = 0; std::optional<Orientation> orientation; double dz = 0; };
+struct RelativeObjectPosition { std::string entity; double dx = 0, dy = 0; std::optional<Orientation> orientation; double dz = 0; };
 struct RoadPosition { std::string road_id; double s = 0, t = 0; std::optional<Orientation> orientation; };
 struct RelativeRoadPosition { std::string entity; double ds = 0, dt = 0; std::optional<Orientation> orientation; };
 struct LanePosition {

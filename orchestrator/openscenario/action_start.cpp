@@ -39,6 +39,39 @@ EntityPoseLookup poses(ActionContext& ctx) {
   };
 }
 
+// A road or lane position without an Orientation: the entity faces its lane's driving
+// direction, the way the runtime then moves it (update_pose), as esmini places it. The road's
+// own heading would face an entity on a left lane (right-hand traffic) backwards at the start,
+// and a trailer placed behind it would stand in front of it.
+bool faces_driving_direction(const position::Position& p) {
+  return std::visit(
+      [](const auto& kind) {
+        using T = std::decay_t<decltype(kind)>;
+        if constexpr (std::is_same_v<T, position::LanePosition> || std::is_same_v<T, position::RoadPosition> ||
+                      std::is_same_v<T, position::RelativeLanePosition> ||
+                      std::is_same_v<T, position::RelativeRoadPosition>)
+          return !kind.orientation.has_value();
+        else
+          return false;
+      },
+      p);
+}
+
+// The height above the road a position gives: dz above its reference entity (RelativeObject /
+// RelativeWorld: "relative position in the z axis"), else on the road.
+double height_of(const position::Position& p, ActionContext& ctx) {
+  return std::visit(
+      [&](const auto& kind) {
+        using T = std::decay_t<decltype(kind)>;
+        if constexpr (std::is_same_v<T, position::RelativeObjectPosition> ||
+                      std::is_same_v<T, position::RelativeWorldPosition>)
+          return ctx.entities.at(kind.entity).height + kind.dz;
+        else
+          return 0.0;
+      },
+      p);
+}
+
 void teleport(const TeleportAction& a, EntityState& state, ActionContext& ctx, const std::string& entity) {
   const ResolvedPosition r = ctx.resolver.resolve(a.position, poses(ctx));
   if (!r.road || !r.lane)
@@ -50,10 +83,13 @@ void teleport(const TeleportAction& a, EntityState& state, ActionContext& ctx, c
   state.s = r.road->s;
   state.lane = *r.lane;
   state.offset = r.road->t - road.lane_center_t(state.lane, state.s);
+  state.height = height_of(a.position, ctx);
+  state.direction = faces_driving_direction(a.position) ? travel_direction(road, state.lane)
+                                                        : direction_of_heading(road, state.s, r.pose.heading);
   state.lateral_profile.reset();
   state.lateral_rate = 0;
   update_pose(state, ctx.roads);
-  state.pose.heading = r.pose.heading;  // the position's own orientation
+  if (!faces_driving_direction(a.position)) state.pose.heading = r.pose.heading;  // the position's own orientation
 }
 
 double target_speed(const SpeedAction& a, ActionContext& ctx) {
@@ -63,9 +99,19 @@ double target_speed(const SpeedAction& a, ActionContext& ctx) {
   return rel.factor ? reference * rel.value : reference + rel.value;
 }
 
-// Lane `value` lanes to the left (in the driving direction) of `lane`.
-int lane_to_the_left(const opendrive::Road& road, int lane, int value) {
-  return shifted_lane(lane, travel_direction(road, lane) * value);
+// A speed change at a rate: no faster than the vehicle's Performance allows (maxAcceleration
+// speeding up, maxDeceleration slowing down), its physical limits. esmini caps the rate so too
+// (acc-test.xosc asks a car of maxAcceleration 5 m/s^2 for 10 m/s^2).
+TransitionDynamics within_performance(TransitionDynamics dynamics, const Entity* entity, double change) {
+  if (dynamics.dimension != DynamicsDimension::Rate || entity == nullptr || !entity->performance) return dynamics;
+  const double limit = change >= 0 ? entity->performance->max_acceleration : entity->performance->max_deceleration;
+  if (limit > 0) dynamics.value = std::min(dynamics.value, limit);
+  return dynamics;
+}
+
+// Lane `value` lanes to the left of `from`'s lane, in the direction `from` drives.
+int lane_to_the_left(const opendrive::Road& road, const EntityState& from, int value) {
+  return shifted_lane(from.lane, travel_direction(from, road) * value);
 }
 
 bool has_limits(const LongitudinalDistanceAction& a) {
@@ -85,7 +131,7 @@ DistanceTarget distance_target(const LongitudinalDistanceAction& a, const Entity
   const EntityState& ref = placed(ctx, a.entity);
   if (!state.placed) throw MapError(fmt::format("entity \"{}\" has no position yet", entity));
   const opendrive::Road& road = ctx.roads.road(ref.road_id);
-  const int direction = travel_direction(road, ref.lane);
+  const int direction = travel_direction(ref, road);
   double gap = a.distance ? *a.distance : *a.time_gap * ref.speed;
   const bool ahead = a.displacement == "leadingReferencedEntity" ||
                      (a.displacement == "any" && (state.s - ref.s) * direction >= 0);
@@ -104,6 +150,7 @@ void longitudinal_distance(const LongitudinalDistanceAction& a, EntityState& sta
   const DistanceTarget target = distance_target(a, state, ctx, entity);
   state.road_id = target.ref->road_id;
   state.s = target.s;
+  state.direction = target.direction;
   state.speed = target.ref->speed;
   update_pose(state, ctx.roads);
 }
@@ -244,7 +291,9 @@ std::vector<std::string> start_action(const PrivateAction& action, const std::st
           teleport(a, state, ctx, entity);
         } else if constexpr (std::is_same_v<T, SpeedAction>) {
           const double to = target_speed(a, ctx);
-          const double duration = transition_duration(a.dynamics, to - state.speed, state.speed, to);
+          const double duration =
+              transition_duration(within_performance(a.dynamics, ctx.scenario.entity(entity), to - state.speed),
+                                  to - state.speed, state.speed, to);
           const bool continuous = std::holds_alternative<RelativeTargetSpeed>(a.target) &&
                                   std::get<RelativeTargetSpeed>(a.target).continuous;
           state.speed_profile.reset();
@@ -255,7 +304,7 @@ std::vector<std::string> start_action(const PrivateAction& action, const std::st
           const EntityState& from = a.relative_to ? placed(ctx, *a.relative_to) : state;
           if (!state.placed) throw MapError(fmt::format("entity \"{}\" has no position yet", entity));
           const opendrive::Road& road = ctx.roads.road(state.road_id);
-          const int target = a.relative_to ? lane_to_the_left(road, from.lane, a.lane) : a.lane;
+          const int target = a.relative_to ? lane_to_the_left(road, from, a.lane) : a.lane;
           state.path.reset();
           const double start_offset = state.t - road.lane_center_t(target, state.s);
           const double end_offset = a.target_lane_offset.value_or(0.0);

@@ -21,7 +21,7 @@ EntityState moved_on(const EntityState& state, const opendrive::RoadNetwork& roa
   EntityState later = state;
   later.pose.x += state.speed * std::cos(state.pose.heading) * h;
   later.pose.y += state.speed * std::sin(state.pose.heading) * h;
-  if (!state.road_id.empty()) later.s += travel_direction(roads.road(state.road_id), state.lane) * state.speed * h;
+  if (!state.road_id.empty()) later.s += travel_direction(state, roads.road(state.road_id)) * state.speed * h;
   return later;
 }
 

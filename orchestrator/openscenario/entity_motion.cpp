@@ -26,12 +26,20 @@ double LateralProfile::rate(double t) const {
 
 int travel_direction(const opendrive::Road& road, int lane) { return opendrive::lane_direction(road, lane); }
 
+int travel_direction(const EntityState& state, const opendrive::Road& road) {
+  return state.direction != 0 ? state.direction : travel_direction(road, state.lane);
+}
+
+int direction_of_heading(const opendrive::Road& road, double s, double heading) {
+  return std::cos(heading - road.plan_view.pose(std::clamp(s, 0.0, road.length)).heading) >= 0 ? 1 : -1;
+}
+
 void update_pose(EntityState& state, const opendrive::RoadNetwork& roads) {
   const opendrive::Road& road = roads.road(state.road_id);
   const double s = std::clamp(state.s, 0.0, road.length);
   state.t = road.lane_center_t(state.lane, s) + state.offset;
   const opendrive::Pose2 p = road.world(s, state.t);
-  const int direction = travel_direction(road, state.lane);
+  const int direction = travel_direction(state, road);
   const double along = std::sqrt(std::max(state.speed * state.speed - state.lateral_rate * state.lateral_rate, 0.0));
   // Moving along +s, a leftward rate turns the heading left; along -s, right.
   const double yaw = std::atan2(state.lateral_rate, along > 0 ? along : 1e-9);
@@ -53,6 +61,7 @@ void relocate(EntityState& state, const opendrive::RoadNetwork& roads) {
   }
   state.road_id = on_road->road_id;
   state.s = on_road->s;
+  state.direction = direction_of_heading(road, on_road->s, state.pose.heading);
   state.lane = *lane;
   state.t = on_road->t;
   state.offset = on_road->t - road.lane_center_t(*lane, on_road->s);
@@ -108,7 +117,7 @@ void advance(EntityState& state, const opendrive::RoadNetwork& roads, double t, 
   // curvature k that path is (1 - k t) times as long as the reference line.
   const double stretch = 1.0 - road.plan_view.curvature(state.s) * state.t;
   const std::size_t section = opendrive::section_index(road, std::clamp(state.s, 0.0, road.length));
-  state.s += travel_direction(road, state.lane) * along * dt / (stretch > 0.1 ? stretch : 0.1);
+  state.s += travel_direction(state, road) * along * dt / (stretch > 0.1 ? stretch : 0.1);
   follow_links(state, roads, section);  // lane sections, and on past the road's end
   state.odometer += std::abs(state.speed) * dt;
   update_pose(state, roads);

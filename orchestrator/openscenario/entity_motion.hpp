@@ -41,6 +41,13 @@ struct EntityState {
   double acceleration = 0;
   double lateral_rate = 0;
   double odometer = 0;
+  // The way the entity drives along its road: +1 along s, -1 against s; 0: its lane's driving
+  // direction. Set where it is placed (from its heading), kept through lane changes (a car
+  // changing into the oncoming lane keeps going its way), taken from the lane graph at links.
+  int direction = 0;
+  // Height of the reference point above the road surface: a relative position's dz (a bike
+  // carried on a car, esmini's drop-bike.xosc); 0 on the road.
+  double height = 0;
   opendrive::Pose2 pose;  // reference point in the inertial frame
   std::optional<SpeedProfile> speed_profile;
   std::optional<LateralProfile> lateral_profile;
@@ -69,6 +76,10 @@ struct EntityState {
 // Direction of travel along s: +1 on right lanes, -1 on left lanes (right-hand traffic;
 // mirrored for left-hand traffic roads).
 int travel_direction(const opendrive::Road& road, int lane);
+// The way `state` drives along `road` (its own direction, else its lane's).
+int travel_direction(const EntityState& state, const opendrive::Road& road);
+// The direction along `road` at s of a body heading `heading`: +1 along s, -1 against it.
+int direction_of_heading(const opendrive::Road& road, double s, double heading);
 
 // Advances `state` from t - dt to t along its road. Profiles that finish are left in place
 // (the runtime reads done() and ends their actions).

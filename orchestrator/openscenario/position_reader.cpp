@@ -56,12 +56,12 @@ Position read_kind(Element& p) {
     return w;
   }
   if (kind == "RelativeWorldPosition") {
-    p.ignore_attributes({"dz"});
-    return RelativeWorldPosition{p.text("entityRef"), p.number("dx"), p.number("dy"), read_orientation(p)};
+    return RelativeWorldPosition{p.text("entityRef"), p.number("dx"), p.number("dy"), read_orientation(p),
+                                 p.optional_number("dz").value_or(0.0)};
   }
   if (kind == "RelativeObjectPosition") {
-    p.ignore_attributes({"dz"});
-    return RelativeObjectPosition{p.text("entityRef"), p.number("dx"), p.number("dy"), read_orientation(p)};
+    return RelativeObjectPosition{p.text("entityRef"), p.number("dx"), p.number("dy"), read_orientation(p),
+                                  p.optional_number("dz").value_or(0.0)};
   }
   if (kind == "RoadPosition")
     return RoadPosition{p.text("roadId"), p.number("s"), p.number("t"), read_orientation(p)};

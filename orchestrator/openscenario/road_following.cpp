@@ -60,10 +60,13 @@ void follow_links(EntityState& state, const opendrive::RoadNetwork& roads, std::
       state.lane = lane_entering(road, section, next, state.lane);
       section = next;
     }
-    const int direction = opendrive::lane_direction(road, state.lane);
+    const int direction = travel_direction(state, road);
     const double over = direction > 0 ? state.s - road.length : -state.s;
     if (over <= 0) return;
-    const auto next = choose(state, roads, opendrive::next_lanes(roads, road.id, state.lane));
+    // An entity driving against its lane's direction (it changed into the oncoming lane) has
+    // no continuation in the lane graph: it stays at the road's end.
+    const bool with_lane = direction == opendrive::lane_direction(road, state.lane);
+    const auto next = with_lane ? choose(state, roads, opendrive::next_lanes(roads, road.id, state.lane)) : std::nullopt;
     if (!next) {
       state.s = direction > 0 ? road.length : 0.0;
       return;
@@ -83,6 +86,7 @@ void follow_links(EntityState& state, const opendrive::RoadNetwork& roads, std::
     const double path_left = over * stretch(road, direction > 0 ? road.length : 0.0, state.t);
     state.road_id = next->road_id;
     state.lane = next->lane;
+    if (state.direction != 0) state.direction = next->direction;
     state.t = to.lane_center_t(next->lane, next->s) + state.offset;
     state.s = next->s + next->direction * path_left / stretch(to, next->s, state.t);
     section = next->direction > 0 ? 0 : to.sections.size() - 1;
@@ -92,7 +96,7 @@ void follow_links(EntityState& state, const opendrive::RoadNetwork& roads, std::
 bool at_dead_end(const EntityState& state, const opendrive::RoadNetwork& roads) {
   const opendrive::Road* road = roads.find(state.road_id);
   if (road == nullptr || state.lane == 0) return false;
-  const int direction = opendrive::lane_direction(*road, state.lane);
+  const int direction = travel_direction(state, *road);
   const bool at_end = direction > 0 ? state.s >= road->length - kAtEnd : state.s <= kAtEnd;
   return at_end && opendrive::next_lanes(roads, road->id, state.lane).empty();
 }

@@ -467,13 +467,20 @@ struct StoryboardRuntime::Impl {
   }
 
   void run_init() {
-    for (const InitAction& a : scenario.storyboard.init) {
-      ActionContext ctx = context();
-      (void)start_action(a.action, a.entity, "", ctx, running);
-    }
-    // Trailers connected from the start: towed from here on (placed behind their tractors).
-    for (const auto& [tractor, trailer] : TrailerLinks(trailers))
-      connect_trailer(scenario, entities, trailers, tractor, trailer, roads);
+    // Init actions all take effect at t = 0: routes are planned after every entity is placed,
+    // whatever their order in the file (esmini's routing-test.xosc assigns the ego's route
+    // before it teleports it; a route planned from no position would be no plan).
+    const auto is_routing = [](const InitAction& a) {
+      return std::holds_alternative<AssignRouteAction>(a.action) || std::holds_alternative<AcquirePositionAction>(a.action);
+    };
+    for (const bool routing : {false, true})
+      for (const InitAction& a : scenario.storyboard.init) {
+        if (is_routing(a) != routing) continue;
+        ActionContext ctx = context();
+        (void)start_action(a.action, a.entity, "", ctx, running);
+      }
+    // Trailers connected from the start: towed from here on (lined up behind their tractors).
+    align_initial_trailers(scenario, entities, trailers, roads);
     for (const Story& story : scenario.storyboard.stories)
       transition("story", story.key, "startTransition", ElementState::Running);
   }

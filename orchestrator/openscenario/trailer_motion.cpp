@@ -73,6 +73,25 @@ void connect_trailer(const Scenario& scenario, std::map<std::string, EntityState
   if (front.placed) pull(*scenario.entity(tractor), front, *scenario.entity(trailer), towed, roads, 0);
 }
 
+void align_initial_trailers(const Scenario& scenario, std::map<std::string, EntityState>& entities,
+                            TrailerLinks& links, const opendrive::RoadNetwork& roads) {
+  std::map<std::string, bool> is_trailer;
+  for (const auto& [tractor, trailer] : links) is_trailer[trailer] = true;
+  for (const auto& [head, first] : TrailerLinks(links)) {
+    if (is_trailer.contains(head)) continue;  // chains are aligned from their front vehicle
+    std::string tractor = head;
+    for (std::size_t n = 0; n <= links.size(); ++n) {  // bounded: a loop of links stops
+      const auto link = links.find(tractor);
+      if (link == links.end() || !entities.at(tractor).placed) break;
+      EntityState& towed = entities.at(link->second);
+      stop_own_motion(towed);
+      towed.placed = false;  // straight behind its tractor, wherever Init teleported it
+      pull(*scenario.entity(tractor), entities.at(tractor), *scenario.entity(link->second), towed, roads, 0);
+      tractor = link->second;
+    }
+  }
+}
+
 void disconnect_trailer(std::map<std::string, EntityState>& entities, TrailerLinks& links, const std::string& tractor) {
   const auto it = links.find(tractor);
   if (it == links.end()) return;

@@ -25,6 +25,11 @@ TrailerLinks initial_trailer_links(const Scenario& scenario);
 // the trailer's own motion (speed, lateral, trajectory, route) ends: it is towed.
 void connect_trailer(const Scenario& scenario, std::map<std::string, EntityState>& entities, TrailerLinks& links,
                      const std::string& tractor, const std::string& trailer, const opendrive::RoadNetwork& roads);
+// The trailers connected from the start: each chain is lined up straight behind its front
+// vehicle, along its heading (where Init teleported a trailer does not matter, as in esmini:
+// a trailer's place is its tractor's), and towed from then on.
+void align_initial_trailers(const Scenario& scenario, std::map<std::string, EntityState>& entities,
+                            TrailerLinks& links, const opendrive::RoadNetwork& roads);
 // The tractor's trailer stays where it is, at rest (it has no drive of its own).
 void disconnect_trailer(std::map<std::string, EntityState>& entities, TrailerLinks& links, const std::string& tractor);
 

@@ -36,7 +36,7 @@ void EntityTrace::step(const StepView& view) {
     file_.print("{:.3f},,{},{:.3f},{:.3f},{:.4f},{:.3f},{:.3f},{},{},{:.3f},{:.3f},{},0,{},{:.3f},{:.4f},{:.4f}\n", time,
                name, ref.x(), ref.y(), a.heading, a.speed, a.accel, a.edge, a.lane, a.lane_pos,
                a.lat_offset.value_or(0.0), a.signals,
-               name == ego ? ego_driver_() : (actors_.is_sumo_driven(name) ? "sumo" : "script"), surface.z + 0.0,
+               name == ego ? ego_driver_() : (actors_.is_sumo_driven(name) ? "sumo" : "script"), surface.z + actors_.height_of(name) + 0.0,
                surface.pitch + 0.0, surface.roll + 0.0);
     ++rows_;
   }

@@ -118,10 +118,16 @@ void OpenScenarioActors::spawn(const std::string& name, Body& body, const opensc
   body.spawned = true;
 }
 
+double OpenScenarioActors::height_of(const std::string& name) const {
+  const auto it = bodies_.find(name);
+  return it == bodies_.end() ? 0.0 : it->second.height;
+}
+
 std::vector<sim::Command> OpenScenarioActors::place(const std::map<std::string, openscenario::EntityState>& entities) {
   std::vector<sim::Command> out;
   for (const auto& [name, state] : entities) {
     Body& body = bodies_.at(name);
+    body.height = state.height;
     const bool is_ego = ego_driven_ && name == ego_;  // the driven ego; a storyboard one is as any entity
     const bool in_traffic = state.placed && state.visibility.traffic;
     if (!in_traffic) {

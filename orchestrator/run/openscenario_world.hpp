@@ -51,6 +51,8 @@ class OpenScenarioActors {
   [[nodiscard]] const std::string& name_of(sim::ActorId id) const { return names_.at(static_cast<size_t>(id)); }
   // The entity's reference point (rear axle centre for vehicles) from SUMO's reported centre.
   [[nodiscard]] Vec2 reference_point(const sim::ActorState& state) const;
+  // The entity's height above the road surface the storyboard gives (a relative position's dz).
+  [[nodiscard]] double height_of(const std::string& name) const;
   [[nodiscard]] const std::string& ego() const { return ego_; }
   // SUMO, the reference driver or a plug-in drive the ego (false: it follows the storyboard).
   [[nodiscard]] bool ego_driven() const { return ego_driven_; }
@@ -67,6 +69,7 @@ class OpenScenarioActors {
     bool driven = false;      // by SUMO (the ego, an activated controller)
     double desired_speed = -1;  // last sent to a SUMO-driven one
     std::size_t route_version = 0;  // of the entity's route plan its SUMO route was made from
+    double height = 0;              // above the road (the storyboard's)
   };
   [[nodiscard]] Vec2 centre_of(const Body& body, const opendrive::Pose2& pose) const;
   // SUMO edges for a SUMO-driven entity: its road, its planned lanes, then straight on.

@@ -174,7 +174,8 @@ TEST(RoutePlan, AClosedRouteRepeatsItsLoop) {
 // on; C acquires a position on road 3.
 class JunctionScenario : public ::testing::Test {
  protected:
-  void load(const std::string& a_events, const std::string& init_extra = "", const std::string& route_catalog = "") {
+  void load(const std::string& a_events, const std::string& init_extra = "", const std::string& route_catalog = "",
+            const std::string& init_first = "") {
     const auto teleport = [](const std::string& name, double s, double speed) {
       return R"(<Private entityRef=")" + name + R"("><PrivateAction><TeleportAction><Position><LanePosition roadId="1" laneId="-1" s=")" +
              std::to_string(s) + R"(" offset="0"/></Position></TeleportAction></PrivateAction>
@@ -186,7 +187,7 @@ class JunctionScenario : public ::testing::Test {
 <CatalogLocations><RouteCatalog><Directory path="./catalogs"/></RouteCatalog></CatalogLocations>
 <RoadNetwork><LogicFile filepath="road.xodr"/></RoadNetwork>
 <Entities>)" + test::vehicle("A") + test::vehicle("B") + R"(</Entities>
-<Storyboard><Init><Actions>)" + teleport("A", 50, 10) + teleport("B", 30, 10) + init_extra + R"(</Actions></Init>
+<Storyboard><Init><Actions>)" + init_first + teleport("A", 50, 10) + teleport("B", 30, 10) + init_extra + R"(</Actions></Init>
 <Story name="S"><Act name="Act"><ManeuverGroup name="G" maximumExecutionCount="1">
 <Actors selectTriggeringEntities="false"><EntityRef entityRef="A"/></Actors><Maneuver name="M">)" + a_events +
                              R"(</Maneuver></ManeuverGroup><StartTrigger><ConditionGroup><Condition name="c" delay="0" conditionEdge="none"><ByValueCondition><SimulationTimeCondition value="0" rule="greaterOrEqual"/></ByValueCondition></Condition>
@@ -231,6 +232,20 @@ TEST_F(JunctionScenario, TheRoutedEntityTurnsAndTheOtherGoesStraightOn) {
   EXPECT_EQ(entity("A").route_passed, 2u);  // s = 81.5 > 60 on road 3
   EXPECT_EQ(entity("B").road_id, "2");
   EXPECT_NEAR(entity("B").pose.y, -1.75, 1e-6);
+}
+
+// esmini's routing-test.xosc assigns the route in Init before the TeleportAction places the
+// entity: Init actions all take effect at 0 s, so the route is planned from where the entity
+// is placed (before, it was planned from no position: no plan, and B went straight on).
+TEST_F(JunctionScenario, ARouteAssignedInInitBeforeTheTeleportTurns) {
+  load(event("Route", R"(<RoutingAction><AssignRouteAction><CatalogReference catalogName="routes" entryName="Left"/></AssignRouteAction></RoutingAction>)", 1),
+       "",
+       R"(<Route name="Left" closed="false"><Waypoint routeStrategy="shortest">)" + lane_position("1", 60, -1) +
+           R"(</Waypoint><Waypoint routeStrategy="shortest">)" + lane_position("3", 60, -1) + "</Waypoint></Route>",
+       R"(<Private entityRef="B"><PrivateAction><RoutingAction><AssignRouteAction><CatalogReference catalogName="routes" entryName="Left"/></AssignRouteAction></RoutingAction></PrivateAction></Private>)");
+  EXPECT_FALSE(entity("B").route_plan.empty());
+  test::run_until(*runtime_, 15);
+  EXPECT_EQ(entity("B").road_id, "3");
 }
 
 TEST_F(JunctionScenario, ARouteFromTheRouteCatalogTurnsToo) {

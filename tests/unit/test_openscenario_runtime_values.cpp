@@ -1,6 +1,8 @@
 // The storyboard runtime's variables (1.2) and trailers (1.3): VariableActions change a
 // variable, a VariableCondition starts an event on it; a connected trailer follows its
-// tractor, a disconnected one stays behind at rest.
+// tractor, a disconnected one stays behind at rest. And the way an entity drives: it faces
+// its lane's driving direction when placed without an Orientation, and keeps its direction
+// when it changes into the oncoming lane.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -26,10 +28,16 @@ std::string at_time(const std::string& name, double at) {
          std::to_string(at) + R"(" rule="greaterOrEqual"/></ByValueCondition></Condition></ConditionGroup></StartTrigger>)";
 }
 
+// A straight two-way road: lane 1 (driven against s, right-hand traffic) and lane -1.
+constexpr const char* kTwoWayRoad = R"(<OpenDRIVE><header revMajor="1" revMinor="6"/>
+<road id="0" length="2000" junction="-1"><planView><geometry s="0" x="0" y="0" hdg="0" length="2000"><line/></geometry></planView>
+<lanes><laneSection s="0"><left><lane id="1" type="driving"><width sOffset="0" a="3.5" b="0" c="0" d="0"/></lane></left>
+<right><lane id="-1" type="driving"><width sOffset="0" a="3.5" b="0" c="0" d="0"/></lane></right></laneSection></lanes></road></OpenDRIVE>)";
+
 class RuntimeValues : public ::testing::Test {
  protected:
   void load(const std::string& entities, const std::string& init, const std::string& events,
-            const std::string& declarations = "") {
+            const std::string& declarations = "", const char* road = kStraightTwoLaneRoad) {
     const std::string text = R"(<?xml version="1.0"?><OpenSCENARIO>
 <FileHeader revMajor="1" revMinor="3" date="2024-01-01T00:00:00" author="t" description="values"/>)" + declarations +
                              R"(<RoadNetwork><LogicFile filepath="road.xodr"/></RoadNetwork>
@@ -39,7 +47,7 @@ class RuntimeValues : public ::testing::Test {
 <Actors selectTriggeringEntities="false"><EntityRef entityRef="A"/></Actors><Maneuver name="M">)" + events +
                              R"(</Maneuver></ManeuverGroup>)" + at_time("ActStart", 0) + R"(</Act></Story>
 <StopTrigger/></Storyboard></OpenSCENARIO>)";
-    dir_.write("road.xodr", kStraightTwoLaneRoad);
+    dir_.write("road.xodr", road);
     scenario_ = load_scenario(dir_.write("s.xosc", text).string());
     roads_ = opendrive::read_xodr_file((dir_ / "road.xodr").string());
     runtime_ = std::make_unique<StoryboardRuntime>(scenario_, roads_);
@@ -135,6 +143,77 @@ TEST_F(RuntimeValues, AConnectTrailerActionCouplesAnEntityPlacedApart) {
   // Coupled: the coupler is on the hitch, the trailer in line behind on the straight road.
   EXPECT_NEAR(a.pose.x - t.pose.x, 8.0, 1e-6);
   EXPECT_NEAR(a.pose.y, t.pose.y, 1e-6);
+}
+
+// esmini's trailers.xosc: a tractor on a left lane (its LanePosition without Orientation) tows
+// a chain of two trailers that Init teleported onto the tractor's own place and ahead of it.
+// The tractor faces its lane's driving direction from the start, and the chain is lined up
+// straight behind it (before, the trailers stood in front of it, on the side Init put them).
+TEST_F(RuntimeValues, TrailersConnectedFromTheStartLineUpBehindTheirTractorInItsDrivingDirection) {
+  std::string t = vehicle("T");
+  t.replace(t.find("</Vehicle>"), 0, R"(<TrailerCoupler dx="7.0"/><TrailerHitch dx="-2.0"/><Trailer><TrailerRef entityRef="U"/></Trailer>)");
+  std::string u = vehicle("U");
+  u.replace(u.find("</Vehicle>"), 0, R"(<TrailerCoupler dx="4.0"/>)");
+  std::string a = vehicle("A");
+  a.replace(a.find("</Vehicle>"), 0, R"(<TrailerHitch dx="-1.0"/><Trailer><TrailerRef entityRef="T"/></Trailer>)");
+  const std::string keep = R"(<Event name="Keep" priority="parallel"><Action name="Speed"><PrivateAction><LongitudinalAction><SpeedAction>
+    <SpeedActionDynamics dynamicsShape="step" dynamicsDimension="time" value="0"/><SpeedActionTarget><AbsoluteTargetSpeed value="10"/></SpeedActionTarget>
+    </SpeedAction></LongitudinalAction></PrivateAction></Action>)" + at_time("KeepStart", 50) + "</Event>";
+  load(u + t + a, place("U", 150, 1, 0) + place("T", 100, 1, 0) + place("A", 100, 1, 10), keep, "", kTwoWayRoad);
+  const EntityState& a0 = runtime_->entities().at("A");
+  EXPECT_NEAR(std::cos(a0.pose.heading), -1.0, 1e-9);  // facing against s, the way it drives
+  EXPECT_NEAR(runtime_->entities().at("T").pose.x, 100.0 + 8.0, 1e-9);         // 1 m + 7 m behind
+  EXPECT_NEAR(runtime_->entities().at("U").pose.x, 100.0 + 8.0 + 6.0, 1e-9);   // 2 m + 4 m behind T
+  EXPECT_NEAR(runtime_->entities().at("U").pose.y, a0.pose.y, 1e-9);
+  run_until(*runtime_, 1.0);
+  EXPECT_NEAR(runtime_->entities().at("A").pose.x, 90.0, 1e-6);
+  EXPECT_NEAR(runtime_->entities().at("U").pose.x, 90.0 + 14.0, 1e-6);
+}
+
+// esmini's acc-test.xosc: the target changes one lane to the left, into the oncoming lane of a
+// two-way road, and changes back. It drives on the way it drove (before, it turned round: the
+// runtime moved every entity in its lane's driving direction).
+TEST_F(RuntimeValues, AnEntityChangingIntoTheOncomingLaneKeepsItsDirection) {
+  const std::string events = R"(<Event name="Over" priority="parallel"><Action name="Change"><PrivateAction><LateralAction><LaneChangeAction>
+    <LaneChangeActionDynamics dynamicsShape="sinusoidal" value="1" dynamicsDimension="time"/>
+    <LaneChangeTarget><RelativeTargetLane entityRef="A" value="1"/></LaneChangeTarget></LaneChangeAction></LateralAction></PrivateAction></Action>)" +
+                             at_time("OverStart", 1) + "</Event>";
+  load(vehicle("A"), place("A", 100, -1, 10), events, "", kTwoWayRoad);
+  run_until(*runtime_, 3.0);
+  const EntityState& a = runtime_->entities().at("A");
+  EXPECT_EQ(a.lane, 1);
+  EXPECT_NEAR(a.pose.y, 1.75, 1e-6);
+  EXPECT_NEAR(a.pose.x, 100.0 + 30.0, 1.0);  // on along s at 10 m/s, less the lateral part during the change (0.8 m)
+  EXPECT_NEAR(std::cos(a.pose.heading), 1.0, 1e-9);
+}
+
+// esmini's acc-test.xosc: a SpeedAction at a rate the vehicle's Performance does not allow
+// (20 m/s^2 for a car of maxAcceleration 10) runs at the vehicle's limit.
+TEST_F(RuntimeValues, ASpeedRateIsCappedByTheVehiclesPerformance) {
+  const std::string events = R"(<Event name="Go" priority="parallel"><Action name="Faster"><PrivateAction><LongitudinalAction><SpeedAction>
+    <SpeedActionDynamics dynamicsShape="linear" dynamicsDimension="rate" value="20"/><SpeedActionTarget><AbsoluteTargetSpeed value="30"/></SpeedActionTarget>
+    </SpeedAction></LongitudinalAction></PrivateAction></Action>)" + at_time("GoStart", 1) + "</Event>";
+  load(vehicle("A"), place("A", 100, -1, 10), events);
+  run_until(*runtime_, 2.0);
+  EXPECT_NEAR(runtime_->entities().at("A").speed, 20.0, 1e-6);  // 1 s at 10 m/s^2 (not 30 m/s after 1 s)
+  run_until(*runtime_, 3.5);
+  EXPECT_NEAR(runtime_->entities().at("A").speed, 30.0, 1e-6);
+}
+
+// esmini's drop-bike.xosc: a bike placed 0.2 m above a car by a RelativeObjectPosition's dz
+// ("relative position in the z axis") rides at that height; a teleport 0.1 m below it is
+// 0.1 m above the road (before, dz was ignored: every entity was on the road).
+TEST_F(RuntimeValues, ARelativePositionsDzIsTheEntitysHeightAboveTheRoad) {
+  const std::string down = R"(<Event name="Drop" priority="parallel"><Action name="Down"><PrivateAction><TeleportAction><Position>
+    <RelativeObjectPosition entityRef="B" dx="20" dy="0" dz="-0.1"/></Position></TeleportAction></PrivateAction></Action>)" +
+                           at_time("DropStart", 1) + "</Event>";
+  const std::string on_a = R"(<Private entityRef="B"><PrivateAction><TeleportAction><Position>
+    <RelativeObjectPosition entityRef="A" dx="0" dy="-0.6" dz="0.2"/></Position></TeleportAction></PrivateAction></Private>)";
+  load(vehicle("A") + vehicle("B"), place("A", 100, -1, 10) + on_a, down);
+  EXPECT_NEAR(runtime_->entities().at("B").height, 0.2, 1e-12);
+  EXPECT_NEAR(runtime_->entities().at("A").height, 0.0, 1e-12);
+  run_until(*runtime_, 2.0);
+  EXPECT_NEAR(runtime_->entities().at("A").height, 0.1, 1e-12);  // 0.1 m below B
 }
 
 }  // namespace
