@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <map>
 
@@ -150,7 +151,10 @@ class JunctionPlanner {
       const PlannedEdge& te = plan.edges[to->second.edge];
       const auto key = std::make_tuple(fe.id, from->second.lane, te.id, to->second.lane);
       if (const auto it = seen.find(key); it != seen.end()) {
-        check_same_path(plan.connections[it->second.first], wf_.routes[it->second.second], route, p, plan.notes);
+        check_same_path(plan.connections[it->second.first], wf_.routes[it->second.second], route, p,
+                        {&fe.lanes[static_cast<std::size_t>(from->second.lane)].shape,
+                         &te.lanes[static_cast<std::size_t>(to->second.lane)].shape},
+                        plan.notes);
         continue;
       }
       seen[key] = {plan.connections.size(), p.route};
@@ -167,8 +171,10 @@ class JunctionPlanner {
   // 5-way junction) the net still carries it, connected, and `map build` notes how far its
   // waypoints lie from that path (`map check` measures them): refusing the map would leave a
   // user with no net for a drawing RoadEditor accepts.
+  // `ends`: the lanes before and after, which a passage's first and last waypoints may lie on.
   void check_same_path(const PlannedConnection& c, const WaypointRoute& first, const WaypointRoute& route,
-                       const JunctionPassage& p, std::vector<std::string>& notes) const {
+                       const JunctionPassage& p, const std::array<const Polyline*, 2>& ends,
+                       std::vector<std::string>& notes) const {
     const Polyline path(c.shape);
     const double length = route.line.length();
     const bool closed = is_closed_route(route);  // only a closed route's passage wraps past its end
@@ -177,7 +183,8 @@ class JunctionPlanner {
     for (std::size_t i = 0; i < route.points.size(); ++i) {
       const double s = route.line.s_at_index(i);
       if (!(s >= p.s0 && s <= p.s1) && !(closed && s + length >= p.s0 && s + length <= p.s1)) continue;
-      const double d = path.project(route.line.point(i)).distance;
+      const Vec2& q = route.line.point(i);
+      const double d = std::min({path.project(q).distance, ends[0]->project(q).distance, ends[1]->project(q).distance});
       if (d > worst) {
         worst = d;
         worst_i = i;
