@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 #include <set>
 
@@ -176,4 +177,42 @@ TEST(JunctionPlan, RoadsWithoutJunctionsArePlannedAsBefore) {
   EXPECT_EQ(plan.junctions, 0);
   EXPECT_TRUE(junction_nodes(plan).empty());
   for (const auto& c : plan.connections) EXPECT_TRUE(c.shape.empty());
+}
+
+namespace {
+
+// East along y = 0, a right turn of radius `radius` onto x = 0, south to y = -60 (1 m points;
+// the straights are drawn the same for any radius, so two such routes share them as one lane).
+std::vector<Vec2> right_turn(double radius) {
+  std::vector<Vec2> pts;
+  for (double x = -60; x < -radius - 1e-9; x += 1.0) pts.emplace_back(x, 0);
+  const int n = static_cast<int>(std::ceil(radius * M_PI / 2));
+  for (int i = 0; i <= n; ++i) {
+    const double a = M_PI / 2 * i / n;  // from north of the centre round to its east
+    pts.emplace_back(-radius + radius * std::sin(a), -radius + radius * std::cos(a));
+  }
+  for (double y = -std::ceil(radius + 1e-9); y >= -60; y -= 1.0) pts.emplace_back(0, y);
+  return pts;
+}
+
+}  // namespace
+
+TEST(JunctionPlan, TwoTurnsOfDifferentRadiiBetweenTheSameLanesShareOneConnectionWithANote) {
+  // A RoadEditor user can draw this (the same turn once tight, once wide); SUMO has one
+  // connection per pair of lanes, so the map builds, the wide turn drives the tight one's
+  // connection, and the note names the waypoint farthest from it.
+  std::vector<test::SyntheticRoute> routes = {{"tight", right_turn(8)}, {"wide", right_turn(15)}};
+  test::TempDir dir("junction_two_radii");
+  const WaypointFile wf = load_waypoint_file(test::write_waypoint_file(dir.path(), "two_radii", routes).string());
+  const NetPlan plan = plan_net(wf, NetPlanSettings{});
+  EXPECT_NE(lane_of_routes(plan, {"tight", "wide"}), nullptr);  // the shared straights
+  ASSERT_EQ(plan.connections.size(), 1u);
+  EXPECT_LE(max_distance_to_plan(plan, wf.routes[0]), 0.05);
+  const double miss = max_distance_to_plan(plan, wf.routes[1]);
+  EXPECT_GT(miss, 1.0);  // the wide turn lies up to (15 - 8) * (sqrt 2 - 1) = 2.9 m inside
+  const auto note = std::find_if(plan.notes.begin(), plan.notes.end(),
+                                 [](const std::string& n) { return n.find("along different paths") != std::string::npos; });
+  ASSERT_NE(note, plan.notes.end());
+  EXPECT_NE(note->find("\"wide\" drives \"tight\"'s path"), std::string::npos) << *note;
+  EXPECT_NE(note->find("wp_idx"), std::string::npos) << *note;
 }
