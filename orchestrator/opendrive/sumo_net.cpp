@@ -56,9 +56,12 @@ std::string lane_type_map_xml() {
   for (const char* t : {"stop", "shoulder", "restricted"})
     out += fmt::format("    <type id=\"{}\" priority=\"0\" speed=\"13.89\" width=\"2.50\" allow=\"authority\"/>\n", t);
   out += "    <type id=\"parking\" priority=\"0\" speed=\"1.39\" width=\"2.50\" allow=\"authority\"/>\n";
-  out += "    <type id=\"sidewalk\" priority=\"-2\" speed=\"2.78\" width=\"2.00\" allow=\"pedestrian\"/>\n";
-  out += "    <type id=\"walking\" priority=\"-2\" speed=\"2.78\" width=\"2.00\" allow=\"pedestrian\"/>\n";
-  out += "    <type id=\"biking\" priority=\"-1\" speed=\"5.56\" width=\"1.50\" allow=\"bicycle\"/>\n";
+  // Sidewalks and cycle lanes take scripted entities too (they are SUMO vehicles of the class
+  // "authority", openscenario_world.cpp: a pedestrian placed on a sidewalk), besides SUMO's
+  // own pedestrians and bicycles.
+  out += "    <type id=\"sidewalk\" priority=\"-2\" speed=\"2.78\" width=\"2.00\" allow=\"pedestrian authority\"/>\n";
+  out += "    <type id=\"walking\" priority=\"-2\" speed=\"2.78\" width=\"2.00\" allow=\"pedestrian authority\"/>\n";
+  out += "    <type id=\"biking\" priority=\"-1\" speed=\"5.56\" width=\"1.50\" allow=\"bicycle authority\"/>\n";
   out += "    <type id=\"tram\" priority=\"2\" speed=\"13.89\" width=\"3.50\" allow=\"tram\"/>\n";
   out += "    <type id=\"rail\" priority=\"3\" speed=\"33.33\" width=\"3.50\" allow=\"rail rail_urban rail_electric rail_fast\"/>\n";
   for (const char* t : {"none", "border", "median", "curb", "special1", "special2", "special3", "roadWorks",
