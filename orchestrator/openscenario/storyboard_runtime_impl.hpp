@@ -1,0 +1,101 @@
+#pragma once
+// The storyboard runtime's state and steps (StoryboardRuntime::Impl), shared by its two
+// sources: storyboard_runtime.cpp (storyboard elements, init, step) and
+// storyboard_conditions.cpp (condition evaluation). Internal: include only from those.
+#include <map>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "openscenario/action_start.hpp"
+#include "openscenario/rule.hpp"
+#include "openscenario/storyboard_runtime.hpp"
+
+namespace orch::openscenario {
+
+struct StoryboardRuntime::Impl {
+  struct Record {
+    ElementState state = ElementState::Standby;
+    int executions = 0;
+    struct Transition {
+      std::string what;  // startTransition, endTransition, ...
+      long step;         // the step it happened in
+      long number;       // counts all transitions of the run: which ones a condition has seen
+    };
+    std::vector<Transition> transitions;
+  };
+
+  struct ConditionMemory {
+    std::map<std::string, double> since;  // per entity: since when a duration condition holds
+    bool has_previous = false;
+    bool previous = false;
+    std::vector<std::pair<double, bool>> history;  // edged value per evaluation, for delays
+    long transitions_seen = 0;  // the number of the last transition this condition was true for
+  };
+
+  const Scenario& scenario;
+  const opendrive::RoadNetwork& roads;
+  PositionResolver resolver;
+  double t = 0;
+  long step_index = 0;
+  long transitions_made = 0;
+  bool finished = false;
+  std::map<std::string, EntityState> entities;
+  std::vector<TransitionLog> log;
+  std::map<std::pair<std::string, std::string>, Record> records;        // by (type, key)
+  std::map<std::pair<std::string, std::string>, std::string> names;     // (type, key) -> name
+  std::map<const Condition*, ConditionMemory> memory;
+  std::vector<RunningAction> running;
+  std::map<std::string, Parameter> parameters;  // values as the parameter actions set them (by key)
+  std::map<std::string, Parameter> variables;   // values as the variable actions set them
+  TrailerLinks trailers;                        // tractor -> trailer towed now
+
+  Impl(const Scenario& s, const opendrive::RoadNetwork& r);
+
+  double last_dt = 0;  // the last step's
+
+  ActionContext context();
+
+  Record& record(const std::string& type, const std::string& name) { return records[{type, name}]; }
+
+  // `key`: the element's (unique) key; the log names it by its name, as the file does.
+  void transition(const std::string& type, const std::string& key, const std::string& what, ElementState to);
+  bool value_of(const Condition& c, ConditionMemory& m);
+
+  // A parameter's or variable's value now against a condition's.
+  static bool compare(const Parameter& p, Rule rule, const std::string& value);
+
+  // Whether `now` has held for `duration` seconds (per entity).
+  bool held_for(ConditionMemory& m, const std::string& entity, bool now, double duration);
+
+  // A point as a body without extent (positions in Distance and ReachPosition conditions).
+  EntityState point_state(const Position& p);
+  bool entity_condition(const ByEntityCondition& c, const std::string& name, ConditionMemory& m);
+  bool by_entity(const ByEntityCondition& c, ConditionMemory& m);
+  bool evaluate(const Condition& c);
+  bool fires(const std::optional<Trigger>& trigger);
+  void start_event(const Event& e);
+  void stop_action(const std::string& name);
+  void stop_event(const Event& e);
+  void start_group(const ManeuverGroup& g);
+  void stop_act(const Act& act);
+  bool complete(const std::string& type, const std::string& name);
+
+  // Ends every element whose children have all ended, bottom-up.
+  void settle();
+
+  // The Storyboard's StopTrigger stops what still executes (the standard 1.3, 8.2: the
+  // stopTransition leaves runningState or standbyState when "an issued stop trigger" stops
+  // the element; 8.4.2: an Event "transfers to completeState with stopTransition" when "a stop
+  // trigger is issued by the enclosing Act or Storyboard"): running actions and running or
+  // standby events stop; a maneuver, group, act or story whose children are then all complete
+  // has ended (endTransition, as settle() ends it), one still waiting in standby (an Act whose
+  // start trigger never fired) stops.
+  void stop_storyboard();
+  void evaluate_storyboard();
+  void run_init();
+  void step(double dt);
+};
+
+}  // namespace orch::openscenario
