@@ -38,6 +38,9 @@ TEST(OpenDriveSumoNet, LanesWithoutSpeedGetTheirRoadsSpeed) {
   EXPECT_NEAR(speed_of("3", 1), 100 / 3.6, 1e-4);   // no road type: rural default
 }
 
+// Shoulders are for scripted entities only; sidewalks and cycle lanes take them besides SUMO's
+// own pedestrians and bicycles (a pedestrian entity placed on a sidewalk is a SUMO vehicle of
+// the class "authority": SUMO refused to insert it before).
 TEST(OpenDriveSumoNet, LaneTypeMapKeepsShouldersForScriptedEntitiesOnly) {
   pugi::xml_document doc;
   ASSERT_TRUE(doc.load_string(lane_type_map_xml().c_str()));
@@ -45,7 +48,8 @@ TEST(OpenDriveSumoNet, LaneTypeMapKeepsShouldersForScriptedEntitiesOnly) {
   EXPECT_STREQ(type("stop").attribute("allow").value(), "authority");
   EXPECT_FALSE(type("stop").attribute("discard"));
   EXPECT_STREQ(type("shoulder").attribute("allow").value(), "authority");
-  EXPECT_STREQ(type("sidewalk").attribute("allow").value(), "pedestrian");
+  EXPECT_STREQ(type("sidewalk").attribute("allow").value(), "pedestrian authority");
+  EXPECT_STREQ(type("biking").attribute("allow").value(), "bicycle authority");
   EXPECT_STREQ(type("border").attribute("discard").value(), "true");
   EXPECT_NE(std::string(type("driving").attribute("disallow").value()).find("pedestrian"), std::string::npos);
 }
