@@ -54,7 +54,7 @@ struct RunOptions {
   std::optional<int> ego_port;           // --ego-port (0: any free port)
   std::string ego_entity;                // --ego NAME: the ego of an OpenSCENARIO run
   std::vector<std::string> parameters;   // --param NAME=VALUE (OpenSCENARIO runs)
-  std::string ego_model;                 // --ego-model sumo|r157 ("" = sumo, or the evaluation file's)
+  std::string ego_model;                 // --ego-model sumo|r157|cruise ("" = sumo, or the evaluation file's)
   bool reference_run = false;            // --reference-run: again with the R157 reference driver
   std::string ego_address = "127.0.0.1";  // --ego-address: loopback unless asked otherwise
   double ego_wait = 60;                  // --ego-wait, s to wait for the plug-in to connect
