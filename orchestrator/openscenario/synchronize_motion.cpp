@@ -2,13 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 
 #include <fmt/format.h>
 
 #include "core/errors.hpp"
 #include "opendrive/lane_graph.hpp"
 #include "openscenario/route_plan.hpp"
+#include "openscenario/trajectory_follow.hpp"
 
 namespace orch::openscenario {
 namespace {
@@ -32,21 +32,7 @@ double straight_distance(const opendrive::Pose2& a, const opendrive::Pose2& b) {
 
 // Distance along a trajectory from the entity to the path point nearest the target.
 double along_path(const PathMotion& path, const opendrive::Pose2& target) {
-  double best = std::numeric_limits<double>::infinity();
-  double at = path.distance;
-  for (std::size_t i = 0; i + 1 < path.points.size(); ++i) {
-    const PathPoint& a = path.points[i];
-    const PathPoint& b = path.points[i + 1];
-    const double dx = b.x - a.x, dy = b.y - a.y;
-    const double len2 = dx * dx + dy * dy;
-    const double f = len2 > 0 ? std::clamp(((target.x - a.x) * dx + (target.y - a.y) * dy) / len2, 0.0, 1.0) : 0.0;
-    const double d = std::hypot(a.x + f * dx - target.x, a.y + f * dy - target.y);
-    if (d < best) {
-      best = d;
-      at = a.distance + f * (b.distance - a.distance);
-    }
-  }
-  return std::abs(at - path.distance);
+  return std::abs(nearest_distance(path, target.x, target.y, 0.0, path.length()) - path.distance);
 }
 
 // The entity's speed along its road's direction of travel (esmini projects it on s).
