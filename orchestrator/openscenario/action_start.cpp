@@ -84,12 +84,12 @@ void teleport(const TeleportAction& a, EntityState& state, ActionContext& ctx, c
   state.lane = *r.lane;
   state.offset = r.road->t - road.lane_center_t(state.lane, state.s);
   state.height = height_of(a.position, ctx);
-  state.direction = faces_driving_direction(a.position) ? travel_direction(road, state.lane)
-                                                        : direction_of_heading(road, state.s, r.pose.heading);
+  const bool along_lane = faces_driving_direction(a.position);
+  state.direction = along_lane ? travel_direction(road, state.lane) : direction_of_heading(road, state.s, r.pose.heading);
   state.lateral_profile.reset();
   state.lateral_rate = 0;
   update_pose(state, ctx.roads);
-  if (!faces_driving_direction(a.position)) state.pose.heading = r.pose.heading;  // the position's own orientation
+  if (!along_lane) state.pose.heading = r.pose.heading;  // the position's own orientation
 }
 
 double target_speed(const SpeedAction& a, ActionContext& ctx) {
