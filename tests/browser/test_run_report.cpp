@@ -273,6 +273,9 @@ TEST_F(RunReportInBrowser, AnOpenScenarioRunShowsItsEntitiesByNameWithTheEgoFirs
   const std::string text = b.eval("return document.querySelector('.meta').innerText;");
   EXPECT_EQ(text.find("ending scene"), std::string::npos) << text;
   EXPECT_NE(text.find("StopTrigger at 27.60 s; last: "), std::string::npos) << text;
+  // ... and who drove the ego (result.json's ego_model).
+  const std::string ego_model = nlohmann::json::parse(slurp(out / "result.json"))["ego_model"].get<std::string>();
+  EXPECT_NE(text.find("EGO DRIVEN BY\n" + ego_model + "\n"), std::string::npos) << text;
   // The ego's gap and TTC from metrics.csv.
   EXPECT_EQ(b.eval("return !!document.getElementById('chart-ttc');"), true);
   b.resize(1400, 2300);  // down to the storyboard timeline

@@ -62,7 +62,7 @@
     }
     const ending = storyboard ? ['storyboard end', storyboardEnd()]
       : ['ending scene', R.ending_scene === null || R.ending_scene === undefined ? 'none' : 'scene ' + R.ending_scene];
-    const meta = [['seed', R.seed], ['backend', R.backend], ['map', R.map_id], ['simulated', fmtNum(R.sim_time, 2) + ' s'],
+    const meta = [['ego driven by', R.ego_model], ['seed', R.seed], ['backend', R.backend], ['map', R.map_id], ['simulated', fmtNum(R.sim_time, 2) + ' s'],
       ['steps', R.steps + ' × ' + step + ' s'], ending, ['traffic', R.traffic],
       ['wall time', fmtNum(R.wall_time_s, 2) + ' s'], ['SUMO', R.sumo_version], ['orchestrator', R.orchestrator_version]];
     c.append(el('div', { class: 'meta' }, meta.map(([k, v]) => el('div', {}, el('span', { text: k }), v === undefined ? '–' : String(v)))));
