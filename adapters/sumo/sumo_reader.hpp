@@ -223,10 +223,18 @@ class WorldReader {
     } else {
       s.position = centre_of(position(r), s.heading, a.length);
       s.accel = number(r, tc::VAR_ACCELERATION);
+      s.signals = integer(r, tc::VAR_SIGNALS);
       s.lane = integer(r, tc::VAR_LANE_INDEX);
+      if (s.lane == tc::INVALID_INT_VALUE) {
+        // Placed off every lane (moveToXY, keepRoute 2: an OpenSCENARIO entity past its road's
+        // end): SUMO keeps the last edge's id but has no lane, lane position or offset.
+        s.edge.clear();
+        s.lane = -1;
+        s.present = true;
+        return s;
+      }
       s.lane_pos = number(r, tc::VAR_LANEPOSITION) - a.length / 2;
       s.lat_offset = number(r, tc::VAR_LANEPOSITION_LAT);
-      s.signals = integer(r, tc::VAR_SIGNALS);
     }
     s.present = true;
     return s;

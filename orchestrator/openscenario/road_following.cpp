@@ -64,11 +64,14 @@ void follow_links(EntityState& state, const opendrive::RoadNetwork& roads, std::
     const double over = direction > 0 ? state.s - road.length : -state.s;
     if (over <= 0) return;
     // An entity driving against its lane's direction (it changed into the oncoming lane) has
-    // no continuation in the lane graph: it stays at the road's end.
+    // no continuation in the lane graph: it stays at the road's end, standing.
     const bool with_lane = direction == opendrive::lane_direction(road, state.lane);
     const auto next = with_lane ? choose(state, roads, opendrive::next_lanes(roads, road.id, state.lane)) : std::nullopt;
     if (!next) {
+      // Stuck at the end: standing, as in esmini (lane_change_simple.xosc counts on a car
+      // "stuck at end of road" having speed zero until an action sets a new one).
       state.s = direction > 0 ? road.length : 0.0;
+      state.speed = 0;
       return;
     }
     // Offsets are measured along t (to the left of the road): against the travel direction

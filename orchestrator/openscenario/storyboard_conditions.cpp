@@ -93,6 +93,8 @@ bool StoryboardRuntime::Impl::entity_condition(const ByEntityCondition& c, const
                                                ConditionMemory& m) {
   const EntityState& self = entities.at(name);
   if (!self.placed) return false;
+  // States held for a duration are the step's, whatever an event started this step changed.
+  const EntityState& stepped = held_states().at(name);
   const Body me{&self, &scenario.entity(name)->box};
   static const BoundingBox kPoint{};
   return std::visit(
@@ -102,11 +104,11 @@ bool StoryboardRuntime::Impl::entity_condition(const ByEntityCondition& c, const
         else if constexpr (std::is_same_v<T, AccelerationCondition>) return satisfies(k.rule, self.acceleration, k.value);
         else if constexpr (std::is_same_v<T, TraveledDistanceCondition>) return self.odometer >= k.value - 1e-9;
         else if constexpr (std::is_same_v<T, StandStillCondition>)
-          return held_for(m, name, std::abs(self.speed) < 1e-6, k.duration);
+          return held_for(m, name, std::abs(stepped.speed) < 1e-6, k.duration);
         else if constexpr (std::is_same_v<T, EndOfRoadCondition>) {
-          return held_for(m, name, at_dead_end(self, roads), k.duration);
+          return held_for(m, name, at_dead_end(stepped, roads), k.duration);
         } else if constexpr (std::is_same_v<T, OffroadCondition>)
-          return held_for(m, name, !resolver.locate(self.pose).lane.has_value(), k.duration);
+          return held_for(m, name, !resolver.locate(stepped.pose).lane.has_value(), k.duration);
         else if constexpr (std::is_same_v<T, ReachPositionCondition>) {
           const EntityState target = point_state(k.position);
           return std::hypot(target.pose.x - self.pose.x, target.pose.y - self.pose.y) <= k.tolerance;

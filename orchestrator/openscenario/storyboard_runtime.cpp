@@ -47,6 +47,7 @@ void StoryboardRuntime::Impl::transition(const std::string& type, const std::str
 }
 
 void StoryboardRuntime::Impl::start_event(const Event& e) {
+  if (!frozen) frozen = entities;  // the conditions still to come this step see the step's world
   Record& r = record("event", e.key);
   ++r.executions;
   transition("event", e.key, "startTransition", ElementState::Running);
@@ -211,6 +212,7 @@ void StoryboardRuntime::Impl::evaluate_storyboard() {
         }
     }
   }
+  frozen.reset();
   settle();
 }
 

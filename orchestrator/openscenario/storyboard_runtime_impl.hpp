@@ -42,6 +42,16 @@ struct StoryboardRuntime::Impl {
   long transitions_made = 0;
   bool finished = false;
   std::map<std::string, EntityState> entities;
+  // The entities as the step left them, kept while events start within one evaluation of the
+  // storyboard. The conditions on a state held for a duration (StandStill, EndOfRoad,
+  // Offroad) read them: such a state is the motion's, measured once a step, and an event
+  // started earlier in the same evaluation does not undo it (lane_change_simple.xosc: a
+  // TeleportAction and a SpeedAction, each in its own event, both triggered by the same
+  // EndOfRoadCondition; esmini starts both). Other conditions see an earlier event's effect
+  // at once, as in esmini (every_condition.xosc: a speed set by one event satisfies
+  // another's RelativeSpeedCondition in the same step).
+  std::optional<std::map<std::string, EntityState>> frozen;
+  [[nodiscard]] const std::map<std::string, EntityState>& held_states() const { return frozen ? *frozen : entities; }
   std::vector<TransitionLog> log;
   std::map<std::pair<std::string, std::string>, Record> records;        // by (type, key)
   std::map<std::pair<std::string, std::string>, std::string> names;     // (type, key) -> name

@@ -28,8 +28,6 @@ double shape_slope(DynamicsShape shape, double x) {
   return 0.0;
 }
 
-namespace {
-// Peak of shape_slope over [0, 1].
 double peak_slope(DynamicsShape shape) {
   switch (shape) {
     case DynamicsShape::Step: return 0.0;
@@ -39,7 +37,6 @@ double peak_slope(DynamicsShape shape) {
   }
   return 0.0;
 }
-}  // namespace
 
 double transition_duration(const TransitionDynamics& dynamics, double change, double speed_from, double speed_to) {
   if (dynamics.shape == DynamicsShape::Step) return 0.0;

@@ -9,6 +9,9 @@ namespace orch::openscenario {
 double shape_value(DynamicsShape shape, double x);
 // d(shape_value)/dx.
 double shape_slope(DynamicsShape shape, double x);
+// Peak of shape_slope over [0, 1] (0 for a step): a transition of `change` in T seconds
+// changes at most change * peak_slope / T per second.
+double peak_slope(DynamicsShape shape);
 
 // Seconds for a transition of `change` (speed in m/s, or lateral metres) under `dynamics`:
 // time: the value; rate: the peak rate of change equals the value; distance: the value is

@@ -130,7 +130,8 @@ TEST_F(Runtime, OverwriteStopsTheRunningEventSkipWaits) {
   load(event("Slow", "overwrite", speed_action("SlowDown", 0, "linear", "time", 10), time_condition("T1", 1.0)) +
        event("Fast", "overwrite", speed_action("SpeedUp", 30, "linear", "time", 1), time_condition("T2", 2.0)) +
        event("Skipped", "skip", speed_action("Never", 5, "step", "time", 0), time_condition("T3", 2.5)));
-  run_until(4);
+  // 9 to 30 m/s "linear in 1 s" takes 2.1 s at the car's maxAcceleration of 10 m/s^2.
+  run_until(4.1);
   EXPECT_EQ(times("SlowDown", "stopTransition"), std::vector<double>{2.0});
   EXPECT_EQ(times("Slow", "stopTransition"), std::vector<double>{2.0});
   EXPECT_EQ(times("Skipped", "skipTransition"), std::vector<double>{2.5});  // Fast was running

@@ -200,6 +200,54 @@ TEST_F(RuntimeValues, ASpeedRateIsCappedByTheVehiclesPerformance) {
   EXPECT_NEAR(runtime_->entities().at("A").speed, 30.0, 1e-6);
 }
 
+// esmini's lane_change_simple.xosc: a SpeedAction in a time whose shape is steeper than the
+// vehicle can accelerate (0 to 25 m/s cubic in 4 s for a car of 5 m/s^2) keeps its shape and
+// takes as long as the Performance needs; a time of 0 is still a jump.
+TEST_F(RuntimeValues, ASpeedChangeInATimeTakesAsLongAsThePerformanceNeeds) {
+  const std::string events = R"(<Event name="Go" priority="parallel"><Action name="Faster"><PrivateAction><LongitudinalAction><SpeedAction>
+    <SpeedActionDynamics dynamicsShape="cubic" dynamicsDimension="time" value="1"/><SpeedActionTarget><AbsoluteTargetSpeed value="30"/></SpeedActionTarget>
+    </SpeedAction></LongitudinalAction></PrivateAction></Action>)" + at_time("GoStart", 1) + "</Event>";
+  load(vehicle("A"), place("A", 100, -1, 10), events);
+  EXPECT_NEAR(runtime_->entities().at("A").speed, 10.0, 1e-9);  // the Init step of 0 s: at once
+  run_until(*runtime_, 2.5);
+  // 20 m/s cubic peaks at 1.5 * 20 / T m/s^2: T = 3 s for 10 m/s^2, so half way after 1.5 s.
+  EXPECT_NEAR(runtime_->entities().at("A").speed, 20.0, 0.05);
+  run_until(*runtime_, 3.0);
+  EXPECT_LT(runtime_->entities().at("A").speed, 29.0);  // not there after the 1 s asked for
+  run_until(*runtime_, 4.1);
+  EXPECT_NEAR(runtime_->entities().at("A").speed, 30.0, 1e-9);
+}
+
+// esmini's lane_change_simple.xosc: at a road's dead end the entity stands, and two events on
+// the same EndOfRoadCondition both start, although the first one teleports it away.
+TEST_F(RuntimeValues, AtADeadEndTheEntityStandsAndEveryEventOnTheEndStarts) {
+  const auto end_of_road = [](const std::string& name) {
+    return R"(<StartTrigger><ConditionGroup><Condition name=")" + name +
+           R"(" delay="0" conditionEdge="rising"><ByEntityCondition><TriggeringEntities triggeringEntitiesRule="any">
+           <EntityRef entityRef="A"/></TriggeringEntities><EntityCondition><EndOfRoadCondition duration="0.5"/></EntityCondition>
+           </ByEntityCondition></Condition></ConditionGroup></StartTrigger>)";
+  };
+  const std::string events =
+      R"(<Event name="Back" priority="parallel"><Action name="Teleport"><PrivateAction><TeleportAction><Position>
+      <LanePosition roadId="0" laneId="-1" s="100" offset="0"/></Position></TeleportAction></PrivateAction></Action>)" +
+      end_of_road("BackAtEnd") + R"(</Event><Event name="Again" priority="parallel"><Action name="Restart"><PrivateAction>
+      <LongitudinalAction><SpeedAction><SpeedActionDynamics dynamicsShape="step" dynamicsDimension="time" value="0"/>
+      <SpeedActionTarget><AbsoluteTargetSpeed value="10"/></SpeedActionTarget></SpeedAction></LongitudinalAction></PrivateAction></Action>)" +
+      end_of_road("AgainAtEnd") + "</Event>";
+  load(vehicle("A"), place("A", 1990, -1, 10), events);
+  run_until(*runtime_, 1.2);  // at the end after 1 s; the condition holds from 1.5 s
+  EXPECT_NEAR(runtime_->entities().at("A").s, 2000.0, 1e-9);
+  EXPECT_EQ(runtime_->entities().at("A").speed, 0.0);  // stuck at the end: standing
+  run_until(*runtime_, 3.0);
+  const auto back = transition_times(*runtime_, "Back", "startTransition");
+  const auto again = transition_times(*runtime_, "Again", "startTransition");
+  ASSERT_EQ(back.size(), 1u);
+  EXPECT_EQ(again, back);
+  EXPECT_NEAR(runtime_->entities().at("A").speed, 10.0, 1e-9);
+  EXPECT_GT(runtime_->entities().at("A").s, 100.0);
+  EXPECT_LT(runtime_->entities().at("A").s, 120.0);
+}
+
 // esmini's drop-bike.xosc: a bike placed 0.2 m above a car by a RelativeObjectPosition's dz
 // ("relative position in the z axis") rides at that height; a teleport 0.1 m below it is
 // 0.1 m above the road (before, dz was ignored: every entity was on the road).
