@@ -112,7 +112,9 @@ void advance(EntityState& state, const opendrive::RoadNetwork& roads, double t, 
     state.lateral_rate = state.lateral_profile->rate(t);
   }
   const opendrive::Road& road = roads.road(state.road_id);
-  const double along = std::sqrt(std::max(state.speed * state.speed - state.lateral_rate * state.lateral_rate, 0.0));
+  // A negative speed drives backwards (esmini's light_state.xosc reverses at -3 m/s).
+  const double along =
+      std::copysign(std::sqrt(std::max(state.speed * state.speed - state.lateral_rate * state.lateral_rate, 0.0)), state.speed);
   // The speed is along the entity's own path, at lateral position t: on a curve of
   // curvature k that path is (1 - k t) times as long as the reference line.
   const double stretch = 1.0 - road.plan_view.curvature(state.s) * state.t;

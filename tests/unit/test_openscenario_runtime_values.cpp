@@ -248,6 +248,20 @@ TEST_F(RuntimeValues, AtADeadEndTheEntityStandsAndEveryEventOnTheEndStarts) {
   EXPECT_LT(runtime_->entities().at("A").s, 120.0);
 }
 
+// esmini's light_state.xosc: a negative target speed drives the car backwards, facing the
+// way it faced (before, the sign was lost and it drove forwards at 3 m/s).
+TEST_F(RuntimeValues, ANegativeSpeedDrivesBackwards) {
+  const std::string events = R"(<Event name="Back" priority="parallel"><Action name="Reverse"><PrivateAction><LongitudinalAction><SpeedAction>
+    <SpeedActionDynamics dynamicsShape="step" dynamicsDimension="time" value="0"/><SpeedActionTarget><AbsoluteTargetSpeed value="-3"/></SpeedActionTarget>
+    </SpeedAction></LongitudinalAction></PrivateAction></Action>)" + at_time("BackStart", 1) + "</Event>";
+  load(vehicle("A"), place("A", 100, -1, 0), events);
+  run_until(*runtime_, 3.0);
+  const EntityState& a = runtime_->entities().at("A");
+  EXPECT_NEAR(a.s, 100.0 - 6.0, 1e-6);
+  EXPECT_NEAR(std::cos(a.pose.heading), 1.0, 1e-9);  // still facing along s
+  EXPECT_NEAR(a.odometer, 6.0, 1e-6);
+}
+
 // esmini's drop-bike.xosc: a bike placed 0.2 m above a car by a RelativeObjectPosition's dz
 // ("relative position in the z axis") rides at that height; a teleport 0.1 m below it is
 // 0.1 m above the road (before, dz was ignored: every entity was on the road).
