@@ -4,9 +4,11 @@
 // and SUMO's drivers keep the right of way rules towards them.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <set>
 
+#include "sim/box.hpp"
 #include "support/cli_runner.hpp"
 #include "support/trace_csv.hpp"
 
@@ -28,6 +30,35 @@ bool drives_through(const std::vector<Trace::Row>& rows, const std::string& junc
   for (const auto& e : edges_of(rows))
     if (e.rfind(":" + junction + "_", 0) == 0) return true;
   return false;
+}
+
+// The actor's body at a trace row: the row's centre and heading, the size result.json records.
+orch::sim::Box body(const Trace::Row& row, const nlohmann::json& result) {
+  for (const auto& a : result["actors"])
+    if (a["actor_id"].get<int>() == row.integer("actor_id"))
+      return {{row.num("x"), row.num("y")}, row.num("heading"), a["length"].get<double>(), a["width"].get<double>()};
+  ADD_FAILURE() << "no actor " << row.str("actor_id") << " in result.json";
+  return {};
+}
+
+double point_to_segment(const orch::Vec2& p, const orch::Vec2& a, const orch::Vec2& b) {
+  const orch::Vec2 ab = b - a;
+  const double u = std::clamp((p - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
+  return (a + u * ab - p).norm();
+}
+
+// The gap between two bodies (0 when they touch): for rectangles apart, the nearest corner
+// of one to an edge of the other.
+double gap_between(const orch::sim::Box& a, const orch::sim::Box& b) {
+  if (orch::sim::boxes_touch(a, b)) return 0.0;
+  double gap = 1e9;
+  for (const auto& [from, to] : {std::pair{a, b}, std::pair{b, a}}) {
+    const auto corners = orch::sim::box_corners(from);
+    const auto edges = orch::sim::box_corners(to);
+    for (const auto& c : corners)
+      for (std::size_t e = 0; e < 4; ++e) gap = std::min(gap, point_to_segment(c, edges[e], edges[(e + 1) % 4]));
+  }
+  return gap;
 }
 
 struct UrbanRun {
@@ -83,6 +114,34 @@ TEST(UrbanBehaviour, TheEgoWaitsForTheCarWithPriorityBeforeItTurnsAcrossItsPath)
   EXPECT_TRUE(drives_through(car, "J1"));
 }
 
+// The ego turns left across the oncoming car's path (a permissive left turn): it stands in
+// the junction until the car has gone through the point where their paths cross.
+TEST(UrbanBehaviour, TheEgoTurningLeftWaitsInTheJunctionForTheOncomingCar) {
+  UrbanRun run("urban_left_turn.json");
+  ASSERT_EQ(run.cli.exit_code, 0) << run.cli.output;
+  Trace trace(run.out / "trace.csv");
+  const auto ego = trace.actor(0);
+  const auto car = trace.actor(1);
+  ASSERT_EQ(ego.size(), car.size());
+  // Where the paths cross: the closest pair of their points, whenever each was there.
+  std::size_t ego_there = 0, car_there = 0;
+  double closest = 1e9;
+  for (std::size_t i = 0; i < ego.size(); ++i)
+    for (std::size_t j = 0; j < car.size(); ++j)
+      if (const double d = distance(ego[i], car[j]); d < closest) closest = d, ego_there = i, car_there = j;
+  ASSERT_LT(closest, 1.0);  // the paths do cross
+  EXPECT_GT(ego[ego_there].num("time"), car[car_there].num("time") + 1.0) << "the car crosses first";
+  // While the car comes, the ego stands inside the junction near the crossing, and keeps
+  // clear of the car's body (0.66 m at the closest, as the car passes its front).
+  bool waited_in_junction = false;
+  for (std::size_t i = 0; i < car_there; ++i)
+    waited_in_junction |= ego[i].num("speed") < 0.1 && ego[i].str("edge").rfind(":J", 0) == 0 &&
+                          distance(ego[i], car[car_there]) < 12.0;
+  EXPECT_TRUE(waited_in_junction);
+  for (std::size_t i = 0; i < ego.size(); ++i)
+    EXPECT_GT(gap_between(body(ego[i], run.result), body(car[i], run.result)), 0.3) << "t=" << ego[i].str("time");
+}
+
 TEST(UrbanBehaviour, TheEgoBrakesForThePedestrianCrossingPastTheJunction) {
   UrbanRun run("urban_pedestrian_junction.json");
   ASSERT_EQ(run.cli.exit_code, 0) << run.cli.output;
@@ -93,10 +152,10 @@ TEST(UrbanBehaviour, TheEgoBrakesForThePedestrianCrossingPastTheJunction) {
   double nearest = 1e9;
   for (std::size_t i = 40; i < ego.size() && i < walker.size(); ++i) {
     slowest = std::min(slowest, ego[i].num("speed"));
-    nearest = std::min(nearest, distance(ego[i], walker[i]));
+    nearest = std::min(nearest, gap_between(body(ego[i], run.result), body(walker[i], run.result)));
   }
   EXPECT_LT(slowest, 6.0);  // from 50 km/h (13.9 m/s)
-  EXPECT_GT(nearest, 2.0);  // no contact
+  EXPECT_GT(nearest, 1.0);  // no contact: a metre between the bodies at least
 }
 
 TEST(UrbanBehaviour, TheFollowerKeepsItsGapAroundTheLoopThroughEveryJunction) {
