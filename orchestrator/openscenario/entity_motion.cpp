@@ -35,6 +35,7 @@ int direction_of_heading(const opendrive::Road& road, double s, double heading) 
 }
 
 void update_pose(EntityState& state, const opendrive::RoadNetwork& roads) {
+  if (state.road_id.empty()) return;  // on no road: the pose is its place
   const opendrive::Road& road = roads.road(state.road_id);
   const double s = std::clamp(state.s, 0.0, road.length);
   state.t = road.lane_center_t(state.lane, s) + state.offset;
@@ -110,6 +111,12 @@ void advance(EntityState& state, const opendrive::RoadNetwork& roads, double t, 
   if (state.lateral_profile) {
     state.offset = state.lateral_profile->at(t);
     state.lateral_rate = state.lateral_profile->rate(t);
+  }
+  if (state.road_id.empty()) {  // on no road (a scenario without one): straight on along its heading
+    state.pose.x += state.speed * dt * std::cos(state.pose.heading);
+    state.pose.y += state.speed * dt * std::sin(state.pose.heading);
+    state.odometer += std::abs(state.speed) * dt;
+    return;
   }
   const opendrive::Road& road = roads.road(state.road_id);
   const double along = std::sqrt(std::max(state.speed * state.speed - state.lateral_rate * state.lateral_rate, 0.0));
