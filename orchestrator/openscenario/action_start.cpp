@@ -466,6 +466,10 @@ std::vector<std::string> update_running_actions(ActionContext& ctx, std::vector<
       if (!state.path || state.path->done(ctx.t)) {  // continues along its lane from where the path ended
         state.path.reset();
         state.lateral_rate = 0;
+        // On no road (a scenario without one) there is no lane to go on along: it stops where
+        // the path ends, as esmini does (the standard does not say; esmini's trailer_connect
+        // and truck_with_rotating_axle rely on it, docs/openscenario.md "Without a road").
+        if (state.road_id.empty()) state.speed = state.acceleration = 0;
         update_pose(state, ctx.roads);
         done = true;
       }

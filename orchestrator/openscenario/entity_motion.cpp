@@ -86,10 +86,17 @@ void advance_on_path(EntityState& state, const opendrive::RoadNetwork& roads, do
       state.speed = dt > 0 ? (path.distance - before) / dt : 0.0;
     } else {
       if (state.speed_profile) state.speed = state.speed_profile->at(t);
-      path.distance = std::min(path.length(), before + std::max(state.speed, 0.0) * dt);
+      // A negative speed reverses along the path: it still goes from its start to its end,
+      // the entity facing the other way (esmini's trailer_connect.xosc backs a car onto a
+      // trailer along a path written behind it, Orientation h=pi relative to the car).
+      path.distance = std::min(path.length(), before + std::abs(state.speed) * dt);
     }
     state.odometer += std::abs(path.distance - before);
     state.pose = path.pose_at(path.distance);
+    if (!path.timed && state.speed < 0) {
+      state.pose.heading = std::fmod(state.pose.heading + M_PI, 2 * M_PI);
+      if (state.pose.heading < 0) state.pose.heading += 2 * M_PI;
+    }
   }
   state.acceleration = dt > 0 ? (state.speed - previous_speed) / dt : 0.0;
   state.lateral_rate = 0.0;

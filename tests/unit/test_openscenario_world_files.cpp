@@ -138,9 +138,32 @@ TEST(OpenScenarioWithoutRoad, AnEntityPlacedByAWorldPositionMovesAlongItsHeading
   const EntityState& a = runtime.entities().at("A");
   EXPECT_TRUE(a.placed);
   EXPECT_TRUE(a.road_id.empty());
-  EXPECT_NEAR(a.pose.x, 1.8, 1e-6);
+  EXPECT_NEAR(a.pose.x, 1.8, 1e-4);  // h is written with 6 decimals
   EXPECT_NEAR(a.pose.y, -358 + 4 * runtime.time(), 1e-6);
-  EXPECT_NEAR(a.pose.heading, M_PI / 2, 1e-9);
+  EXPECT_NEAR(a.pose.heading, M_PI / 2, 1e-5);
+}
+
+// Backing along a trajectory (esmini's trailer_connect.xosc): a negative speed moves the entity
+// from the path's start to its end facing the other way; on no road it stops at the end.
+TEST(OpenScenarioWithoutRoad, ANegativeSpeedBacksAlongATrajectoryAndTheEntityStopsAtItsEnd) {
+  TempDir dir;
+  const std::string trajectory = R"(<PrivateAction><RoutingAction><FollowTrajectoryAction>
+<Trajectory name="Back" closed="false"><Shape><Polyline>
+<Vertex><Position><WorldPosition x="0" y="0" h="0"/></Position></Vertex>
+<Vertex><Position><WorldPosition x="10" y="0" h="0"/></Position></Vertex>
+</Polyline></Shape></Trajectory><TimeReference><None/></TimeReference>
+<TrajectoryFollowingMode followingMode="position"/></FollowTrajectoryAction></RoutingAction></PrivateAction>)";
+  const Scenario s =
+      load_scenario(dir.write("s.xosc", scenario("", world_teleport(0, 0, M_PI) + speed(-2) + trajectory)).string());
+  const opendrive::RoadNetwork no_roads;
+  StoryboardRuntime runtime(s, no_roads);
+  orch::test::run_until(runtime, 2.0);
+  const EntityState& a = runtime.entities().at("A");
+  EXPECT_NEAR(a.pose.x, 2 * runtime.time(), 0.11);  // backing towards +x along the path
+  EXPECT_NEAR(std::cos(a.pose.heading), -1.0, 1e-6);  // facing -x
+  orch::test::run_until(runtime, 8.0);
+  EXPECT_NEAR(runtime.entities().at("A").pose.x, 10.0, 1e-6);
+  EXPECT_EQ(runtime.entities().at("A").speed, 0.0);
 }
 
 // On a road network that has roads, a position on none of its lanes stays an error.
