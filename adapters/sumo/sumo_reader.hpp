@@ -19,6 +19,7 @@
 #include <numbers>
 #include <string>
 #include <unordered_map>
+#include <unordered_set>
 #include <vector>
 
 #include "sim/world.hpp"
@@ -182,10 +183,17 @@ class WorldReader {
                                                   tc::VAR_LANEPOSITION, tc::VAR_LANEPOSITION_LAT, tc::VAR_SIGNALS};
     static const std::vector<int> person_vars = {tc::VAR_POSITION, tc::VAR_ANGLE,   tc::VAR_SPEED,
                                                  tc::VAR_ROAD_ID,  tc::VAR_LANE_ID, tc::VAR_LANEPOSITION};
+    // A vehicle the scenario moved off every lane before it departed (moveToXY, keepRoute 2:
+    // a scenario without a road, run/roadless_net.hpp) has no lane, and SUMO's getRoadID
+    // dereferences it (libsumo 1.15 crashes): its road and lane are not asked.
+    if (!person && sumo::Vehicle::getLaneIndex(id) < 0) off_road_.insert(id);
+    else off_road_.erase(id);
+    static const std::vector<int> off_road_vars = {tc::VAR_POSITION, tc::VAR_ANGLE, tc::VAR_SPEED,
+                                                   tc::VAR_ACCELERATION, tc::VAR_SIGNALS};
     if (person)
       sumo::Person::subscribe(id, person_vars);
     else
-      sumo::Vehicle::subscribe(id, vehicle_vars);
+      sumo::Vehicle::subscribe(id, off_road_.count(id) ? off_road_vars : vehicle_vars);
     if (!contexts_off_)
       contexts::shared_contexts().subscribe(id, person, tc::CMD_GET_VEHICLE_VARIABLE, kNearbyRange, kNeighbourVars);
     followed_[id] = person;
@@ -224,17 +232,18 @@ class WorldReader {
       s.position = centre_of(position(r), s.heading, a.length);
       s.accel = number(r, tc::VAR_ACCELERATION);
       s.signals = integer(r, tc::VAR_SIGNALS);
-      s.lane = integer(r, tc::VAR_LANE_INDEX);
-      if (s.lane == tc::INVALID_INT_VALUE) {
-        // Placed off every lane (moveToXY, keepRoute 2: an OpenSCENARIO entity past its road's
-        // end): SUMO keeps the last edge's id but has no lane, lane position or offset.
-        s.edge.clear();
-        s.lane = -1;
-        s.present = true;
-        return s;
+      if (!off_road_.count(a.sumo_id)) {
+        s.lane = integer(r, tc::VAR_LANE_INDEX);
+        if (s.lane == tc::INVALID_INT_VALUE) {
+          // Placed off every lane later (moveToXY, keepRoute 2: an OpenSCENARIO entity past its
+          // road's end): SUMO keeps the last edge's id but has no lane, lane position or offset.
+          s.edge.clear();
+          s.lane = -1;
+        } else {
+          s.lane_pos = number(r, tc::VAR_LANEPOSITION) - a.length / 2;
+          s.lat_offset = number(r, tc::VAR_LANEPOSITION_LAT);
+        }
       }
-      s.lane_pos = number(r, tc::VAR_LANEPOSITION) - a.length / 2;
-      s.lat_offset = number(r, tc::VAR_LANEPOSITION_LAT);
     }
     s.present = true;
     return s;
@@ -297,6 +306,7 @@ class WorldReader {
 
   std::unordered_map<std::string, ActorKind> actor_kind_;  // scenario actors by SUMO id
   std::unordered_map<std::string, bool> followed_;         // subscribed actors: true = person
+  std::unordered_set<std::string> off_road_;               // actors moved off every lane (no road asked)
   std::vector<std::string> pending_persons_;               // scenario pedestrians not yet departed
   long long running_ = 0;                                  // SUMO vehicles on the road
   std::vector<std::string> edges_;                         // normal edges of the net

@@ -125,9 +125,9 @@ LaneOffsetAction read_lane_offset(Element& e) {
 }
 
 ActivateControllerAction read_activate(Element& e) {
-  ActivateControllerAction a{e.optional_boolean("lateral"), e.optional_boolean("longitudinal")};
-  // 1.3: which of the entity's ObjectControllers; an entity has one here (several are refused).
-  e.ignore_attributes({"objectControllerRef"});
+  ActivateControllerAction a{e.optional_boolean("lateral"), e.optional_boolean("longitudinal"), ""};
+  // 1.3: which of the entity's ObjectControllers (controllerRef is 1.3's deprecated name for it).
+  a.object_controller = e.optional_text("objectControllerRef").value_or(e.optional_text("controllerRef").value_or(""));
   for (const char* unsupported : {"animation", "lighting"})
     if (e.optional_boolean(unsupported).value_or(false))
       e.fail_attribute(unsupported, fmt::format("activating {} control is not supported", unsupported));

@@ -74,6 +74,17 @@ double height_of(const position::Position& p, ActionContext& ctx) {
 
 void teleport(const TeleportAction& a, EntityState& state, ActionContext& ctx, const std::string& entity) {
   const ResolvedPosition r = ctx.resolver.resolve(a.position, poses(ctx));
+  if (!r.road && ctx.roads.roads().empty()) {  // a scenario without a road: placed by its pose alone
+    state.placed = true;
+    state.road_id.clear();
+    state.s = state.t = state.offset = 0;
+    state.lane = 0;
+    state.pose = r.pose;
+    state.height = height_of(a.position, ctx);
+    state.lateral_profile.reset();
+    state.lateral_rate = 0;
+    return;
+  }
   if (!r.road || !r.lane)
     throw MapError(fmt::format("the position of \"{}\" (x {:.3f}, y {:.3f}) is on no lane of the road network", entity,
                                r.pose.x, r.pose.y));
@@ -349,7 +360,11 @@ std::vector<std::string> start_action(const PrivateAction& action, const std::st
             take_over(MotionDomain::Longitudinal, false, a.continuous);
           }
         } else if constexpr (std::is_same_v<T, ActivateControllerAction>) {
-          // The entity's controller drives from now on (on SUMO: SUMO's driver, see openscenario_world).
+          // The entity's controller drives from now on (on SUMO: SUMO's driver, see openscenario_world);
+          // 1.3: objectControllerRef chooses which of its ObjectControllers (checked at load).
+          if (const Entity* e = ctx.scenario.entity(entity); e != nullptr && !a.object_controller.empty())
+            for (const auto& [name, controller] : e->object_controllers)
+              if (name == a.object_controller) state.controller = controller.name;
           state.controller_active = a.longitudinal.value_or(true) || a.lateral.value_or(true);
         } else if constexpr (std::is_same_v<T, AssignControllerAction>) {
           state.controller = a.controller.name;
@@ -458,6 +473,10 @@ std::vector<std::string> update_running_actions(ActionContext& ctx, std::vector<
       if (!state.path || state.path->done(ctx.t)) {  // continues along its lane from where the path ended
         state.path.reset();
         state.lateral_rate = 0;
+        // On no road (a scenario without one) there is no lane to go on along: it stops where
+        // the path ends, as esmini does (the standard does not say; esmini's trailer_connect
+        // and truck_with_rotating_axle rely on it, docs/openscenario.md "Without a road").
+        if (state.road_id.empty()) state.speed = state.acceleration = 0;
         update_pose(state, ctx.roads);
         done = true;
       }

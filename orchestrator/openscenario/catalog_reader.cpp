@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>
 
+#include "core/errors.hpp"
 #include "core/suggest.hpp"
 #include "openscenario/reader_context.hpp"
 
@@ -29,6 +30,21 @@ void load_catalog_file(const fs::path& file, Context& context) {
       source->fail(entry, fmt::format("catalog {} holds two entries named {}", name, entry_name));
   }
   context.catalog_files.push_back(std::move(source));
+}
+
+// A catalog entry's declaration, read for the CatalogReference `reference`: an error in it
+// also names the reference (the file the user runs), not only the catalog's line.
+Parameter read_with_reference(Element& d, const Element& reference, const std::string& entry_name) {
+  try {
+    return read_declaration(d);
+  } catch (const ScenarioError& e) {
+    Diagnostics both = e.diagnostics();
+    const Place at = reference.place();
+    both.error(SourceLocation{reference.source().file(), at.path, at.line},
+               fmt::format("the CatalogReference to catalog entry \"{}\", whose ParameterDeclaration (the other "
+                           "error) is invalid", entry_name));
+    throw ScenarioError(std::move(both));
+  }
 }
 
 }  // namespace
@@ -121,7 +137,7 @@ Element Context::resolve(Element& reference, const std::vector<std::string>& kin
   std::vector<std::string> declared;
   if (auto declarations = entry_element.optional_child("ParameterDeclarations")) {
     for (Element d : declarations->children("ParameterDeclaration")) {
-      const Parameter p = read_declaration(d);
+      const Parameter p = read_with_reference(d, reference, entry_name);
       scope.set(p.name, p.type, p.value, "");  // the runtime does not change an entry's parameters
       declared.push_back(p.name);
       d.finish();
@@ -146,7 +162,9 @@ Element Context::resolve(Element& reference, const std::vector<std::string>& kin
                                                      entry_name, name, did_you_mean(name, declared)));
       const std::string value = a.text("value");
       const std::string problem = check_parameter_value(*scope.type(name), value);
-      if (!problem.empty()) a.fail_attribute("value", problem);
+      if (!problem.empty())
+        a.fail_attribute("value", fmt::format("catalog entry \"{}\" declares parameter \"{}\" as {}, but the value "
+                                              "assigned to it {}", entry_name, name, *scope.type(name), problem));
       scope.assign(name, value);
       a.finish();
     }

@@ -24,7 +24,13 @@ Parameter read_declaration(Element& d, const char* type_attribute) {
   p.type = *type;
   p.value = d.text("value");
   const std::string problem = check_parameter_value(p.type, p.value);
-  if (!problem.empty()) d.fail_attribute("value", problem);
+  // The standard gives a declaration "a default, type-specific initialization value" (1.3,
+  // 9.1 Parameters): a value its type cannot hold is an error, wherever it is used.
+  if (!problem.empty())
+    d.fail_attribute("value", fmt::format("parameter \"{}\" is declared {}, but its value {} (a declaration's value is "
+                                          "\"a default, type-specific initialization value\", ASAM OpenSCENARIO 9.1; "
+                                          "declare it with the type its value has)",
+                                          p.name, word, problem));
   return p;
 }
 

@@ -35,6 +35,7 @@ int direction_of_heading(const opendrive::Road& road, double s, double heading) 
 }
 
 void update_pose(EntityState& state, const opendrive::RoadNetwork& roads) {
+  if (state.road_id.empty()) return;  // on no road: the pose is its place
   const opendrive::Road& road = roads.road(state.road_id);
   const double s = std::clamp(state.s, 0.0, road.length);
   state.t = road.lane_center_t(state.lane, s) + state.offset;
@@ -85,10 +86,17 @@ void advance_on_path(EntityState& state, const opendrive::RoadNetwork& roads, do
       state.speed = dt > 0 ? (path.distance - before) / dt : 0.0;
     } else {
       if (state.speed_profile) state.speed = state.speed_profile->at(t);
-      path.distance = std::min(path.length(), before + std::max(state.speed, 0.0) * dt);
+      // A negative speed reverses along the path: it still goes from its start to its end,
+      // the entity facing the other way (esmini's trailer_connect.xosc backs a car onto a
+      // trailer along a path written behind it, Orientation h=pi relative to the car).
+      path.distance = std::min(path.length(), before + std::abs(state.speed) * dt);
     }
     state.odometer += std::abs(path.distance - before);
     state.pose = path.pose_at(path.distance);
+    if (!path.timed && state.speed < 0) {
+      state.pose.heading = std::fmod(state.pose.heading + M_PI, 2 * M_PI);
+      if (state.pose.heading < 0) state.pose.heading += 2 * M_PI;
+    }
   }
   state.acceleration = dt > 0 ? (state.speed - previous_speed) / dt : 0.0;
   state.lateral_rate = 0.0;
@@ -110,6 +118,12 @@ void advance(EntityState& state, const opendrive::RoadNetwork& roads, double t, 
   if (state.lateral_profile) {
     state.offset = state.lateral_profile->at(t);
     state.lateral_rate = state.lateral_profile->rate(t);
+  }
+  if (state.road_id.empty()) {  // on no road (a scenario without one): straight on along its heading
+    state.pose.x += state.speed * dt * std::cos(state.pose.heading);
+    state.pose.y += state.speed * dt * std::sin(state.pose.heading);
+    state.odometer += std::abs(state.speed) * dt;
+    return;
   }
   const opendrive::Road& road = roads.road(state.road_id);
   // A negative speed drives backwards (esmini's light_state.xosc reverses at -3 m/s).

@@ -32,7 +32,7 @@ struct LateralProfile {
 
 struct EntityState {
   bool placed = false;
-  std::string road_id;
+  std::string road_id;  // "" on no road (a scenario without one): `pose` alone is its place
   double s = 0;
   int lane = 0;
   double offset = 0;  // from the lane centre, positive to the left (t direction)

@@ -149,20 +149,29 @@ std::vector<Entity> read_scenario_object(Element& scenario_object, Context& cont
     Element scoped = open_scope(object, context, "");
     read_object(scoped, entity, context, inline_trailers);
   }
-  const std::vector<Element> controllers = scenario_object.children("ObjectController");
-  if (controllers.size() > 1)
-    controllers[1].fail("several ObjectControllers per entity (1.3, chosen by ActivateControllerAction's "
-                        "objectControllerRef) are not supported");
-  if (auto controller_holder = scenario_object.optional_child("ObjectController")) {
-    controller_holder->ignore_attributes({"name"});  // 1.3: names one of several controllers
-    Element controller = controller_holder->one_of({"CatalogReference", "Controller"});
+  // 1.3: an entity may have several ObjectControllers, each named; the first is the one an
+  // ActivateControllerAction without objectControllerRef activates.
+  std::vector<Element> controllers = scenario_object.children("ObjectController");
+  for (Element& holder : controllers) {
+    const std::string controller_name = holder.optional_text("name").value_or("");
+    if (controllers.size() > 1 && controller_name.empty())
+      holder.fail("an entity with several ObjectControllers must name each (its name attribute): "
+                  "ActivateControllerAction's objectControllerRef chooses one by it");
+    for (const auto& known : entity.object_controllers)
+      if (known.first == controller_name)
+        holder.fail_attribute("name", fmt::format("a second ObjectController named \"{}\" on entity {}",
+                                                  controller_name, name));
+    Element controller = holder.one_of({"CatalogReference", "Controller"});
+    Controller c;
     if (controller.name() == "CatalogReference") {
       Element entry = context.resolve(controller, {"Controller"});
-      entity.controller = read_controller(entry);
+      c = read_controller(entry);
     } else {
-      entity.controller = read_controller(controller);
+      c = read_controller(controller);
     }
-    controller_holder->finish();
+    holder.finish();
+    if (!entity.controller) entity.controller = c;
+    entity.object_controllers.emplace_back(controller_name, std::move(c));
   }
   scenario_object.finish();
   for (Entity& t : inline_trailers) out.push_back(std::move(t));

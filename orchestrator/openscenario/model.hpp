@@ -52,7 +52,10 @@ struct Entity {
   std::optional<Axle> front_axle, rear_axle;
   double mass = 0;
   std::map<std::string, std::string> properties;
-  std::optional<Controller> controller;
+  std::optional<Controller> controller;  // the default one: the first ObjectController
+  // 1.3: every ObjectController by its name (an unnamed one has ""); ActivateControllerAction's
+  // objectControllerRef chooses among them. Empty when the entity has none.
+  std::vector<std::pair<std::string, Controller>> object_controllers;
   // Trailers (1.3): where a trailer couples on this vehicle (hitch) and where this vehicle,
   // as a trailer, couples on its tractor (coupler), as x offsets from the reference point;
   // `trailer` names the entity connected at the start ("" none).
@@ -121,7 +124,10 @@ struct LongitudinalDistanceAction {
   std::string displacement = "trailingReferencedEntity";
   std::optional<double> max_acceleration, max_deceleration, max_speed;
 };
-struct ActivateControllerAction { std::optional<bool> lateral, longitudinal; };
+struct ActivateControllerAction {
+  std::optional<bool> lateral, longitudinal;
+  std::string object_controller;  // objectControllerRef (1.3; controllerRef deprecated): "" the current one
+};
 // Replaces the entity's controller; 1.2's activateLateral / activateLongitudinal activate it.
 struct AssignControllerAction {
   Controller controller;

@@ -129,6 +129,34 @@ void check_trailers(const Scenario& scenario, const std::vector<std::pair<std::s
   }
 }
 
+// An ActivateControllerAction's objectControllerRef (1.3) names one of each actor's ObjectControllers.
+void check_controller_ref(const Scenario& scenario, const PrivateAction& action, const std::string& entity,
+                          const Place& place) {
+  const auto* activate = std::get_if<ActivateControllerAction>(&action);
+  const Entity* e = scenario.entity(entity);
+  if (activate == nullptr || activate->object_controller.empty() || e == nullptr) return;
+  std::vector<std::string> names;
+  for (const auto& [name, controller] : e->object_controllers) {
+    if (name == activate->object_controller) return;
+    names.push_back(name);
+  }
+  throw ScenarioError(SourceLocation{scenario.file, place.path, place.line},
+                      fmt::format("objectControllerRef \"{}\": entity {} has no ObjectController of that name{}",
+                                  activate->object_controller, entity,
+                                  names.empty() ? " (it has none)" : did_you_mean(activate->object_controller, names)));
+}
+
+void check_controller_refs(const Scenario& scenario) {
+  for (const InitAction& a : scenario.storyboard.init) check_controller_ref(scenario, a.action, a.entity, a.place);
+  for (const Story& story : scenario.storyboard.stories)
+    for (const Act& act : story.acts)
+      for (const ManeuverGroup& g : act.groups)
+        for (const Maneuver& m : g.maneuvers)
+          for (const Event& ev : m.events)
+            for (const Action& a : ev.actions)
+              for (const std::string& actor : a.actors) check_controller_ref(scenario, a.action, actor, a.place);
+}
+
 // VariableDeclarations (1.2): like parameters, but changed only by VariableActions and read
 // only by VariableConditions (a "$name" in an attribute is always a parameter).
 std::vector<Parameter> read_variables(Element& root) {
@@ -205,6 +233,7 @@ Scenario load_scenario(const std::string& path, const LoadOptions& options) {
   check_trailers(scenario, trailer_places);
   Element storyboard = root.child("Storyboard");
   scenario.storyboard = reading::read_storyboard(storyboard, scenario, context);
+  check_controller_refs(scenario);
   root.finish();
   scenario.local_parameters = context.local_parameters;
   scenario.warnings = context.warnings;

@@ -21,6 +21,7 @@
 #include "run/openscenario_observed.hpp"
 #include "run/openscenario_world.hpp"
 #include "run/reference_ego_setup.hpp"
+#include "run/roadless_net.hpp"
 #include "run/ssm_device.hpp"
 #include "run/storyboard_events.hpp"
 
@@ -200,7 +201,8 @@ class OpenScenarioFormat : public RunFormat {
   void watch_ego(const sim::WorldSnapshot* snap) {
     if (!ego_watch_ && !ego_.empty()) {
       const auto it = runtime_->entities().find(ego_);
-      if (it != runtime_->entities().end() && it->second.placed) {
+      // On no road (a scenario without one) there is no lane ahead to watch.
+      if (it != runtime_->entities().end() && it->second.placed && !it->second.road_id.empty()) {
         reference_ego_ = reference_ego_for(ego_model_, *scenario_, *roads_, ego_, it->second, req_.step);
         model_drives_ego_ = reference_ego_.has_value();
         ego_watch_.emplace(lane_path(*roads_, it->second), ego_, object_kinds(*scenario_), 150.0);
@@ -226,6 +228,7 @@ class OpenScenarioFormat : public RunFormat {
   // Declared in this order: the runtime and the actors refer to the roads and lanes.
   std::optional<openscenario::Scenario> scenario_;
   std::optional<opendrive::RoadNetwork> roads_;
+  std::optional<opendrive::RoadNetwork> parking_roads_;  // SUMO's road when the scenario has none
   std::optional<opendrive::SumoLaneIndex> lanes_;
   std::optional<openscenario::StoryboardRuntime> runtime_;
   std::optional<OpenScenarioActors> actors_;
@@ -254,20 +257,29 @@ void OpenScenarioFormat::open(RunResult& result, RunLog& log, SimulatorConfig& c
   }
   result.title = std::filesystem::path(req_.scenario_file).stem().string();
   result.description = scenario_->description;
-  if (scenario_->road_file.empty())
-    throw ScenarioError(SourceLocation{req_.scenario_file, "/OpenSCENARIO/RoadNetwork/LogicFile", 0},
-                        "an OpenSCENARIO run needs a RoadNetwork LogicFile (an OpenDRIVE road)");
-  result.map_id = std::filesystem::path(scenario_->road_file).stem().string();
-  roads_.emplace(opendrive::read_xodr_file(scenario_->road_file));
-  const opendrive::SumoNet net = opendrive::convert_to_sumo_net(scenario_->road_file, opendrive::default_net_cache());
+  // No LogicFile (the standard allows a scenario without a road): the storyboard runs on no
+  // road, SUMO on a generated parking road (run/roadless_net.hpp).
+  const bool roadless = scenario_->road_file.empty();
+  std::filesystem::path parking_xodr;
+  result.map_id = roadless ? "none" : std::filesystem::path(scenario_->road_file).stem().string();
+  roads_.emplace(roadless ? opendrive::RoadNetwork{} : opendrive::read_xodr_file(scenario_->road_file));
+  const opendrive::SumoNet net = roadless ? roadless_sumo_net(opendrive::default_net_cache(), parking_xodr)
+                                          : opendrive::convert_to_sumo_net(scenario_->road_file, opendrive::default_net_cache());
   result.net = {net.net_file.string(), sha256_of_file(net.net_file)};
   for (const Diagnostic& d : net.warnings) {  // what the SUMO net leaves out of the road
     result.warnings.push_back(d.format());
     log.note(d.format());
   }
-  log.note(fmt::format("road {} -> SUMO net {} ({})", scenario_->road_file, net.net_file.string(),
-                       net.from_cache ? "cached" : "converted now"));
-  lanes_.emplace(*roads_, net.net_file.string());
+  if (roadless) {
+    parking_roads_.emplace(opendrive::read_xodr_file(parking_xodr));
+    log.note(fmt::format("no road (the RoadNetwork has no LogicFile): entities move by world positions; SUMO net {} "
+                         "(a generated parking road far from the scene, where entities enter SUMO)",
+                         net.net_file.string()));
+  } else {
+    log.note(fmt::format("road {} -> SUMO net {} ({})", scenario_->road_file, net.net_file.string(),
+                         net.from_cache ? "cached" : "converted now"));
+  }
+  lanes_.emplace(roadless ? *parking_roads_ : *roads_, net.net_file.string());
   const EgoChoice chosen = choose_ego(*scenario_, req_.ego_entity);
   ego_ = chosen.entity;
   check_external_ego(*scenario_, ego_, req_.ego_link != nullptr);

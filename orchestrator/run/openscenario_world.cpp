@@ -10,6 +10,7 @@
 #include "opendrive/sumo_route.hpp"
 #include "openscenario/route_plan.hpp"
 #include "run/openscenario_ego_choice.hpp"
+#include "run/roadless_net.hpp"
 
 namespace orch {
 
@@ -86,7 +87,10 @@ std::vector<std::string> OpenScenarioActors::sumo_route_of(const openscenario::E
 
 void OpenScenarioActors::spawn(const std::string& name, Body& body, const openscenario::EntityState& state,
                                std::vector<sim::Command>& out) {
-  const auto hint = lanes_.find(state.road_id, state.lane, state.s);
+  // An entity on no road (a scenario without one) enters SUMO on the parking road and is moved
+  // to its world position by the pose that follows (run/roadless_net.hpp).
+  const auto hint = state.road_id.empty() ? lanes_.find(kParkingRoadId, kParkingLane, parking_place(body.id))
+                                          : lanes_.find(state.road_id, state.lane, state.s);
   if (!hint)
     throw MapError(fmt::format("entity {} starts on road {} lane {} at s={:.2f}, of which the SUMO net has no lane",
                                name, state.road_id, state.lane, state.s));
@@ -137,7 +141,10 @@ std::vector<sim::Command> OpenScenarioActors::place(const std::map<std::string, 
       }
       continue;
     }
-    const bool hand_over = !body.driven && !is_ego && state.controller_active && !state.controller.empty();
+    // SUMO's driver drives on lanes: an entity on no road (a scenario without one) stays the
+    // storyboard's when its controller is activated (docs/openscenario.md, "Without a road").
+    const bool hand_over = !body.driven && !is_ego && state.controller_active && !state.controller.empty() &&
+                           !state.road_id.empty();
     if (is_ego || hand_over) body.driven = true;
     const bool first = !body.spawned;
     if (first) {

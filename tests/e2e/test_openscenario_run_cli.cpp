@@ -84,3 +84,42 @@ TEST(OpenScenarioRunCli, AMisspeltAttributeIsAnErrorNamingTheFileAndLine) {
 }
 
 }  // namespace
+
+// A scenario without a road (no LogicFile, as the standard allows): SUMO runs on a generated
+// parking road and the car is where the storyboard puts it by world position, off every lane,
+// moving straight on along its heading (north here) at its SpeedAction's speed.
+TEST(OpenScenarioRunCli, AScenarioWithoutARoadRunsWithEntitiesAtTheirWorldPositions) {
+  TempDir dir;
+  const auto file = dir.write("no_road.xosc", R"(<?xml version="1.0"?><OpenSCENARIO>
+<FileHeader revMajor="1" revMinor="3" date="2024-01-01T00:00:00" author="t" description="no road"/>
+<RoadNetwork/>
+<Entities><ScenarioObject name="Car"><Vehicle name="car" vehicleCategory="car">
+<BoundingBox><Center x="1.5" y="0" z="0.9"/><Dimensions width="2" length="5" height="1.8"/></BoundingBox>
+<Performance maxSpeed="70" maxDeceleration="10" maxAcceleration="10"/>
+<Axles><FrontAxle maxSteering="0.5" wheelDiameter="0.8" trackWidth="1.68" positionX="3" positionZ="0.4"/>
+<RearAxle maxSteering="0" wheelDiameter="0.8" trackWidth="1.68" positionX="0" positionZ="0.4"/></Axles>
+</Vehicle></ScenarioObject></Entities>
+<Storyboard><Init><Actions><Private entityRef="Car">
+<PrivateAction><TeleportAction><Position><WorldPosition x="1.8" y="-358" z="0" h="1.5707963"/></Position></TeleportAction></PrivateAction>
+<PrivateAction><LongitudinalAction><SpeedAction><SpeedActionDynamics dynamicsShape="step" dynamicsDimension="time" value="0"/>
+<SpeedActionTarget><AbsoluteTargetSpeed value="5"/></SpeedActionTarget></SpeedAction></LongitudinalAction></PrivateAction>
+</Private></Actions></Init>
+<StopTrigger><ConditionGroup><Condition name="Stop" delay="0" conditionEdge="none"><ByValueCondition>
+<SimulationTimeCondition value="3" rule="greaterOrEqual"/></ByValueCondition></Condition></ConditionGroup></StopTrigger>
+</Storyboard></OpenSCENARIO>)");
+  TempDir out;
+  const auto r = run_cli({"run", file.string(), "--out", out.path().string(), "-q"});
+  const auto result = read_json(out / "result.json");
+  ASSERT_EQ(result["verdict"], "success") << result["reason"] << "\n" << r.output;
+  EXPECT_EQ(result["map_id"], "none");
+  const Trace trace(out / "trace.csv");
+  int rows = 0;
+  for (const auto& row : trace.rows()) {
+    if (row.str("actor_id") != "Car") continue;
+    ++rows;
+    EXPECT_NEAR(row.num("x"), 1.8, 0.01) << "@" << row.str("time");
+    EXPECT_NEAR(row.num("y"), -358 + 5 * row.num("time"), 0.01) << "@" << row.str("time");
+    EXPECT_EQ(row.str("driver"), "script");
+  }
+  EXPECT_GT(rows, 50);
+}
