@@ -141,12 +141,12 @@ void end_lanes_in_junctions(const WaypointFile& wf, JunctionPieces& out) {
         const int index = static_cast<int>(out.pieces.size());
         if (loose_end) {
           out.pieces.push_back({make_line(fmt::format("{}.end", route.id), stretch(route, mid, jp.s1)), jp.route,
-                                {route.id}, jp.zone, -1});
+                                {route.id}, jp.zone, -1, true});
           cut.s1 = mid;
           cut.after = index;
         } else {
           out.pieces.push_back({make_line(fmt::format("{}.start", route.id), stretch(route, jp.s0, mid)), jp.route,
-                                {route.id}, -1, jp.zone});
+                                {route.id}, -1, jp.zone, true});
           cut.s0 = mid;
           cut.before = index;
         }

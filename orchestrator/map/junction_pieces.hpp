@@ -19,6 +19,7 @@ struct RoutePiece {
   std::vector<std::string> routes;  // waypoint routes that drive this lane (its own first)
   int from_zone = -1;               // the junction the lane starts at (-1: the route's own start)
   int to_zone = -1;                 // ... ends at (-1: the route's own end)
+  bool loose_end = false;           // a dead-end lane for a route starting or ending inside a junction
 };
 
 // One passage of a route through a junction, between the pieces before and after it.

@@ -21,6 +21,10 @@ constexpr double kParallelCos = 0.9848;  // cos 10 deg
 // m: a second route through a junction between the same lanes lying farther than this from
 // the first one's path is noted (drawing noise; `map check` holds every waypoint to 0.10 m).
 constexpr double kMaxSharedPathMiss = 0.25;
+// m: a junction shape that cuts no more than this off a lane leaves its waypoints within
+// `map check`'s tolerance (the shipped urban map's corner shapes cut up to 0.06 m).
+constexpr double kMaxShapeCut = 0.10;
+constexpr double kSamePoint = 0.02;  // m: lane ends closer than this meet
 
 std::string junction_id(int zone) { return fmt::format("J{}", zone); }
 
@@ -62,6 +66,57 @@ std::vector<Vec2> star_polygon(std::vector<Vec2> corners, const Vec2& centre) {
     return std::atan2(a.y() - centre.y(), a.x() - centre.x()) < std::atan2(b.y() - centre.y(), b.x() - centre.x());
   });
   return corners;
+}
+
+// The arc lengths along `lane` where the closed polygon `shape` crosses it.
+std::vector<double> crossings(const std::vector<Vec2>& shape, const Polyline& lane) {
+  std::vector<double> out;
+  const auto& pts = lane.points();
+  for (std::size_t k = 0; k < shape.size(); ++k) {
+    const Vec2& a = shape[k];
+    const Vec2& b = shape[(k + 1) % shape.size()];
+    for (std::size_t i = 0; i + 1 < pts.size(); ++i) {
+      const Vec2 r = pts[i + 1] - pts[i];
+      const Vec2 q = b - a;
+      const double den = r.x() * q.y() - r.y() * q.x();
+      if (std::abs(den) < 1e-12) continue;  // parallel: touching along a line is no cut
+      const Vec2 w = a - pts[i];
+      const double t = (w.x() * q.y() - w.y() * q.x()) / den;
+      const double u = (w.x() * r.y() - w.y() * r.x()) / den;
+      if (t < -1e-9 || t > 1 + 1e-9 || u < -1e-9 || u > 1 + 1e-9) continue;
+      out.push_back(lane.s_at_index(i) + t * (lane.s_at_index(i + 1) - lane.s_at_index(i)));
+    }
+  }
+  return out;
+}
+
+// A lane end at a junction: netconvert cuts the lane at the crossing of the junction's shape
+// farthest from that end (NBEdge::startShapeAt), so a shape that crosses the lane anywhere
+// else than at its end shortens it and leaves waypoints beside no lane.
+struct LaneEnd {
+  const Polyline* shape = nullptr;
+  bool incoming = false;  // the lane ends at the junction (else it starts there)
+};
+
+// How far `shape` cuts into lane end `e` (m).
+double cut_into(const std::vector<Vec2>& shape, const LaneEnd& e) {
+  double cut = 0;
+  for (const double s : crossings(shape, *e.shape)) cut = std::max(cut, e.incoming ? e.shape->length() - s : s);
+  return cut > kMaxShapeCut ? cut : 0.0;
+}
+
+// How much of the lanes `shape` would cut off (m, summed).
+double cut_length(const std::vector<Vec2>& shape, const std::vector<LaneEnd>& ends) {
+  double sum = 0;
+  for (const LaneEnd& e : ends) sum += cut_into(shape, e);
+  return sum;
+}
+
+// `pts` as a polygon with no area (there and back), so that netconvert closes no other edge.
+std::vector<Vec2> there_and_back(std::vector<Vec2> pts) {
+  const std::size_t n = pts.size();
+  for (std::size_t i = n - 1; i-- > 1;) pts.push_back(pts[i]);
+  return pts;
 }
 
 // The route's points from the lane end `from` to the lane start `to`, around arc lengths
@@ -199,13 +254,18 @@ class JunctionPlanner {
           route.line.point(worst_i).x(), route.line.point(worst_i).y(), worst));
   }
 
-  // One node per zone: at the middle of the lane ends it joins, shaped as their hull.
+  // One node per zone: at the middle of the lane ends it joins, shaped as the star polygon
+  // through their corners; where that would cut one of its lanes (a lane leaving in the
+  // middle of a turn, curving across the line to its neighbour's corner), through the lane
+  // ends' centres instead, there and back through them, or out from the middle to each lane
+  // end and back (spokes), whichever cuts least.
   void add_nodes(NetPlan& plan) {
     for (int z = 0; z < zones_; ++z) {
       const std::string id = junction_id(z);
       std::vector<Vec2> corners;
+      std::vector<Vec2> centres;
+      std::vector<LaneEnd> ends;
       Vec2 sum(0, 0);
-      int ends = 0;
       for (const PlannedEdge& e : plan.edges) {
         const bool in = e.to == id;
         const bool out = e.from == id;
@@ -215,18 +275,43 @@ class JunctionPlanner {
           const Vec2 n = left_normal(l.shape.tangent_at(in ? l.shape.length() : 0.0));
           corners.push_back(p + l.width / 2 * n);
           corners.push_back(p - l.width / 2 * n);
+          centres.push_back(p);
+          ends.push_back({&l.shape, in});
           sum += p;
-          ++ends;
         }
       }
-      if (ends == 0) continue;
+      if (ends.empty()) continue;
       PlannedNode node;
       node.id = id;
-      node.position = sum / ends;
+      node.position = sum / static_cast<double>(ends.size());
       node.shape = star_polygon(corners, node.position);
       if (convex_hull(corners).size() < 3) {  // lanes meeting end to end in a line: there and back
         node.shape = corners;
         node.shape.insert(node.shape.end(), corners.rbegin() + 1, corners.rend());
+      }
+      // Where a lane ends on the next one's start (a road split at the junction with no
+      // passage of its own), the other shapes put a vertex where they meet and netconvert's
+      // internal lane between the two has no length: there the star of corners stays.
+      const bool end_on_start = std::any_of(ends.begin(), ends.end(), [&](const LaneEnd& a) {
+        return a.incoming && std::any_of(ends.begin(), ends.end(), [&](const LaneEnd& b) {
+                 return !b.incoming && (a.shape->points().back() - b.shape->point(0)).norm() < kSamePoint;
+               });
+      });
+      if (double cut = cut_length(node.shape, ends); cut > 0 && !end_on_start) {
+        const std::vector<Vec2> star = star_polygon(centres, node.position);
+        std::vector<Vec2> spokes;  // from the middle out to each lane end and back
+        for (const Vec2& p : star) {
+          spokes.push_back(node.position);
+          spokes.push_back(p);
+        }
+        for (const std::vector<Vec2>& other : {star, there_and_back(star), spokes}) {
+          if (other.size() < 2) continue;
+          const double c = cut_length(other, ends);
+          if (c < cut) {
+            cut = c;
+            node.shape = other;
+          }
+        }
       }
       node.type = "priority";
       node_of_zone_[z] = plan.nodes.size();
@@ -301,7 +386,8 @@ NetPlan plan_net(const WaypointFile& waypoints, const NetPlanSettings& settings,
     info.push_back({p.routes, p.from_zone >= 0 ? junction_id(p.from_zone) : "",
                     p.to_zone >= 0 ? junction_id(p.to_zone) : "",
                     p.from_zone >= 0 ? -1.0 : free_extension(waypoints, p, true, settings.lane_extension),
-                    p.to_zone >= 0 ? -1.0 : free_extension(waypoints, p, false, settings.lane_extension)});
+                    p.to_zone >= 0 ? -1.0 : free_extension(waypoints, p, false, settings.lane_extension),
+                    p.loose_end});
   }
   plan_corridors(lines, &info, settings, plan);
   JunctionPlanner(waypoints, pieces, zones.count, junctions).plan(plan);

@@ -3,8 +3,12 @@
 // (junction_zones.hpp) becomes one SUMO node "J<n>"; every passage of a route through it
 // becomes a connection from the lane before to the lane after, whose shape is the route's
 // own points, so SUMO's internal lanes are the routes as drawn (not netconvert's curves).
-// The node's shape is the convex hull of the lane ends it joins (widened by half a lane),
-// which touches each lane only at its end, so netconvert keeps the lane shapes exactly.
+// The node's shape runs through the corners of the lane ends it joins, in the order of their
+// angle around the node, so that it touches each lane only at its end and netconvert keeps
+// the lane shapes exactly (netconvert cuts a lane where its junction's shape crosses it).
+// Where that shape would still cross one of its lanes (a lane leaving in the middle of a
+// turn curves across the line to its neighbour's corner), it runs through the lane ends'
+// centres, or out from the middle to each lane end and back, whichever cuts least.
 //
 // Right of way: a priority junction by default. Edges carry their number of lanes as SUMO
 // priority, so the wider road has priority and netconvert picks the straightest pair among

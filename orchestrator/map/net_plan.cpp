@@ -456,7 +456,10 @@ std::string sumo_safe_id(const std::string& id) {
 
 void plan_corridors(const WaypointFile& lines, const std::vector<CorridorLine>* info, const NetPlanSettings& settings,
                     NetPlan& out) {
-  const auto corridors = find_corridors(lines, out.notes);
+  std::vector<bool> solitary;
+  if (info)
+    for (const CorridorLine& l : *info) solitary.push_back(l.solitary);
+  const auto corridors = find_corridors(lines, out.notes, solitary);
   out.corridors += static_cast<int>(corridors.size());
   std::set<std::string> used_names;
   for (const auto& corridor : corridors) CorridorPlanner(lines, corridor, settings, info).plan(used_names, out);

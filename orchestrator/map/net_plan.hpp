@@ -120,6 +120,10 @@ struct CorridorLine {
   // the straight extension would run into another road.
   double start_extension = -1;
   double end_extension = -1;
+  // A lane of its own, never a neighbouring lane of another line's road (a dead-end lane
+  // made for a route that starts or ends inside a junction: its end lies at that junction,
+  // where the lanes beside it go on).
+  bool solitary = false;
 };
 // Plans the corridors of `lines` into `out` (edges, own nodes, connections within corridors).
 void plan_corridors(const WaypointFile& lines, const std::vector<CorridorLine>* info, const NetPlanSettings& settings,

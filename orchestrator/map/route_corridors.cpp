@@ -91,8 +91,11 @@ RouteRelation relate_lines(const Polyline& a, const Polyline& b, const NearIndex
   std::nth_element(laterals.begin(), laterals.begin() + static_cast<long>(laterals.size() / 2), laterals.end());
   rel.lateral = laterals[laterals.size() / 2];
   // Any real stretch on the same lane counts (two lanes cannot be stacked even briefly);
-  // neighbouring lanes need a substantial overlap to be trusted.
-  const double needed = std::min(kMinParallelOverlap, 0.5 * std::min(a.length(), b.length()));
+  // neighbouring lanes need a substantial overlap to be trusted, and never less than a car
+  // length: a stub of a metre or two (a route's start inside a junction, cut off as a dead
+  // end of its own) is no lane of the road it happens to lie beside.
+  const double needed =
+      std::max(kMinParallelStub, std::min(kMinParallelOverlap, 0.5 * std::min(a.length(), b.length())));
   if (std::abs(rel.lateral) < kMinLaneSpacing) {
     if (rel.overlap >= kMinCoincidentOverlap) rel.kind = RouteRelation::Kind::Coincident;
   } else if (std::abs(rel.lateral) <= kMaxLaneSpacing && rel.overlap >= needed) {
@@ -112,7 +115,8 @@ struct PairRelation {
 
 RouteRelation relate_routes(const Polyline& a, const Polyline& b) { return relate_lines(a, b, NearIndex(b)); }
 
-std::vector<std::vector<std::size_t>> find_corridors(const WaypointFile& waypoints, std::vector<std::string>& notes) {
+std::vector<std::vector<std::size_t>> find_corridors(const WaypointFile& waypoints, std::vector<std::string>& notes,
+                                                     const std::vector<bool>& solitary) {
   const auto& routes = waypoints.routes;
   const std::size_t n = routes.size();
   std::vector<NearIndex> indices;
@@ -123,8 +127,10 @@ std::vector<std::vector<std::size_t>> find_corridors(const WaypointFile& waypoin
   // other one (a lane that starts later lies wholly beside the longer lane).
   std::vector<PairRelation> parallel;
   std::vector<PairRelation> coincident;
+  const auto alone = [&](std::size_t i) { return i < solitary.size() && solitary[i]; };
   for (std::size_t i = 0; i < n; ++i)
     for (std::size_t j = i + 1; j < n; ++j) {
+      if (alone(i) || alone(j)) continue;
       const bool i_shorter = routes[i].line.length() <= routes[j].line.length();
       const std::size_t a = i_shorter ? i : j;
       const std::size_t b = i_shorter ? j : i;

@@ -19,6 +19,7 @@ inline constexpr double kMaxLaneSpacing = 6.0;          // m; farther routes are
 inline constexpr double kMaxSpacingVariation = 1.0;     // m along the overlap (max - min)
 inline constexpr double kMinParallelOverlap = 30.0;     // m, or half the shorter route
 inline constexpr double kMinCoincidentOverlap = 5.0;    // m on the same lane
+inline constexpr double kMinParallelStub = 5.0;         // m: the least overlap of neighbouring lanes
 inline constexpr double kSameDirectionCos = 0.94;       // cos 20 deg between the tangents
 
 struct RouteRelation {
@@ -39,7 +40,9 @@ RouteRelation relate_routes(const Polyline& a, const Polyline& b);
 // their first route. Unions are made strongest overlap first and never put two coincident
 // routes into one corridor (they would become two lanes on top of each other); such routes
 // and other remarks are appended to `notes`.
+// `solitary[i]`: route i is a lane of its own, never a neighbour of another.
 std::vector<std::vector<std::size_t>> find_corridors(const WaypointFile& waypoints,
-                                                     std::vector<std::string>& notes);
+                                                     std::vector<std::string>& notes,
+                                                     const std::vector<bool>& solitary = {});
 
 }  // namespace orch

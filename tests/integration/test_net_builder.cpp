@@ -270,6 +270,31 @@ TEST(NetBuilder, NetconvertFailureCarriesItsMessage) {
   }
 }
 
+// A map from user waypoints may take any id, a shipped map's too; a name is refused only
+// where both maps would be loaded together, and the message says how to choose.
+TEST(MapBuildCommand, AnyIdUnlessTwoMapsOfThatNameWouldLoadTogether) {
+  TempDir dir("mapcli_id");
+  RoadShape road;
+  const auto source = test::write_waypoint_file(dir.path(), "Test.Road", {{"W1", road_points(road, 0, 0, 300)},
+                                                                          {"W2", road_points(road, 3.5, 0, 300)}});
+  // The shipped map's name, in a folder outside the maps folders: built.
+  const auto own = dir.path() / "mine" / "urban";
+  auto shipped_name = run_cli({"map", "build", "--waypoints", source.string(), "--id", "urban", "--out", own.string()});
+  ASSERT_EQ(shipped_name.exit_code, 0) << shipped_name.output;
+  EXPECT_EQ(load_map_manifest(own).id, "urban");
+  // Two maps named "road" in one maps folder would load together: the second is refused.
+  const auto maps = dir.path() / "maps";
+  auto first = run_cli({"map", "build", "--waypoints", source.string(), "--id", "road", "--out",
+                        (maps / "road").string(), "--maps", maps.string()});
+  ASSERT_EQ(first.exit_code, 0) << first.output;
+  auto second = run_cli({"map", "build", "--waypoints", source.string(), "--id", "road", "--out",
+                         (maps / "road2").string(), "--maps", maps.string()});
+  EXPECT_NE(second.exit_code, 0);
+  EXPECT_NE(second.output.find("a map named \"road\" already exists"), std::string::npos) << second.output;
+  EXPECT_NE(second.output.find("choose another --id"), std::string::npos) << second.output;
+  EXPECT_FALSE(std::filesystem::exists(maps / "road2" / "road.net.xml"));
+}
+
 TEST(MapBuildCommand, CreatesAMapFolderFromAnyWaypointFile) {
   TempDir dir("mapcli");
   RoadShape road;
