@@ -212,7 +212,7 @@ int run_batch(const BatchOptions& given) {
   std::vector<std::size_t> tasks;
   for (std::size_t i = 0; i < plan.runs.size(); ++i)
     if (!done[i]) tasks.push_back(i);
-  const auto groups = fork_groups(plan, tasks, !o.no_fork);
+  const auto groups = fork_groups(plan, tasks, !o.no_fork, *o.jobs);
   std::vector<std::size_t> group_tasks;
   for (std::size_t g = 0; g < groups.size(); ++g) group_tasks.push_back(g);
   // The runs of each group still to run in its next attempt.

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <map>
 #include <string>
 #include <tuple>
@@ -34,7 +35,7 @@ void use_one_seed_per_logical(BatchPlan& plan) {
 }
 
 std::vector<std::vector<std::size_t>> fork_groups(const BatchPlan& plan, const std::vector<std::size_t>& pending,
-                                                  bool enabled) {
+                                                  bool enabled, int jobs) {
   std::vector<std::vector<std::size_t>> groups;
   std::map<std::string, std::size_t> group_of;
   for (const auto i : pending) {
@@ -46,6 +47,15 @@ std::vector<std::vector<std::size_t>> fork_groups(const BatchPlan& plan, const s
     const auto [it, added] = group_of.emplace(share_key(run), groups.size());
     if (added) groups.emplace_back();
     groups[it->second].push_back(i);
+  }
+  while (static_cast<int>(groups.size()) < jobs) {
+    const auto largest = std::max_element(groups.begin(), groups.end(),
+                                          [](const auto& a, const auto& b) { return a.size() < b.size(); });
+    if (largest == groups.end() || largest->size() < 2) break;
+    const auto half = static_cast<std::ptrdiff_t>(largest->size() / 2);
+    std::vector<std::size_t> second(largest->begin() + half, largest->end());
+    largest->erase(largest->begin() + half, largest->end());
+    groups.push_back(std::move(second));
   }
   return groups;
 }

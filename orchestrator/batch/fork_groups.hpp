@@ -18,8 +18,10 @@ namespace orch::batch {
 void use_one_seed_per_logical(BatchPlan& plan);
 
 // The runs (indices into plan.runs) grouped as above, in plan order; a run that shares with
-// no other is a group of one. Only the runs in `pending`.
+// no other is a group of one. Only the runs in `pending`. A group's processes run one at a
+// time, so while there are fewer groups than `jobs` the largest is halved (each half runs the
+// prefix once): every core gets work.
 std::vector<std::vector<std::size_t>> fork_groups(const BatchPlan& plan, const std::vector<std::size_t>& pending,
-                                                  bool enabled);
+                                                  bool enabled, int jobs);
 
 }  // namespace orch::batch

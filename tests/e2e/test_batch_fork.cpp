@@ -117,11 +117,14 @@ TEST_P(BatchFork, EveryForkedRunWritesWhatTheRunFromZeroWrites) {
     alone[3] = run_dir.string();
     const auto r = run_cli(alone);
     ASSERT_LE(r.exit_code, 1) << r.output;
+    ASSERT_TRUE(fs::exists(forked / "trace.csv")) << forked;
     EXPECT_EQ(differences(run_dir, forked), std::vector<std::string>{}) << run_dir << " (" << backend << ")";
   }
   EXPECT_EQ(runs, 12);
   // The late brake's sets share at least their first 20 s (libsumo): two of three forked.
-  if (backend == "libsumo") EXPECT_GE(saved_late_brake, 40.0);
+  if (backend == "libsumo") {
+    EXPECT_GE(saved_late_brake, 40.0);
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(Backends, BatchFork, ::testing::Values("libsumo", "traci"));
