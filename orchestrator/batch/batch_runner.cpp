@@ -284,6 +284,14 @@ int run_batch(const BatchOptions& given) {
       return true;
     }
     rec.execution_uuid = random_uuid();
+    rec.fork = nullptr;
+    if (fs::exists(dir / "fork.json")) {
+      try {
+        rec.fork = ordered_json::parse(read_file(dir / "fork.json"));
+      } catch (const std::exception&) {
+        // A fork.json that does not read says nothing; the run's own files decide.
+      }
+    }
     // Last and atomically: from here on the run counts as done, and never before.
     write_file_atomically(execution_trace_path(out, run.id),
                           execution_trace_text(run, plan.logicals[run.logical_index], rec));

@@ -97,6 +97,7 @@ TEST_P(BatchFork, EveryForkedRunWritesWhatTheRunFromZeroWrites) {
       EXPECT_NE(slurp(run_dir / "child.log").find("not forking"), std::string::npos) << run_dir;
     }
     if (trace["logical_uuid"] == kLateBrake) saved_late_brake += fork["saved_s"].get<double>();
+    EXPECT_EQ(trace["trace"]["implementation"]["fork"], fork) << e.path();  // the execution trace says it too
     // The same run from t = 0: its own command without the other variants, into the same
     // folder (paths in the outputs stay the same), the forked outputs kept aside.
     const fs::path forked = dir / ("forked_" + std::to_string(runs++));
