@@ -4,6 +4,8 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
@@ -12,6 +14,7 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 
+#include "core/errors.hpp"
 #include "core/files.hpp"
 #include "run/run_session.hpp"
 #include "run/same_commands.hpp"

@@ -36,7 +36,8 @@ class RunSession {
   bool take(const sim::WorldSnapshot& snapshot);
   // The commands for the next step; nullopt: the run failed.
   std::optional<std::vector<sim::Command>> next_commands(const sim::WorldSnapshot& snapshot);
-  // The simulator failed for this run (a step, a read, applying its commands).
+  // The simulator failed for this run (a step, a read, applying its commands). Call it inside
+  // the catch handler: the exception being handled is the run's error.
   void fail();
   // SUMO took a step for this run (its time, for result.json's timing).
   void add_step_time(double seconds) { result_.timing.sumo_step_s += seconds; }
