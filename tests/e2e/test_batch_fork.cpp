@@ -129,3 +129,30 @@ TEST_P(BatchFork, EveryForkedRunWritesWhatTheRunFromZeroWrites) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Backends, BatchFork, ::testing::Values("libsumo", "traci"));
+
+TEST(RunForkWith, RefusesUnpairedVariantsAndViewers) {
+  TempDir dir;
+  const std::string scenario = source_path("scenarios/highway_cut_in.json");
+  auto r = run_cli({"run", scenario, "--out", (dir / "a").string(), "-q", "--fork-with", scenario});
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("--fork-with and --fork-out come in pairs: 1 --fork-with, 0 --fork-out"), std::string::npos)
+      << r.output;
+  r = run_cli({"run", scenario, "--out", (dir / "a").string(), "-q", "--fork-with", scenario, "--fork-out",
+               (dir / "b").string(), "--realtime", "100"});
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("--fork-with runs variants without a viewer"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(dir / "b" / "result.json"));
+}
+
+// Two copies of one scenario give the same commands at every step: they share the whole run
+// (the copy is never forked) and both folders hold the run.
+TEST(RunForkWith, EqualVariantsShareEveryStep) {
+  TempDir dir;
+  const std::string scenario = source_path("scenarios/highway_cut_in.json");
+  const auto r = run_cli({"run", scenario, "--out", (dir / "a").string(), "-q", "--no-report", "--fork-with", scenario,
+                          "--fork-out", (dir / "b").string()});
+  ASSERT_LE(r.exit_code, 1) << r.output;
+  EXPECT_FALSE(read_json(dir / "b" / "fork.json")["forked"].get<bool>());
+  EXPECT_EQ(read_json(dir / "a" / "fork.json")["process"], read_json(dir / "b" / "fork.json")["process"]);
+  EXPECT_EQ(slurp(dir / "a" / "trace.csv"), slurp(dir / "b" / "trace.csv"));
+}
