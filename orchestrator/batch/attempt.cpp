@@ -82,4 +82,10 @@ Attempt judge_attempt(const ChildExit& exit, const std::string& start_error, con
   return judged;
 }
 
+std::optional<int> verdict_exit_code(const std::filesystem::path& result_file) {
+  Attempt a;
+  if (!read_result(result_file, a).empty()) return std::nullopt;
+  return exit_code_of(a.verdict);
+}
+
 }  // namespace orch::batch

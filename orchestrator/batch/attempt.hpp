@@ -37,4 +37,9 @@ Attempt judge_attempt(const ChildExit& exit, const std::string& start_error, con
 // scenario's judgement and is never retried.
 inline bool should_retry(const Attempt& a, int max_attempts) { return a.verdict == "error" && a.number < max_attempts; }
 
+// The exit status a run's result.json verdict stands for (0 success, 1 failure, 2 error);
+// nullopt when it has none that reads. For the runs of a forked group, whose one process
+// exits with the worst of them.
+std::optional<int> verdict_exit_code(const std::filesystem::path& result_file);
+
 }  // namespace orch::batch

@@ -12,6 +12,7 @@
 #include "batch/attempt.hpp"
 #include "batch/batch_report.hpp"
 #include "batch/execution_trace.hpp"
+#include "batch/fork_groups.hpp"
 #include "batch/identifiers.hpp"
 #include "batch/manifest.hpp"
 #include "batch/progress.hpp"
@@ -60,6 +61,8 @@ void apply_manifest_defaults(BatchOptions& o, const Manifest& m) {
   if (o.catalog.empty() && opt.contains("catalog") && opt["catalog"].is_string()) o.catalog = opt["catalog"].get<std::string>();
   if (o.wrapper.empty() && opt.contains("wrapper") && opt["wrapper"].is_string()) o.wrapper = opt["wrapper"].get<std::string>();
   if (!o.ssm && opt.contains("ssm") && opt["ssm"].is_boolean()) o.ssm = opt["ssm"].get<bool>();
+  if (!o.fork && opt.contains("fork") && opt["fork"].is_boolean()) o.fork = opt["fork"].get<bool>();
+  if (!o.no_fork && opt.contains("no_fork") && opt["no_fork"].is_boolean()) o.no_fork = opt["no_fork"].get<bool>();
   // --ego-model and --reference-run: every run of the batch drives its ego the same way.
   if (o.run_args.empty() && opt.contains("run_args") && opt["run_args"].is_array())
     for (const auto& a : opt["run_args"])
@@ -68,7 +71,8 @@ void apply_manifest_defaults(BatchOptions& o, const Manifest& m) {
 
 ordered_json options_json(const BatchOptions& o) {
   return {{"jobs", *o.jobs}, {"timeout_s", *o.timeout_s}, {"retries", *o.retries}, {"maps", o.map_dirs},
-          {"catalog", o.catalog}, {"wrapper", o.wrapper}, {"ssm", o.ssm}, {"run_args", o.run_args}};
+          {"catalog", o.catalog}, {"wrapper", o.wrapper}, {"ssm", o.ssm}, {"run_args", o.run_args},
+          {"fork", o.fork}, {"no_fork", o.no_fork}};
 }
 
 void verify_unchanged(const Manifest& m, const BatchPlan& plan) {
@@ -195,7 +199,8 @@ int run_batch(const BatchOptions& given) {
   if (!o.retries) o.retries = kDefaultRetries;
 
   // Inputs are checked before the folder is touched: a batch that cannot start leaves none.
-  const BatchPlan plan = plan_batch(o.inputs, o.shard);
+  BatchPlan plan = plan_batch(o.inputs, o.shard);
+  if (o.fork) use_one_seed_per_logical(plan);
   for (const auto& run : plan.runs) pass_through_flags(run.set.sumo_config, o.run_flags);
   fs::create_directories(out / "runs");
   fs::create_directories(out / "executions");
@@ -207,15 +212,24 @@ int run_batch(const BatchOptions& given) {
   std::vector<std::size_t> tasks;
   for (std::size_t i = 0; i < plan.runs.size(); ++i)
     if (!done[i]) tasks.push_back(i);
+  const auto groups = fork_groups(plan, tasks, !o.no_fork, *o.jobs);
+  std::vector<std::size_t> group_tasks;
+  for (std::size_t g = 0; g < groups.size(); ++g) group_tasks.push_back(g);
+  // The runs of each group still to run in its next attempt.
+  std::vector<std::vector<std::size_t>> attempt_runs = groups;
+  if (groups.size() < tasks.size())
+    msg << fmt::format("batch: {} runs share their common prefix in {} group(s) (docs/forking.md)\n", tasks.size(),
+                       groups.size());
   msg << fmt::format("batch: {} runs{}, {} to run, {} at a time, timeout {:g} s, into {}\n", plan.runs.size(),
                      plan.shard ? fmt::format(" (shard {} of {} in all)", plan.shard->text(), plan.total_runs) : "",
                      tasks.size(), *o.jobs, *o.timeout_s, out.string());
 
   Progress progress(msg, o.terminal, plan.runs.size(), plan.runs.size() - tasks.size());
   std::map<std::size_t, ExecutionRecord> records;
+  std::size_t attempt_runs_size = 1;
   const int max_attempts = 1 + std::max(0, *o.retries);
   QueueCallbacks callbacks;
-  callbacks.prepare = [&](std::size_t task, int attempt) {
+  auto prepare_run = [&](std::size_t task, int attempt) {
     const PlannedRun& run = plan.runs[task];
     const fs::path dir = out / "runs" / run.id;
     prepare_run_dir(dir, attempt);
@@ -232,17 +246,35 @@ int run_batch(const BatchOptions& given) {
         write_file_atomically(dir / f.name, f.text);
       argv = run_command_line(o, run, dir, dir / bound_file);
     }
-    if (!o.wrapper.empty()) argv.insert(argv.begin(), o.wrapper);
     ExecutionRecord& rec = records[task];
     rec.command = argv;
     rec.executed_at = utc_timestamp();
     return Launch{argv, dir / "child.log"};
   };
-  callbacks.ended = [&](std::size_t task, int attempt, const ChildExit& exit, const std::string& start_error) {
+  // A group's attempt: its first run's command with the others as --fork-with/--fork-out.
+  callbacks.prepare = [&](std::size_t group, int attempt) {
+    const auto& runs = attempt_runs[group];
+    Launch launch = prepare_run(runs.front(), attempt);
+    for (std::size_t k = 1; k < runs.size(); ++k) {
+      const Launch other = prepare_run(runs[k], attempt);
+      const auto& a = other.argv;
+      // run FILE --out DIR ...: the other's file and folder.
+      launch.argv.insert(launch.argv.end(), {"--fork-with", a[2], "--fork-out", a[4]});
+    }
+    if (!o.wrapper.empty()) launch.argv.insert(launch.argv.begin(), o.wrapper);
+    for (const auto r : runs) records[r].command = launch.argv;
+    return launch;
+  };
+  auto run_ended = [&](std::size_t task, int attempt, const ChildExit& exit, const std::string& start_error) {
     const PlannedRun& run = plan.runs[task];
     const fs::path dir = out / "runs" / run.id;
     ExecutionRecord& rec = records[task];
-    Attempt a = judge_attempt(exit, start_error, dir / "result.json", o.timeout_s);
+    // A group's process exits with the worst verdict of its runs: each run is judged by its own.
+    ChildExit own = exit;
+    if (attempt_runs_size > 1 && !exit.signal && !exit.timed_out && exit.exit_code && *exit.exit_code >= 0 &&
+        *exit.exit_code <= 2)
+      own.exit_code = verdict_exit_code(dir / "result.json").value_or(*exit.exit_code);
+    Attempt a = judge_attempt(own, start_error, dir / "result.json", o.timeout_s);
     a.number = attempt;
     a.started_at = rec.executed_at;
     rec.attempts.push_back(a);
@@ -252,6 +284,14 @@ int run_batch(const BatchOptions& given) {
       return true;
     }
     rec.execution_uuid = random_uuid();
+    rec.fork = nullptr;
+    if (fs::exists(dir / "fork.json")) {
+      try {
+        rec.fork = ordered_json::parse(read_file(dir / "fork.json"));
+      } catch (const std::exception&) {
+        // A fork.json that does not read says nothing; the run's own files decide.
+      }
+    }
     // Last and atomically: from here on the run counts as done, and never before.
     write_file_atomically(execution_trace_path(out, run.id),
                           execution_trace_text(run, plan.logicals[run.logical_index], rec));
@@ -261,9 +301,30 @@ int run_batch(const BatchOptions& given) {
     records.erase(task);
     return false;
   };
+  callbacks.ended = [&](std::size_t group, int attempt, const ChildExit& exit, const std::string& start_error) {
+    std::vector<std::size_t> again;
+    const auto runs = attempt_runs[group];
+    attempt_runs_size = runs.size();
+    const fs::path first = out / "runs" / plan.runs[runs.front()].id;
+    for (const auto r : runs) {
+      // One child.log per group: each run folder gets its copy.
+      const fs::path dir = out / "runs" / plan.runs[r].id;
+      std::error_code ec;
+      if (dir != first) fs::copy_file(first / "child.log", dir / "child.log", fs::copy_options::overwrite_existing, ec);
+    }
+    for (const auto r : runs)
+      if (run_ended(r, attempt, exit, start_error)) again.push_back(r);
+    attempt_runs[group] = again;
+    return !again.empty();
+  };
   callbacks.tick = [&] { progress.tick(); };
-  const QueueOutcome outcome = run_queue(tasks, QueueOptions{*o.jobs, o.timeout_s, 0.5}, callbacks);
+  const QueueOutcome outcome = run_queue(group_tasks, QueueOptions{*o.jobs, o.timeout_s, 0.5}, callbacks);
   progress.close();
+  auto unfinished_runs = [&](const std::vector<std::size_t>& unfinished) {
+    std::size_t n = 0;
+    for (const auto g : unfinished) n += attempt_runs[g].size();
+    return n;
+  };
 
   BatchReport report = collect_report({out});
   report.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - session_start).count();
@@ -271,7 +332,7 @@ int run_batch(const BatchOptions& given) {
   msg << fmt::format("\nresults: {} (summary.json, junit.xml, summary.txt)\n", out.string());
   if (outcome.interrupted) {
     msg << fmt::format("batch: interrupted; {} run(s) not done: continue with `orchestrator batch --resume {}`\n",
-                       outcome.unfinished.size(), out.string());
+                       unfinished_runs(outcome.unfinished), out.string());
     return 3;
   }
   // A shard answers for its own runs; the other shards' runs are merged later.

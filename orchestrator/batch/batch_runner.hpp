@@ -34,6 +34,10 @@ struct BatchOptions {
   std::vector<std::string> map_dirs;  // passed to each run as --maps
   std::string catalog;                // passed to each run as --catalog
   bool ssm = false;                   // passed to each run as --ssm (SUMO's SSM device on the ego)
+  // --fork: the sets of a logical scenario run with one seed and share their common prefix
+  // (docs/forking.md); sets that share a seed and settings share it anyway (--no-fork: never).
+  bool fork = false;
+  bool no_fork = false;
   std::string wrapper;                // program each run is started through (nice, a test double)
   std::filesystem::path orchestrator; // the binary to run children with
   // Flags `orchestrator run` offers; a sumo_config value (traffic, backend) is passed only

@@ -87,6 +87,7 @@ std::string execution_trace_text(const PlannedRun& run, const PlannedLogical& lo
   impl["metrics"] = last.metrics;
   impl["criteria"] = last.criteria;
   if (!last.preventable.empty()) impl["preventable"] = last.preventable;
+  if (!record.fork.is_null()) impl["fork"] = record.fork;
   impl["attempts"] = ordered_json::array();
   for (const auto& a : record.attempts) impl["attempts"].push_back(attempt_json(a));
   trace["implementation"] = impl;
@@ -135,7 +136,7 @@ ExecutionSummary read_execution_summary(const std::filesystem::path& file) {
       if (impl->contains("metrics")) s.metrics = impl->at("metrics");
       if (impl->contains("criteria")) s.criteria = impl->at("criteria");
       s.preventable = i.string("preventable", Need::Optional).value_or("");
-      i.allow({"template_file", "scenario_file", "command", "exit_code", "metrics", "criteria"});
+      i.allow({"template_file", "scenario_file", "command", "exit_code", "metrics", "criteria", "fork"});
       i.finish();
     }
     t.finish();

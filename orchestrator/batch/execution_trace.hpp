@@ -20,6 +20,9 @@ struct ExecutionRecord {
   std::string executed_at;  // start of the final attempt
   std::vector<std::string> command;
   std::vector<Attempt> attempts;  // oldest first; the last decides
+  // The run's fork.json when it shared its prefix with other runs (docs/forking.md): from
+  // where it was forked and the simulated seconds it saved; null otherwise.
+  nlohmann::ordered_json fork;
 };
 
 // The trace's text. Input files are named by absolute path; outputs relative to the batch

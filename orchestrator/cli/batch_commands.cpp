@@ -46,6 +46,8 @@ struct BatchCliOptions {
   std::string wrapper;
   bool video = false;  // --video: video.mp4 of every failing run
   bool ssm = false;    // --ssm: passed to every run
+  bool fork = false;     // --fork: one seed per logical scenario, its sets share their prefix
+  bool no_fork = false;  // --no-fork: every run from t = 0 in a process of its own
   std::string ego_model;       // --ego-model: passed to every run
   bool reference_run = false;  // --reference-run: passed to every run
   CommonOptions common;
@@ -117,6 +119,9 @@ int batch_command(const BatchCliOptions& o, const CLI::App& app) {
   b.catalog = o.common.catalog.empty() ? "" : fs::absolute(o.common.catalog).string();
   b.wrapper = resolve_program(o.wrapper);
   b.ssm = o.ssm;
+  b.fork = o.fork;
+  b.no_fork = o.no_fork;
+  if (o.fork && o.no_fork) throw OrchError("--fork and --no-fork contradict each other: give one");
   if (o.video) {
     if (const auto missing = video::missing_video_tools(); !missing.empty()) throw OrchError("batch " + missing);
   }
@@ -178,6 +183,10 @@ Handler setup_batch(CLI::App& cmd) {
   cmd.add_option("--wrapper", o->wrapper, "Start each run through this program (e.g. nice)");
   cmd.add_flag("--video", o->video, "Write video.mp4 of every failing run (sumo-gui, ffmpeg)");
   cmd.add_flag("--ssm", o->ssm, "Pass --ssm to every run: SUMO's SSM device on the ego (ssm.xml)");
+  cmd.add_flag("--fork", o->fork,
+               "Run the sets of each logical scenario with one seed (its first set's) so that they run their common "
+               "prefix once (docs/forking.md)");
+  cmd.add_flag("--no-fork", o->no_fork, "Run every set from t = 0 in a process of its own, even sets that share a seed");
   cmd.add_option("--ego-model", o->ego_model, "What drives the ego in every run: sumo, r157 or cruise (run --ego-model)")
       ->check(CLI::IsMember(ego_model_names()));
   cmd.add_flag("--reference-run", o->reference_run,

@@ -74,8 +74,22 @@ struct RunOptions {
   int jsonl_every = 1;
   std::vector<std::string> given;  // e.g. "--step", "--seed"
   bool ssm = false;  // --ssm: SUMO's SSM device on a SUMO-driven ego (ssm.xml)
+  // --fork-with FILE --fork-out DIR (repeatable, in pairs): more variants of the scenario,
+  // run with the same options, sharing SUMO while they give the same commands (docs/forking.md).
+  std::vector<std::string> fork_with;
+  std::vector<std::string> fork_out;
 };
 int run_command(const RunOptions& o);
+}  // namespace orch::cli
+namespace orch {
+struct RunRequest;
+struct SumoBackendOptions;
+}  // namespace orch
+namespace orch::cli {
+// `run FILE --fork-with FILE2 --fork-out DIR2 ...`: the variants with one request's options
+// (cli/fork_run.cpp).
+int run_forked(const RunOptions& o, const RunRequest& request, const std::string& backend,
+               const SumoBackendOptions& sumo_options);
 
 // `orchestrator report DIR...`: (re)writes report.html of run folders and batch folders.
 struct ReportOptions {

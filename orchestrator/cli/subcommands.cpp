@@ -88,6 +88,12 @@ Handler setup_run(CLI::App& cmd) {
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
   r->add_flag("--ssm", run->ssm, "Equip the ego (when SUMO drives it) with SUMO's SSM device: ssm.xml in the run folder");
+  r->add_option("--fork-with", run->fork_with,
+                "Another variant of the scenario (repeatable, each with its --fork-out): the variants share their common "
+                "prefix, run once (libsumo; docs/forking.md)")
+      ->allow_extra_args(false);
+  r->add_option("--fork-out", run->fork_out, "Output folder of the --fork-with variant in the same place")
+      ->allow_extra_args(false);
   add_common(r, run->common);
   return [run, r] {
     for (const char* name : {"--step", "--seed", "--max-time", "--traffic", "--backend", "--ego-model", "--reference-run"})

@@ -1,0 +1,158 @@
+// Forking (docs/forking.md): every run of a forked batch over the shipped nightly examples
+// writes exactly what the same run from t = 0 writes (wall-clock fields aside, as
+// scripts/same_outputs/compare.py compares), on both backends (traci does not fork: it says
+// so and runs every set from t = 0).
+#include <gtest/gtest.h>
+
+#include <regex>
+#include <sstream>
+
+#include "e2e/test_batch_support.hpp"
+
+using namespace orch::test;
+namespace fs = std::filesystem;
+
+namespace {
+
+// Files that say how the run was made, not what happened in it.
+bool compared(const std::string& name) {
+  return name != "fork.json" && name != "sumo.log" && name != "child.log" && name.rfind("attempt", 0) != 0 &&
+         name != "scenario.json";
+}
+
+std::string normalised(const fs::path& file) {
+  const std::string name = file.filename().string();
+  if (name == "result.json") {
+    auto j = read_json(file);
+    j.erase("wall_time_s");
+    j.erase("timing");
+    return j.dump();
+  }
+  const std::string text = slurp(file);
+  const std::regex wall(", [0-9.]+ s wall\\)");
+  if (name == "run.log") return std::regex_replace(text, wall, ")");
+  if (name == "report.html") {  // it embeds result.json and run.log
+    const std::regex timing(R"("(wall_time_s":[-0-9.eE+]+|timing":\{[^{}]*(\{[^{}]*\}[^{}]*)*\}),?)");
+    return std::regex_replace(std::regex_replace(text, timing, ""), std::regex(", [0-9.]+ s wall\\)"), ")");
+  }
+  return text;
+}
+
+// Every compared file of `a` and `b`, byte for byte after normalising; returns the differences.
+std::vector<std::string> differences(const fs::path& a, const fs::path& b) {
+  std::vector<std::string> out;
+  std::set<std::string> names;
+  for (const auto& d : {a, b})
+    for (const auto& e : fs::directory_iterator(d))
+      if (compared(e.path().filename().string())) names.insert(e.path().filename().string());
+  for (const auto& n : names) {
+    if (!fs::exists(a / n) || !fs::exists(b / n)) {
+      out.push_back(n + " only in one");
+      continue;
+    }
+    if (normalised(a / n) != normalised(b / n)) out.push_back(n);
+  }
+  return out;
+}
+
+const std::vector<std::string> kNightly{"344b1b1a-8831-46a0-a4e1-e7104d3ce4b5", "4aae47a9-c775-4dd8-9373-02c03b91dd6b",
+                                        "9202dd94-2666-4583-a45c-f8396b848ae9", "8fcbbaab-a3d0-472b-b3d5-1046910ecff3"};
+const std::string kLateBrake = "8fcbbaab-a3d0-472b-b3d5-1046910ecff3";
+
+class BatchFork : public ::testing::TestWithParam<std::string> {};
+
+}  // namespace
+
+TEST_P(BatchFork, EveryForkedRunWritesWhatTheRunFromZeroWrites) {
+  const std::string backend = GetParam();
+  TempDir dir;
+  for (const auto& e : fs::directory_iterator(source_path("scenarios/nightly")))
+    if (e.path().filename().string().find("_parameters.json") == std::string::npos)
+      fs::copy_file(e.path(), dir / e.path().filename().string());
+  std::vector<std::string> args{"batch"};
+  for (const auto& uuid : kNightly) {
+    const fs::path logical = dir / ("logical_" + uuid + ".json");
+    auto j = read_json(logical);
+    j["sumo_config"]["backend"] = backend;
+    std::ofstream(logical) << j.dump(2);
+    ASSERT_EQ(run_cli({"sample", logical.string(), "--count", "3", "--seed", "1"}).exit_code, 0);
+    args.push_back(logical.string());
+  }
+  const fs::path out = dir / "out";
+  args.insert(args.end(), {"--fork", "--out", out.string(), "--jobs", "2"});
+  const auto batch = run_cli(args);
+  ASSERT_LE(batch.exit_code, 1) << batch.output;  // failures by design, no errors
+
+  double saved_late_brake = 0;
+  int runs = 0;
+  for (const auto& e : fs::directory_iterator(out / "executions")) {
+    const auto trace = read_json(e.path());
+    std::vector<std::string> command;  // the child's command line, as one string
+    std::istringstream words(trace["trace"]["implementation"]["command"].get<std::string>());
+    for (std::string w; words >> w;) command.push_back(w);
+    const fs::path run_dir = out / trace["outputs"]["run_dir"].get<std::string>();
+    const auto fork = read_json(run_dir / "fork.json");
+    if (backend == "traci") {
+      EXPECT_FALSE(fork["forked"].get<bool>()) << run_dir;
+      EXPECT_NE(slurp(run_dir / "child.log").find("not forking"), std::string::npos) << run_dir;
+    }
+    if (trace["logical_uuid"] == kLateBrake) saved_late_brake += fork["saved_s"].get<double>();
+    EXPECT_EQ(trace["trace"]["implementation"]["fork"], fork) << e.path();  // the execution trace says it too
+    // The same run from t = 0: its own command without the other variants, into the same
+    // folder (paths in the outputs stay the same), the forked outputs kept aside.
+    const fs::path forked = dir / ("forked_" + std::to_string(runs++));
+    fs::copy(run_dir, forked);
+    for (const auto& f : fs::directory_iterator(run_dir))
+      if (f.path().filename() != "scenario.json") fs::remove_all(f.path());
+    std::vector<std::string> alone;
+    for (std::size_t i = 1; i < command.size(); ++i) {
+      const std::string& a = command[i];
+      if (a == "--fork-with" || a == "--fork-out") {
+        ++i;
+        continue;
+      }
+      alone.push_back(a);
+    }
+    // The group's command names its first run: this run's file and folder instead.
+    alone[1] = (run_dir / "scenario.json").string();
+    alone[3] = run_dir.string();
+    const auto r = run_cli(alone);
+    ASSERT_LE(r.exit_code, 1) << r.output;
+    ASSERT_TRUE(fs::exists(forked / "trace.csv")) << forked;
+    EXPECT_EQ(differences(run_dir, forked), std::vector<std::string>{}) << run_dir << " (" << backend << ")";
+  }
+  EXPECT_EQ(runs, 12);
+  // The late brake's sets share at least their first 20 s (libsumo): two of three forked.
+  if (backend == "libsumo") {
+    EXPECT_GE(saved_late_brake, 40.0);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Backends, BatchFork, ::testing::Values("libsumo", "traci"));
+
+TEST(RunForkWith, RefusesUnpairedVariantsAndViewers) {
+  TempDir dir;
+  const std::string scenario = source_path("scenarios/highway_cut_in.json");
+  auto r = run_cli({"run", scenario, "--out", (dir / "a").string(), "-q", "--fork-with", scenario});
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("--fork-with and --fork-out come in pairs: 1 --fork-with, 0 --fork-out"), std::string::npos)
+      << r.output;
+  r = run_cli({"run", scenario, "--out", (dir / "a").string(), "-q", "--fork-with", scenario, "--fork-out",
+               (dir / "b").string(), "--realtime", "100"});
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("--fork-with runs variants without a viewer"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(dir / "b" / "result.json"));
+}
+
+// Two copies of one scenario give the same commands at every step: they share the whole run
+// (the copy is never forked) and both folders hold the run.
+TEST(RunForkWith, EqualVariantsShareEveryStep) {
+  TempDir dir;
+  const std::string scenario = source_path("scenarios/highway_cut_in.json");
+  const auto r = run_cli({"run", scenario, "--out", (dir / "a").string(), "-q", "--no-report", "--fork-with", scenario,
+                          "--fork-out", (dir / "b").string()});
+  ASSERT_LE(r.exit_code, 1) << r.output;
+  EXPECT_FALSE(read_json(dir / "b" / "fork.json")["forked"].get<bool>());
+  EXPECT_EQ(read_json(dir / "a" / "fork.json")["process"], read_json(dir / "b" / "fork.json")["process"]);
+  EXPECT_EQ(slurp(dir / "a" / "trace.csv"), slurp(dir / "b" / "trace.csv"));
+}
