@@ -3,15 +3,15 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <numbers>
+#include <set>
 
 #include "batch/gaussian_process.hpp"
 
 namespace orch::batch {
 
 namespace {
-
-constexpr double kStraddleZ = 1.96;
 
 double squared_distance(const Point& a, const Point& b) {
   double s = 0;
@@ -91,11 +91,6 @@ std::vector<Proposal> believer_batch(std::vector<Point> x, std::vector<double> y
   return out;
 }
 
-std::vector<double> labels(const std::vector<bool>& pass) {
-  std::vector<double> y;
-  for (bool p : pass) y.push_back(p ? 1.0 : -1.0);
-  return y;
-}
 
 }  // namespace
 
@@ -173,35 +168,118 @@ std::vector<Proposal> propose_minimum(const std::vector<Point>& x, const std::ve
       [](const GpPrediction& p) { return p.mean; });
 }
 
-std::vector<Proposal> propose_boundary(const std::vector<Point>& x, const std::vector<bool>& pass, std::size_t count,
-                                       SearchRng& rng, const SnapPoint& snap) {
-  // Steps around the midpoints of the closest pass/fail pairs follow the boundary found so far.
-  std::vector<std::pair<double, Point>> pairs;
-  for (std::size_t i = 0; i < x.size(); ++i) {
-    double nearest = std::numeric_limits<double>::infinity();
-    std::size_t other = x.size();
-    for (std::size_t j = 0; j < x.size(); ++j)
-      if (pass[j] != pass[i] && squared_distance(x[i], x[j]) < nearest) {
-        nearest = squared_distance(x[i], x[j]);
-        other = j;
-      }
-    if (other == x.size()) continue;
-    Point mid(x[i].size());
-    for (std::size_t d = 0; d < mid.size(); ++d) mid[d] = 0.5 * (x[i][d] + x[other][d]);
-    pairs.emplace_back(nearest, mid);
-  }
-  std::stable_sort(pairs.begin(), pairs.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
-  std::vector<Point> centres;
-  for (std::size_t i = 0; i < std::min<std::size_t>(10, pairs.size()); ++i) centres.push_back(pairs[i].second);
-  return believer_batch(
-      x, labels(pass), count, centres, rng, snap, "straddle",
-      [](const GaussianProcess&, const GpPrediction& p, const std::vector<double>&) {
-        return kStraddleZ * std::sqrt(p.variance) - std::abs(p.mean);
-      },
-      [](const GpPrediction& p) { return p.mean; });
+namespace {
+
+// The boundary's sparse grid: level-0 cells of 1/n0 per dimension; a cell whose corners
+// disagree (some pass, some fail) is split in 2^d children down to `min_cell`. A point's key
+// is its coordinates on a fine lattice, so corners shared by cells are run once.
+using Key = std::vector<long long>;
+Key key_of(const Point& p) {
+  Key k;
+  for (double v : p) k.push_back(std::llround(v * 1048576.0));
+  return k;
 }
 
-BoundaryEstimate estimate_boundary(const std::vector<Point>& x, const std::vector<bool>& pass, std::size_t levels) {
+struct Cell {
+  Point lower;
+  double size = 1;
+};
+
+std::size_t initial_cells(std::size_t dims) { return dims <= 2 ? 4 : 2; }
+
+std::vector<Point> corners(const Cell& c, const SnapPoint& snap) {
+  const std::size_t d = c.lower.size();
+  std::vector<Point> out;
+  for (std::size_t bits = 0; bits < (std::size_t{1} << d); ++bits) {
+    Point p = c.lower;
+    for (std::size_t j = 0; j < d; ++j)
+      if (bits & (std::size_t{1} << j)) p[j] = std::min(1.0, p[j] + c.size);
+    out.push_back(snap(p));
+  }
+  return out;
+}
+
+std::vector<Cell> level0(std::size_t dims) {
+  const std::size_t n = initial_cells(dims);
+  std::size_t total = 1;
+  for (std::size_t j = 0; j < dims; ++j) total *= n;
+  std::vector<Cell> out;
+  for (std::size_t index = 0; index < total; ++index) {
+    Cell c{Point(dims), 1.0 / static_cast<double>(n)};
+    std::size_t rest = index;
+    for (std::size_t j = dims; j-- > 0;) {
+      c.lower[j] = static_cast<double>(rest % n) * c.size;
+      rest /= n;
+    }
+    out.push_back(c);
+  }
+  return out;
+}
+
+std::vector<Cell> children(const Cell& c) {
+  const std::size_t d = c.lower.size();
+  std::vector<Cell> out;
+  for (std::size_t bits = 0; bits < (std::size_t{1} << d); ++bits) {
+    Cell child{c.lower, c.size / 2};
+    for (std::size_t j = 0; j < d; ++j)
+      if (bits & (std::size_t{1} << j)) child.lower[j] += child.size;
+    out.push_back(child);
+  }
+  return out;
+}
+
+struct Known {
+  std::map<Key, bool> pass;
+  // -1 a corner not run, 0 all agree, 1 they disagree
+  int state(const Cell& c, const SnapPoint& snap) const {
+    bool any_pass = false, any_fail = false;
+    for (const auto& p : corners(c, snap)) {
+      const auto it = pass.find(key_of(p));
+      if (it == pass.end()) return -1;
+      (it->second ? any_pass : any_fail) = true;
+    }
+    return any_pass && any_fail ? 1 : 0;
+  }
+};
+
+Known known_of(const std::vector<Point>& x, const std::vector<bool>& pass) {
+  Known k;
+  for (std::size_t i = 0; i < x.size(); ++i) k.pass[key_of(x[i])] = pass[i];
+  return k;
+}
+
+bool contains(const Cell& c, const Point& p) {
+  for (std::size_t j = 0; j < p.size(); ++j)
+    if (p[j] < c.lower[j] - 1e-12 || p[j] > c.lower[j] + c.size + 1e-12) return false;
+  return true;
+}
+
+}  // namespace
+
+std::vector<Proposal> propose_boundary(std::size_t dims, const std::vector<Point>& x, const std::vector<bool>& pass, std::size_t count,
+                                       double min_cell, const SnapPoint& snap) {
+  const Known known = known_of(x, pass);
+  std::vector<Cell> cells = level0(dims);
+  for (int level = 0; !cells.empty(); ++level) {
+    std::vector<Proposal> missing;
+    std::set<Key> seen;
+    for (const Cell& c : cells)
+      for (const auto& p : corners(c, snap))
+        if (!known.pass.count(key_of(p)) && seen.insert(key_of(p)).second && missing.size() < count)
+          missing.push_back(Proposal{p, c.size,
+                                     level == 0 ? "initial grid" : "refine a cell whose corners disagree"});
+    if (!missing.empty()) return missing;
+    std::vector<Cell> next;
+    for (const Cell& c : cells)
+      if (c.size / 2 >= min_cell - 1e-12 && known.state(c, snap) == 1)
+        for (auto& child : children(c)) next.push_back(std::move(child));
+    cells = std::move(next);
+  }
+  return {};  // the boundary is resolved to min_cell
+}
+
+BoundaryEstimate estimate_boundary(const std::vector<Point>& x, const std::vector<bool>& pass, std::size_t levels,
+                                   const SnapPoint& snap) {
   BoundaryEstimate out;
   const std::size_t dims = x.front().size();
   std::size_t per_dim = std::max<std::size_t>(2, levels);
@@ -209,7 +287,69 @@ BoundaryEstimate estimate_boundary(const std::vector<Point>& x, const std::vecto
   out.levels = per_dim;
   std::size_t total = 1;
   for (std::size_t j = 0; j < dims; ++j) total *= per_dim;
-  const GaussianProcess gp = GaussianProcess::fit(x, labels(pass));
+  const Known known = known_of(x, pass);
+  const std::vector<Cell> roots = level0(dims);
+  std::size_t uncertain = 0, passing = 0;
+  for (std::size_t index = 0; index < total; ++index) {
+    Point p(dims);
+    std::size_t rest = index;
+    for (std::size_t j = dims; j-- > 0;) {
+      p[j] = static_cast<double>(rest % per_dim) / static_cast<double>(per_dim - 1);
+      rest /= per_dim;
+    }
+    // The smallest cell holding p whose corners were all run.
+    Cell leaf = *std::find_if(roots.begin(), roots.end(), [&](const Cell& c) { return contains(c, p); });
+    while (known.state(leaf, snap) == 1) {
+      bool deeper = false;
+      for (const Cell& child : children(leaf))
+        if (contains(child, p) && known.state(child, snap) >= 0) {
+          leaf = child;
+          deeper = true;
+          break;
+        }
+      if (!deeper) break;
+    }
+    // Multilinear interpolation of the corners' +1 (pass) / -1 (fail): the sign classifies.
+    double value = 0, weight_sum = 0;
+    const std::vector<Point> cs = corners(leaf, [](const Point& q) { return q; });
+    const std::vector<Point> snapped = corners(leaf, snap);
+    for (std::size_t k = 0; k < cs.size(); ++k) {
+      double w = 1;
+      for (std::size_t j = 0; j < dims; ++j) {
+        const double t = std::clamp((p[j] - leaf.lower[j]) / leaf.size, 0.0, 1.0);
+        w *= cs[k][j] > leaf.lower[j] + 1e-12 ? t : 1 - t;
+      }
+      const auto it = known.pass.find(key_of(snapped[k]));
+      if (it == known.pass.end()) continue;
+      value += w * (it->second ? 1.0 : -1.0);
+      weight_sum += w;
+    }
+    const double mean = weight_sum > 0 ? value / weight_sum : 0.0;
+    const bool ok = mean >= 0;
+    if (known.state(leaf, snap) != 0) ++uncertain;
+    if (ok) ++passing;
+    out.lattice.push_back(std::move(p));
+    out.pass.push_back(ok);
+    out.mean.push_back(mean);
+  }
+  out.uncertain_fraction = static_cast<double>(uncertain) / static_cast<double>(total);
+  out.pass_fraction = static_cast<double>(passing) / static_cast<double>(total);
+  return out;
+}
+
+BoundaryEstimate estimate_boundary_gp(const std::vector<Point>& x, const std::vector<bool>& pass, std::size_t levels) {
+  BoundaryEstimate out;
+  const std::size_t dims = x.front().size();
+  std::size_t per_dim = std::max<std::size_t>(2, levels);
+  while (per_dim > 2 && std::pow(static_cast<double>(per_dim), static_cast<double>(dims)) > 20000) --per_dim;
+  out.levels = per_dim;
+  std::size_t total = 1;
+  for (std::size_t j = 0; j < dims; ++j) total *= per_dim;
+  const GaussianProcess gp = GaussianProcess::fit(x, [&] {
+    std::vector<double> y;
+    for (bool p : pass) y.push_back(p ? 1.0 : -1.0);
+    return y;
+  }());
   std::size_t uncertain = 0, passing = 0;
   for (std::size_t index = 0; index < total; ++index) {
     Point p(dims);
@@ -220,7 +360,7 @@ BoundaryEstimate estimate_boundary(const std::vector<Point>& x, const std::vecto
     }
     const GpPrediction pr = gp.predict(p);
     const bool ok = pr.mean >= 0;
-    if (std::abs(pr.mean) < kStraddleZ * std::sqrt(pr.variance)) ++uncertain;
+    if (std::abs(pr.mean) < 1.96 * std::sqrt(pr.variance)) ++uncertain;
     if (ok) ++passing;
     out.lattice.push_back(std::move(p));
     out.pass.push_back(ok);

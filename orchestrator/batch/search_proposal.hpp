@@ -4,10 +4,12 @@
 // search runner (search_runner.hpp) maps points to parameter values and back.
 //  - an initial Latin hypercube,
 //  - falsification: expected improvement of a Gaussian process (gaussian_process.hpp),
-//  - boundary: the "straddle" of a Gaussian process fitted to pass = +1 / fail = -1
-//    (1.96 sigma - |mean|: large where the sign is still uncertain),
-//  - a batch of J points per iteration by the "kriging believer": each chosen point is added
-//    with its predicted value before the next is chosen,
+//    (a batch of J points per iteration by the "kriging believer": each chosen point is
+//    added with its predicted value before the next is chosen),
+//  - boundary: adaptive refinement of a sparse grid: a coarse grid, then every cell whose
+//    corners disagree (some pass, some fail) is split, level by level, down to a stated
+//    cell size (docs/search.md has the measurements that chose it over a Gaussian-process
+//    classifier with straddle sampling),
 //  - uniform random and full-factorial grid proposals, the baselines of the proof.
 // Every proposal is a pure function of its inputs and the seed.
 #include <cstdint>
@@ -52,13 +54,15 @@ std::size_t grid_levels(std::size_t budget, std::size_t dims);
 // `count` points maximising expected improvement below the smallest of `y`.
 std::vector<Proposal> propose_minimum(const std::vector<Point>& x, const std::vector<double>& y, std::size_t count,
                                       SearchRng& rng, const SnapPoint& snap);
-// `count` points on the uncertain pass/fail boundary; `pass[i]` is the outcome of x[i].
-std::vector<Proposal> propose_boundary(const std::vector<Point>& x, const std::vector<bool>& pass, std::size_t count,
-                                       SearchRng& rng, const SnapPoint& snap);
+// Up to `count` corners the sparse grid needs next (`pass[i]` is the outcome of x[i]), the
+// coarsest level first; none when every disagreeing cell is down to `min_cell` (the
+// boundary is resolved). Proposals carry the cell size as their acquisition value.
+std::vector<Proposal> propose_boundary(std::size_t dims, const std::vector<Point>& x, const std::vector<bool>& pass, std::size_t count,
+                                       double min_cell, const SnapPoint& snap);
 
-// The boundary as estimated from the runs: the classifier's predicted pass/fail on a lattice
-// of the unit cube (`levels` points per dimension, at most ~20000 in all), and the fraction
-// of the lattice where the sign is uncertain (|mean| < 1.96 sigma).
+// The boundary as estimated from the runs: pass/fail on a lattice of the unit cube (`levels`
+// points per dimension, at most ~20000 in all) by multilinear interpolation of +1/-1 in the
+// smallest run cell holding each point; uncertain: in a cell whose corners disagree.
 struct BoundaryEstimate {
   std::size_t levels = 0;
   std::vector<Point> lattice;
@@ -67,6 +71,10 @@ struct BoundaryEstimate {
   double uncertain_fraction = 0;
   double pass_fraction = 0;
 };
-BoundaryEstimate estimate_boundary(const std::vector<Point>& x, const std::vector<bool>& pass, std::size_t levels);
+BoundaryEstimate estimate_boundary(const std::vector<Point>& x, const std::vector<bool>& pass, std::size_t levels,
+                                   const SnapPoint& snap);
+// The same from scattered runs (uniform random sampling): the sign of a Gaussian process
+// fitted to +1/-1; uncertain where |mean| < 1.96 sigma.
+BoundaryEstimate estimate_boundary_gp(const std::vector<Point>& x, const std::vector<bool>& pass, std::size_t levels);
 
 }  // namespace orch::batch

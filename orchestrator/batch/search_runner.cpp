@@ -67,6 +67,7 @@ void apply_recorded(SearchOptions& o, const nlohmann::json& rec) {
   if (!o.set_words.empty()) throw OrchError("--resume keeps the search's --set values: give none");
   o.set_words = rec.at("set").get<std::vector<std::string>>();
   if (rec.contains("max_time") && rec["max_time"].is_number()) o.max_time = rec["max_time"].get<double>();
+  if (!o.resolution && rec.contains("resolution")) o.resolution = rec["resolution"].get<double>();
   if (!o.batch.timeout_s && rec.contains("timeout_s")) o.batch.timeout_s = rec["timeout_s"].get<double>();
 }
 
@@ -75,7 +76,7 @@ ordered_json recorded_options(const State& s) {
   return {{"input", s.plan.inputs.front()}, {"objective", o.objective}, {"boundary", o.boundary}, {"method", o.method},
           {"budget", *o.budget}, {"seed", *o.seed}, {"jobs", *o.batch.jobs}, {"set", o.set_words},
           {"max_time", o.max_time ? ordered_json(*o.max_time) : ordered_json(nullptr)},
-          {"timeout_s", *o.batch.timeout_s}};
+          {"timeout_s", *o.batch.timeout_s}, {"resolution", *o.resolution}};
 }
 
 ordered_json batch_options_json(const BatchOptions& o) {
@@ -166,12 +167,6 @@ std::optional<std::size_t> best_run(const std::vector<SearchRun>& runs) {
   return best;
 }
 
-bool has_both_outcomes(const std::vector<SearchRun>& runs) {
-  bool pass = false, fail = false;
-  for (const auto& r : runs) (r.pass.value_or(false) ? pass : fail) = true;
-  return pass && fail;
-}
-
 std::vector<Point> points_of(const std::vector<SearchRun>& runs) {
   std::vector<Point> x;
   for (const auto& r : runs) x.push_back(r.proposal.point);
@@ -191,15 +186,17 @@ std::vector<Proposal> propose(const State& s, SearchRng& rng) {
   const std::size_t jobs = static_cast<std::size_t>(*s.o.batch.jobs);
   const SnapPoint snap = [&](const Point& p) { return s.space.snap(p); };
   if (s.o.method == "grid") return grid_points(budget, dims, done, budget - done);
-  if (s.o.method == "random") return uniform_random(budget - done, dims, rng, snap);
+  if (s.o.method == "random") {
+    // In boundary mode J at a time, so that search.json has the estimate after every J runs.
+    const std::size_t n = s.o.boundary.empty() ? budget - done : std::min(jobs, budget - done);
+    return uniform_random(n, dims, rng, snap);
+  }
+  if (!s.o.boundary.empty())
+    return propose_boundary(dims, points_of(s.runs), passes_of(s.runs), budget - done,
+                            *s.o.resolution, snap);
   const std::size_t initial = std::min(budget, std::max(jobs, 2 * dims + 2));
   if (done < initial) return latin_hypercube(initial - done, dims, rng, snap);
   const std::size_t count = std::min(jobs, budget - done);
-  if (!s.o.boundary.empty()) {
-    // Until both outcomes are seen there is no boundary to follow: explore uniformly.
-    if (!has_both_outcomes(s.runs)) return uniform_random(count, dims, rng, snap);
-    return propose_boundary(points_of(s.runs), passes_of(s.runs), count, rng, snap);
-  }
   return propose_minimum(points_of(s.runs), model_values(s.runs), count, rng, snap);
 }
 
@@ -270,6 +267,7 @@ int run_search(const SearchOptions& given) {
   if (!s.o.objective.empty()) check_objective(s.o.objective);
   if (!s.o.budget || *s.o.budget < 1) throw OrchError("search: give --budget N (runs, N >= 1)");
   if (!s.o.seed) s.o.seed = 1;
+  if (!s.o.resolution) s.o.resolution = 1.0 / 64;
   if (!b.jobs) b.jobs = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   if (!b.timeout_s) b.timeout_s = 1800;
   if (!b.retries) b.retries = 1;
@@ -293,7 +291,11 @@ int run_search(const SearchOptions& given) {
   bool interrupted = false;
   while (s.runs.size() < static_cast<std::size_t>(*s.o.budget)) {
     const std::vector<Proposal> proposals = propose(s, rng);
-    if (proposals.empty()) break;
+    if (proposals.empty()) {
+      msg << fmt::format("search: the boundary is resolved to cells of {:g} of each range after {} runs\n",
+                         *s.o.resolution, s.runs.size());
+      break;
+    }
     const std::size_t first = s.runs.size();
     std::vector<std::size_t> tasks;
     for (const auto& p : proposals) {
@@ -326,9 +328,13 @@ int run_search(const SearchOptions& given) {
     }
     ordered_json it{{"iteration", s.iterations.size() + 1}, {"points", points}, {"runs_so_far", s.runs.size()}};
     if (const auto best = best_run(s.runs)) it["best_so_far"] = run_json(s, s.runs[*best]);
-    if (!s.o.boundary.empty() && has_both_outcomes(s.runs)) {
-      boundary = estimate_boundary(points_of(s.runs), passes_of(s.runs), kBoundaryLevels);
+    if (!s.o.boundary.empty() && !s.runs.empty()) {
+      // Scattered runs (random, grid) are classified by a Gaussian process, the sparse grid's by its cells.
+      boundary = s.o.method == "bo" ? estimate_boundary(points_of(s.runs), passes_of(s.runs), kBoundaryLevels,
+                                                        [&](const Point& p) { return s.space.snap(p); })
+                                    : estimate_boundary_gp(points_of(s.runs), passes_of(s.runs), kBoundaryLevels);
       it["uncertain_fraction"] = boundary->uncertain_fraction;
+      it["boundary"] = boundary_json(s, *boundary);
     }
     s.iterations.push_back(it);
     write_search_json(s, boundary, false);

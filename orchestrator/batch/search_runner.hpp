@@ -30,6 +30,8 @@ struct SearchOptions {
   std::optional<long long> seed;
   std::vector<std::string> set_words;  // --set KEY=VALUE / KEY=LOW..HIGH
   std::optional<double> max_time;
+  // Boundary: the smallest cell refined, as a fraction of each range (default 1/64).
+  std::optional<double> resolution;
   // out, resume, jobs, timeout_s, retries, orchestrator, run_flags, wrapper, maps, catalog, ...
   BatchOptions batch;
 };

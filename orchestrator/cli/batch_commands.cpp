@@ -262,6 +262,9 @@ Handler setup_search(CLI::App& cmd) {
       ->allow_extra_args(false);
   cmd.add_option("--max-time", s.max_time, "max_time of every run, s (default: the logical scenario's)")
       ->check(CLI::Range(1e-9, 1e7));
+  cmd.add_option("--resolution", s.resolution,
+                 "Boundary: refine cells down to this fraction of each range (default 1/64 = 0.015625)")
+      ->check(CLI::Range(1e-4, 1.0));
   cmd.add_option("--out", o->out, "Output folder of the search")->capture_default_str();
   cmd.add_option("--resume", o->resume, "Continue the search in this folder (a larger --budget extends it)")
       ->check(CLI::ExistingDirectory);
