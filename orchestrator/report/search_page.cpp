@@ -160,8 +160,10 @@ td,th{border:1px solid #ccc;padding:2px 6px;font-size:13px}svg.space{margin:4px;
                    search.value("finished", false) ? "" : " (not finished: continue with --resume)");
   if (!search.at("fixed").empty()) h += "<p>Fixed: " + escape(search["fixed"].dump()) + "</p>";
   if (search.contains("boundary"))
-    h += fmt::format("<p id=\"boundary\">Boundary estimate: the runs' pass/fail classifier (a Gaussian process) predicts "
-                     "failure over {:.1f} % of the space (shaded); its sign is uncertain over {:.1f} %.</p>",
+    h += fmt::format("<p id=\"boundary\">Boundary estimate ({}): failure over {:.1f} % of the space (shaded); "
+                     "not yet resolved over {:.1f} %.</p>",
+                     o.value("method", "") == "bo" ? "sparse grid: corners of the smallest run cells interpolated"
+                                                   : "a Gaussian process fitted to pass +1 / fail -1",
                      100 * (1 - search["boundary"].value("pass_fraction", 0.0)),
                      100 * search["boundary"].value("uncertain_fraction", 0.0));
   h += "<p>Dots: runs, red = smallest objective (most critical), blue = largest; a black ring = failed. "
