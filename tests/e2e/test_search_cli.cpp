@@ -85,6 +85,6 @@ TEST(SearchCli, BadInputIsNamedBeforeAnyRun) {
              "did you mean \"lead.speed\"");
   fails_with({"search", kLeadBrake, "--objective", "min_ttc", "--budget", "4"}, "give --minimize");
   const std::string cut_in = source_path("scenarios/nightly/logical_344b1b1a-8831-46a0-a4e1-e7104d3ce4b5.json");
-  fails_with({"search", cut_in, "--boundary", "verdict", "--budget", "4", "--set", "cut_in.decel=1..1.5"},
+  fails_with({"search", cut_in, "--boundary", "verdict", "--budget", "4", "--set", "cut_in.decel=2.5..3.5"},
              "none of its choices is in that range");
 }
