@@ -4,6 +4,7 @@
 #include <sys/file.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <fmt/format.h>
 #include <map>
@@ -177,41 +178,9 @@ std::vector<std::string> run_command_line(const BatchOptions& o, const PlannedRu
   return argv;
 }
 
-int run_batch(const BatchOptions& given) {
-  const auto session_start = std::chrono::steady_clock::now();
-  BatchOptions o = given;
+QueueOutcome execute_planned_runs(const BatchOptions& o, const BatchPlan& plan, const std::vector<std::size_t>& tasks,
+                                  const fs::path& out, std::size_t already_done) {
   std::ostream& msg = *o.out_stream;
-  const fs::path out = fs::absolute(o.out).lexically_normal();
-  std::optional<Manifest> manifest;
-  if (o.resume) {
-    if (!o.inputs.empty()) throw OrchError("--resume takes the inputs from DIR/batch.json: give no input files");
-    if (o.shard) throw OrchError("--resume keeps the batch's own --shard: give none");
-    manifest = read_manifest(out);
-    o.inputs = manifest->inputs;
-    o.shard = manifest->shard;
-    apply_manifest_defaults(o, *manifest);
-  } else if (fs::exists(manifest_path(out))) {
-    throw OrchError(fmt::format("{} holds a batch already: continue it with --resume {}, or choose another --out",
-                                out.string(), out.string()));
-  }
-  if (!o.jobs) o.jobs = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-  if (!o.timeout_s) o.timeout_s = kDefaultTimeout;
-  if (!o.retries) o.retries = kDefaultRetries;
-
-  // Inputs are checked before the folder is touched: a batch that cannot start leaves none.
-  BatchPlan plan = plan_batch(o.inputs, o.shard);
-  if (o.fork) use_one_seed_per_logical(plan);
-  for (const auto& run : plan.runs) pass_through_flags(run.set.sumo_config, o.run_flags);
-  fs::create_directories(out / "runs");
-  fs::create_directories(out / "executions");
-  const FolderLock lock(out);
-  if (manifest) verify_unchanged(*manifest, plan);
-  else write_file_atomically(manifest_path(out), manifest_text(plan, options_json(o)));
-
-  const std::vector<bool> done = find_done(out, plan, msg);
-  std::vector<std::size_t> tasks;
-  for (std::size_t i = 0; i < plan.runs.size(); ++i)
-    if (!done[i]) tasks.push_back(i);
   const auto groups = fork_groups(plan, tasks, !o.no_fork, *o.jobs);
   std::vector<std::size_t> group_tasks;
   for (std::size_t g = 0; g < groups.size(); ++g) group_tasks.push_back(g);
@@ -220,11 +189,8 @@ int run_batch(const BatchOptions& given) {
   if (groups.size() < tasks.size())
     msg << fmt::format("batch: {} runs share their common prefix in {} group(s) (docs/forking.md)\n", tasks.size(),
                        groups.size());
-  msg << fmt::format("batch: {} runs{}, {} to run, {} at a time, timeout {:g} s, into {}\n", plan.runs.size(),
-                     plan.shard ? fmt::format(" (shard {} of {} in all)", plan.shard->text(), plan.total_runs) : "",
-                     tasks.size(), *o.jobs, *o.timeout_s, out.string());
 
-  Progress progress(msg, o.terminal, plan.runs.size(), plan.runs.size() - tasks.size());
+  Progress progress(msg, o.terminal, already_done + tasks.size(), already_done);
   std::map<std::size_t, ExecutionRecord> records;
   std::size_t attempt_runs_size = 1;
   const int max_attempts = 1 + std::max(0, *o.retries);
@@ -320,11 +286,54 @@ int run_batch(const BatchOptions& given) {
   callbacks.tick = [&] { progress.tick(); };
   const QueueOutcome outcome = run_queue(group_tasks, QueueOptions{*o.jobs, o.timeout_s, 0.5}, callbacks);
   progress.close();
-  auto unfinished_runs = [&](const std::vector<std::size_t>& unfinished) {
-    std::size_t n = 0;
-    for (const auto g : unfinished) n += attempt_runs[g].size();
-    return n;
-  };
+  // Interrupted: the runs of the groups not finished (the callers count runs, not groups).
+  QueueOutcome runs_outcome{outcome.interrupted, {}};
+  for (const auto g : outcome.unfinished)
+    runs_outcome.unfinished.insert(runs_outcome.unfinished.end(), attempt_runs[g].begin(), attempt_runs[g].end());
+  std::sort(runs_outcome.unfinished.begin(), runs_outcome.unfinished.end());
+  return runs_outcome;
+}
+
+int run_batch(const BatchOptions& given) {
+  const auto session_start = std::chrono::steady_clock::now();
+  BatchOptions o = given;
+  std::ostream& msg = *o.out_stream;
+  const fs::path out = fs::absolute(o.out).lexically_normal();
+  std::optional<Manifest> manifest;
+  if (o.resume) {
+    if (!o.inputs.empty()) throw OrchError("--resume takes the inputs from DIR/batch.json: give no input files");
+    if (o.shard) throw OrchError("--resume keeps the batch's own --shard: give none");
+    manifest = read_manifest(out);
+    o.inputs = manifest->inputs;
+    o.shard = manifest->shard;
+    apply_manifest_defaults(o, *manifest);
+  } else if (fs::exists(manifest_path(out))) {
+    throw OrchError(fmt::format("{} holds a batch already: continue it with --resume {}, or choose another --out",
+                                out.string(), out.string()));
+  }
+  if (!o.jobs) o.jobs = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  if (!o.timeout_s) o.timeout_s = kDefaultTimeout;
+  if (!o.retries) o.retries = kDefaultRetries;
+
+  // Inputs are checked before the folder is touched: a batch that cannot start leaves none.
+  BatchPlan plan = plan_batch(o.inputs, o.shard);
+  if (o.fork) use_one_seed_per_logical(plan);
+  for (const auto& run : plan.runs) pass_through_flags(run.set.sumo_config, o.run_flags);
+  fs::create_directories(out / "runs");
+  fs::create_directories(out / "executions");
+  const FolderLock lock(out);
+  if (manifest) verify_unchanged(*manifest, plan);
+  else write_file_atomically(manifest_path(out), manifest_text(plan, options_json(o)));
+
+  const std::vector<bool> done = find_done(out, plan, msg);
+  std::vector<std::size_t> tasks;
+  for (std::size_t i = 0; i < plan.runs.size(); ++i)
+    if (!done[i]) tasks.push_back(i);
+  msg << fmt::format("batch: {} runs{}, {} to run, {} at a time, timeout {:g} s, into {}\n", plan.runs.size(),
+                     plan.shard ? fmt::format(" (shard {} of {} in all)", plan.shard->text(), plan.total_runs) : "",
+                     tasks.size(), *o.jobs, *o.timeout_s, out.string());
+
+  const QueueOutcome outcome = execute_planned_runs(o, plan, tasks, out, plan.runs.size() - tasks.size());
 
   BatchReport report = collect_report({out});
   report.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - session_start).count();
@@ -332,7 +341,7 @@ int run_batch(const BatchOptions& given) {
   msg << fmt::format("\nresults: {} (summary.json, junit.xml, summary.txt)\n", out.string());
   if (outcome.interrupted) {
     msg << fmt::format("batch: interrupted; {} run(s) not done: continue with `orchestrator batch --resume {}`\n",
-                       unfinished_runs(outcome.unfinished), out.string());
+                       outcome.unfinished.size(), out.string());
     return 3;
   }
   // A shard answers for its own runs; the other shards' runs are merged later.

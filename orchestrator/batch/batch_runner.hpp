@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "batch/batch_plan.hpp"
+#include "batch/run_queue.hpp"
 
 namespace orch::batch {
 
@@ -53,6 +54,14 @@ struct BatchOptions {
 // (SIGINT/SIGTERM: runs left to --resume). Throws ScenarioError / OrchError for bad inputs
 // before any run starts.
 int run_batch(const BatchOptions& options);
+
+// Runs `tasks` (indices into plan.runs) into `out` exactly as a batch does: run folders,
+// retries, the execution trace written last. `options` has jobs, timeout_s and retries set;
+// `already_done` runs count as finished in the progress display. The batch runs its whole
+// plan through it once; the search (batch/search_runner.hpp) one iteration at a time.
+QueueOutcome execute_planned_runs(const BatchOptions& options, const BatchPlan& plan,
+                                  const std::vector<std::size_t>& tasks, const std::filesystem::path& out,
+                                  std::size_t already_done);
 
 // Adds run flags for the pass-through settings of a sumo_config: {"--traffic", value}, ...
 // Throws OrchError naming the setting when `run_flags` lacks its flag.

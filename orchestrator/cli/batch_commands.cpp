@@ -15,7 +15,9 @@
 #include "video/trace_video.hpp"
 #include "batch/batch_runner.hpp"
 #include "batch/sampling.hpp"
+#include "batch/search_runner.hpp"
 #include "batch/variation_batch.hpp"
+#include "report/search_page.hpp"
 #include "reference_driver/ego_model.hpp"
 #include "cli/commands.hpp"
 #include "cli/subcommand.hpp"
@@ -50,6 +52,16 @@ struct BatchCliOptions {
   bool no_fork = false;  // --no-fork: every run from t = 0 in a process of its own
   std::string ego_model;       // --ego-model: passed to every run
   bool reference_run = false;  // --reference-run: passed to every run
+  CommonOptions common;
+};
+
+struct SearchCliOptions {
+  batch::SearchOptions search;
+  std::string out = "search_out";
+  std::string resume;
+  std::optional<int> jobs;
+  std::optional<double> timeout;
+  bool minimize = false;
   CommonOptions common;
 };
 
@@ -142,6 +154,47 @@ int batch_command(const BatchCliOptions& o, const CLI::App& app) {
   }
 }
 
+void announce_search_report(const fs::path& dir) {
+  try {
+    std::cout << "search report: file://" << fs::absolute(report::write_search_report(dir)).string() << "\n";
+  } catch (const std::exception& e) {
+    std::cerr << "warning: no search.html for " << dir.string() << ": " << e.what() << "\n";
+  }
+}
+
+int search_command(const SearchCliOptions& o, const CLI::App& app) {
+  batch::SearchOptions s = o.search;
+  batch::BatchOptions& b = s.batch;
+  b.resume = !o.resume.empty();
+  if (b.resume && app.count("--out") && fs::absolute(o.out) != fs::absolute(o.resume))
+    throw OrchError("--resume DIR continues the search in DIR: give no other --out");
+  b.out = b.resume ? o.resume : o.out;
+  if (!b.resume && s.input.empty()) throw OrchError("search: give a logical scenario or a variation file, or --resume DIR");
+  if (o.minimize && !s.boundary.empty()) throw OrchError("search: --minimize and --boundary exclude each other");
+  if (!b.resume && !o.minimize && s.boundary.empty())
+    throw OrchError("search: give --minimize (falsification: minimise --objective) or --boundary CRITERION");
+  if (!b.resume && o.minimize && s.objective.empty()) throw OrchError("search: --minimize needs --objective METRIC");
+  b.jobs = o.jobs;
+  b.timeout_s = o.timeout;
+  b.map_dirs = o.common.map_dirs;
+  for (auto& d : b.map_dirs) d = fs::absolute(d).string();
+  b.catalog = o.common.catalog.empty() ? "" : fs::absolute(o.common.catalog).string();
+  b.wrapper = resolve_program(b.wrapper);
+  b.orchestrator = fs::read_symlink("/proc/self/exe");
+  b.run_flags = run_flags_of(b.orchestrator);
+  b.out_stream = &std::cout;
+  b.terminal = ::isatty(STDOUT_FILENO) == 1;
+  try {
+    const int code = batch::run_search(s);
+    announce_batch_report({b.out}, b.out);
+    announce_search_report(b.out);
+    return code;
+  } catch (const ScenarioError& e) {
+    std::cerr << e.diagnostics().format();
+    return 2;
+  }
+}
+
 int merge_command(const MergeOptions& o) {
   std::vector<fs::path> dirs(o.dirs.begin(), o.dirs.end());
   const batch::BatchReport report = batch::collect_report(dirs);
@@ -198,6 +251,40 @@ Handler setup_batch(CLI::App& cmd) {
   return [o, &cmd] { return batch_command(*o, cmd); };
 }
 
+Handler setup_search(CLI::App& cmd) {
+  auto o = std::make_shared<SearchCliOptions>();
+  batch::SearchOptions& s = o->search;
+  cmd.add_option("input", s.input, "Logical scenario (logical_{uuid}.json) or OpenSCENARIO variation (X_variation.xosc)");
+  cmd.add_option("--objective", s.objective,
+                 "What to minimise / colour runs by: METRIC of the ego (min_ttc, min_gap, ...), ACTOR.METRIC, sim_time "
+                 "or criterion:NAME");
+  cmd.add_flag("--minimize", o->minimize, "Falsification: find the runs with the smallest --objective");
+  cmd.add_option("--boundary", s.boundary,
+                 "Find where CRITERION flips between pass and fail: verdict, collision or a criterion's name");
+  cmd.add_option("--budget", s.budget, "Runs in all")->check(CLI::Range(1, 100000));
+  cmd.add_option("--jobs,-j", o->jobs, "Runs at a time, and points proposed per iteration (default: the number of cores)")
+      ->check(CLI::Range(1, 1024));
+  cmd.add_option("--seed", s.seed, "Seed of the search (and SUMO's seed of every run; default 1)")
+      ->check(CLI::Range(0LL, 2147483647LL));
+  cmd.add_option("--method", s.method, "bo (Gaussian-process search, default), random or grid (the baselines)");
+  cmd.add_option("--set", s.set_words, "Fix a parameter (KEY=VALUE) or narrow its range (KEY=LOW..HIGH); repeatable")
+      ->allow_extra_args(false);
+  cmd.add_option("--max-time", s.max_time, "max_time of every run, s (default: the logical scenario's)")
+      ->check(CLI::Range(1e-9, 1e7));
+  cmd.add_option("--resolution", s.resolution,
+                 "Boundary: refine cells down to this fraction of each range (default 1/64 = 0.015625)")
+      ->check(CLI::Range(1e-4, 1.0));
+  cmd.add_option("--out", o->out, "Output folder of the search")->capture_default_str();
+  cmd.add_option("--resume", o->resume, "Continue the search in this folder (a larger --budget extends it)")
+      ->check(CLI::ExistingDirectory);
+  cmd.add_option("--timeout", o->timeout, "Wall-clock limit per run, s (default 1800)")->check(CLI::Range(1e-3, 1e7));
+  cmd.add_option("--wrapper", s.batch.wrapper, "Start each run through this program (e.g. nice)");
+  cmd.add_option("--maps", o->common.map_dirs, "Folder holding map folders (repeatable), passed to every run")
+      ->allow_extra_args(false);
+  cmd.add_option("--catalog", o->common.catalog, "Model catalog JSON, passed to every run");
+  return [o, &cmd] { return search_command(*o, cmd); };
+}
+
 Handler setup_merge(CLI::App& cmd) {
   auto o = std::make_shared<MergeOptions>();
   cmd.add_option("dirs", o->dirs, "Batch folders (e.g. one per shard)")->required()->check(CLI::ExistingDirectory);
@@ -210,7 +297,9 @@ Handler setup_merge(CLI::App& cmd) {
 std::vector<Subcommand> batch_subcommands() {
   return {{{"sample"}, "Add seeded parameter sets to a logical scenario's parameter file", setup_sample},
           {{"batch"}, "Run every parameter set of logical scenarios, in parallel child processes", setup_batch},
-          {{"batch", "merge"}, "Combine batch (shard) folders into one summary and JUnit file", setup_merge}};
+          {{"batch", "merge"}, "Combine batch (shard) folders into one summary and JUnit file", setup_merge},
+          {{"search"}, "Search a logical scenario's parameter space for critical runs or a pass/fail boundary",
+           setup_search}};
 }
 
 }  // namespace orch::cli

@@ -1,0 +1,296 @@
+// The pure logic of `orchestrator search` (batch/search_proposal.hpp, gaussian_process.hpp,
+// search_space.hpp, search_objective.hpp) on analytic functions with fixed seeds: a known
+// minimum, a known pass/fail boundary, and the parameter space's errors.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+
+#include "batch/gaussian_process.hpp"
+#include "batch/search_objective.hpp"
+#include "batch/search_proposal.hpp"
+#include "batch/search_space.hpp"
+#include "core/errors.hpp"
+#include "json/json_document.hpp"
+
+using namespace orch;
+using namespace orch::batch;
+using ::testing::HasSubstr;
+
+namespace {
+
+const SnapPoint kNoSnap = [](const Point& p) { return p; };
+
+// A smooth bowl with its minimum 0 at (0.3, 0.7) and a second, shallower dip.
+double bowl(const Point& p) {
+  const double a = (p[0] - 0.3) * (p[0] - 0.3) + (p[1] - 0.7) * (p[1] - 0.7);
+  const double b = (p[0] - 0.8) * (p[0] - 0.8) + (p[1] - 0.2) * (p[1] - 0.2);
+  return 2.0 * a - 0.6 * std::exp(-b / 0.02) + 0.0 * b;
+}
+double bowl_min() {  // on a fine lattice
+  double m = 1e9;
+  for (int i = 0; i <= 400; ++i)
+    for (int j = 0; j <= 400; ++j) m = std::min(m, bowl({i / 400.0, j / 400.0}));
+  return m;
+}
+
+// Passes outside a circle of radius 0.3 around (0.5, 0.4).
+bool outside_circle(const Point& p) { return std::hypot(p[0] - 0.5, p[1] - 0.4) > 0.3; }
+
+double misclassified(const std::vector<Point>& x, const std::vector<bool>& pass, bool sparse_grid) {
+  const BoundaryEstimate b = sparse_grid ? estimate_boundary(x, pass, 41, kNoSnap) : estimate_boundary_gp(x, pass, 41);
+  std::size_t wrong = 0;
+  for (std::size_t i = 0; i < b.lattice.size(); ++i) wrong += b.pass[i] != outside_circle(b.lattice[i]);
+  return static_cast<double>(wrong) / static_cast<double>(b.lattice.size());
+}
+
+// Runs the loop of search_runner.cpp on a function: a Latin hypercube, then batches of 2.
+double search_minimum(std::uint64_t seed, std::size_t budget) {
+  SearchRng rng(seed);
+  std::vector<Point> x;
+  std::vector<double> y;
+  for (const auto& p : latin_hypercube(6, 2, rng, kNoSnap)) {
+    x.push_back(p.point);
+    y.push_back(bowl(p.point));
+  }
+  while (x.size() < budget)
+    for (const auto& p : propose_minimum(x, y, 2, rng, kNoSnap)) {
+      x.push_back(p.point);
+      y.push_back(bowl(p.point));
+    }
+  return *std::min_element(y.begin(), y.end());
+}
+
+double random_minimum(std::uint64_t seed, std::size_t budget) {
+  SearchRng rng(seed);
+  double m = 1e9;
+  for (const auto& p : uniform_random(budget, 2, rng, kNoSnap)) m = std::min(m, bowl(p.point));
+  return m;
+}
+
+double search_boundary(std::uint64_t seed, std::size_t budget, bool adaptive) {
+  SearchRng rng(seed);
+  std::vector<Point> x;
+  std::vector<bool> pass;
+  const auto add = [&](const std::vector<Proposal>& ps) {
+    for (const auto& p : ps) {
+      x.push_back(p.point);
+      pass.push_back(outside_circle(p.point));
+    }
+  };
+  if (!adaptive) {
+    add(uniform_random(budget, 2, rng, kNoSnap));
+    return misclassified(x, pass, false);
+  }
+  while (x.size() < budget) {
+    const auto next = propose_boundary(2, x, pass, budget - x.size(), 1.0 / 64, kNoSnap);
+    if (next.empty()) break;
+    add(next);
+  }
+  return misclassified(x, pass, true);
+}
+
+}  // namespace
+
+TEST(SearchGaussianProcess, InterpolatesItsDataAndIsUncertainFarFromIt) {
+  std::vector<Point> x;
+  std::vector<double> y;
+  for (int i = 0; i < 8; ++i) {
+    x.push_back({i / 10.0});
+    y.push_back(std::sin(6.0 * i / 10.0));
+  }
+  const GaussianProcess gp = GaussianProcess::fit(x, y);
+  for (std::size_t i = 0; i < x.size(); ++i) EXPECT_NEAR(gp.predict(x[i]).mean, y[i], 0.05);
+  EXPECT_NEAR(gp.predict({0.35}).mean, std::sin(6.0 * 0.35), 0.05);  // between the points
+  EXPECT_LT(gp.predict({0.35}).variance, gp.predict({1.0}).variance);  // 0.3 beyond the last point
+}
+
+TEST(SearchGaussianProcess, ExpectedImprovementMatchesItsClosedForm) {
+  // At mean == best the improvement is sigma * phi(0).
+  EXPECT_NEAR(expected_improvement({2.0, 4.0}, 2.0), 2.0 * 0.3989422804, 1e-9);
+  // Certain predictions: the plain improvement.
+  EXPECT_NEAR(expected_improvement({1.0, 0.0}, 3.0), 2.0, 1e-12);
+  EXPECT_NEAR(expected_improvement({4.0, 0.0}, 3.0), 0.0, 1e-12);
+  EXPECT_NEAR(normal_cdf(1.96), 0.9750021, 1e-6);
+}
+
+TEST(SearchProposal, LatinHypercubeHasOnePointInEverySliceOfEveryDimension) {
+  SearchRng rng(7);
+  const auto design = latin_hypercube(10, 3, rng, kNoSnap);
+  ASSERT_EQ(design.size(), 10u);
+  for (std::size_t j = 0; j < 3; ++j) {
+    std::vector<int> count(10, 0);
+    for (const auto& p : design) ++count[static_cast<std::size_t>(p.point[j] * 10)];
+    EXPECT_THAT(count, ::testing::Each(1)) << "dimension " << j;
+  }
+}
+
+TEST(SearchProposal, GridCoversBothEndsOfEveryDimension) {
+  EXPECT_EQ(grid_levels(100, 2), 10u);
+  EXPECT_EQ(grid_levels(125, 3), 5u);
+  const auto all = grid_points(9, 2, 0, 100);
+  ASSERT_EQ(all.size(), 9u);
+  EXPECT_EQ(all.front().point, (Point{0.0, 0.0}));
+  EXPECT_EQ(all[1].point, (Point{0.0, 0.5}));
+  EXPECT_EQ(all.back().point, (Point{1.0, 1.0}));
+  EXPECT_EQ(grid_points(9, 2, 7, 5).size(), 2u);  // the rest, from index 7
+}
+
+TEST(SearchProposal, IsAPureFunctionOfItsInputsAndSeed) {
+  const std::vector<Point> x{{0.1, 0.2}, {0.5, 0.9}, {0.8, 0.4}, {0.3, 0.3}};
+  std::vector<double> y;
+  for (const auto& p : x) y.push_back(bowl(p));
+  SearchRng a(3), b(3), c(4);
+  const auto pa = propose_minimum(x, y, 3, a, kNoSnap);
+  const auto pb = propose_minimum(x, y, 3, b, kNoSnap);
+  const auto pc = propose_minimum(x, y, 3, c, kNoSnap);
+  ASSERT_EQ(pa.size(), 3u);
+  for (std::size_t i = 0; i < 3; ++i) EXPECT_EQ(pa[i].point, pb[i].point);
+  EXPECT_NE(pa[0].point, pc[0].point);
+  // The batch's points differ from each other and from the runs (the believer).
+  EXPECT_NE(pa[0].point, pa[1].point);
+  EXPECT_EQ(pa[0].why, "expected improvement");
+}
+
+TEST(SearchProposal, FindsAKnownMinimumBetterThanRandomSamplingWithTheSameBudget) {
+  const double truth = bowl_min();
+  double search_error = 0, random_error = 0;
+  for (std::uint64_t seed = 1; seed <= 5; ++seed) {
+    const double s = search_minimum(seed, 30) - truth;
+    EXPECT_LT(s, 0.01) << "seed " << seed;  // within 0.01 of the minimum (the range is ~1.4)
+    search_error += s;
+    random_error += random_minimum(seed, 30) - truth;
+  }
+  EXPECT_LT(search_error * 5, random_error);
+}
+
+TEST(SearchProposal, FindsAKnownBoundaryBetterThanRandomSamplingWithTheSameBudget) {
+  // The sparse grid is deterministic: no seed. Random sampling: the mean over four seeds.
+  const double search = search_boundary(0, 100, true);
+  double random = 0;
+  for (std::uint64_t seed = 1; seed <= 4; ++seed) random += search_boundary(seed, 100, false) / 4;
+  std::printf("misclassified after 100 runs: sparse grid %.4f, random %.4f\n", search, random);
+  EXPECT_LT(search, 0.03);
+  EXPECT_LT(search * 1.5, random);
+}
+
+TEST(SearchProposal, BoundaryRefinementStopsAtTheStatedResolution) {
+  std::vector<Point> x;
+  std::vector<bool> pass;
+  for (int round = 0; round < 100; ++round) {
+    const auto next = propose_boundary(2, x, pass, 1000, 1.0 / 8, kNoSnap);
+    if (next.empty()) break;
+    for (const auto& p : next) {
+      x.push_back(p.point);
+      pass.push_back(outside_circle(p.point));
+    }
+  }
+  EXPECT_LT(x.size(), 200u);  // finished: cells of 1/8 are not split further
+  for (const auto& p : x)
+    for (double v : p) EXPECT_DOUBLE_EQ(v * 8, std::round(v * 8));  // on the 1/8 lattice
+  EXPECT_LT(misclassified(x, pass, true), 0.06);
+}
+
+TEST(SearchProposal, SnapsToWholeNumbersAndAvoidsPointsAlreadyRun) {
+  // One dimension of five whole values: proposals land on them and never repeat a run.
+  const SnapPoint snap = [](const Point& p) { return Point{std::round(p[0] * 4) / 4}; };
+  std::vector<Point> x{{0.0}, {1.0}};
+  std::vector<double> y{1.0, 2.0};
+  SearchRng rng(1);
+  for (const auto& p : propose_minimum(x, y, 3, rng, snap)) {
+    EXPECT_DOUBLE_EQ(p.point[0] * 4, std::round(p.point[0] * 4));
+    EXPECT_NE(p.point, x[0]);
+    EXPECT_NE(p.point, x[1]);
+  }
+}
+
+namespace {
+
+LogicalScenario logical(const std::string& extra = "") {
+  const std::string text = R"({
+    "uuid": "L1", "template": "../../scenarios/highway_cut_in.json",
+    "parameter_space": {
+      "lead": {
+        "speed": {"type": "float", "unit": "km/h", "distribution": "uniform", "min": 50, "max": 80},
+        "decel": {"type": "float", "distribution": "normal", "mean": 8, "std": 2, "min": 4, "max": 12},
+        "lanes": {"type": "int", "distribution": "uniform", "min": 1, "max": 3},
+        "gap": {"type": "float", "distribution": "constant", "value": 40.0}
+      })" + extra + R"(
+    }})";
+  return read_logical_scenario(JsonDocument::parse(text, std::string(ORCH_SOURCE_DIR) + "/tests/unit/logical_L1.json"));
+}
+
+std::string error_of(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const std::exception& e) {
+    return e.what();
+  }
+  return "";
+}
+
+}  // namespace
+
+TEST(SearchSpace, SearchesNumericRangesAndFixesConstants) {
+  const SearchSpace s = logical_search_space(logical(), {});
+  EXPECT_EQ(s.keys(), (std::vector<std::string>{"lead.decel", "lead.lanes", "lead.speed"}));
+  EXPECT_EQ(s.dims[0].lower, 4);
+  EXPECT_EQ(s.dims[0].upper, 12);
+  ASSERT_EQ(s.fixed.size(), 1u);
+  EXPECT_EQ(s.fixed[0].first, "lead.gap");
+  const auto v = s.values({0.5, 0.6, 1.0});
+  EXPECT_EQ(v, (std::vector<double>{8.0, 2.0, 80.0}));  // lanes 2.2 rounds to 2
+  EXPECT_NEAR(s.snap({0.5, 0.6, 1.0})[1], 0.5, 1e-12);
+  const nlohmann::json values = sampled_values_of(s, v, false);
+  EXPECT_EQ(values["lead"]["lanes"], 2);
+  EXPECT_EQ(values["lead"]["gap"], 40.0);
+}
+
+TEST(SearchSpace, SetFixesOrNarrowsParameters) {
+  const SearchSpace s = logical_search_space(
+      logical(), {parse_space_override("lead.lanes=2"), parse_space_override("lead.speed=60..70")});
+  EXPECT_EQ(s.keys(), (std::vector<std::string>{"lead.decel", "lead.speed"}));
+  EXPECT_EQ(s.dims[1].lower, 60);
+  EXPECT_EQ(s.dims[1].upper, 70);
+}
+
+TEST(SearchSpace, BadInputIsNamedWithWhatToDo) {
+  EXPECT_THAT(error_of([] { logical_search_space(logical(), {parse_space_override("lead.sped=60")}); }),
+              HasSubstr("no parameter \"lead.sped\" (did you mean \"lead.speed\"?)"));
+  EXPECT_THAT(error_of([] { logical_search_space(logical(), {parse_space_override("lead.speed=10..70")}); }),
+              HasSubstr("outside the parameter's range 50..80"));
+  EXPECT_THAT(error_of([] { parse_space_override("lead.speed"); }), HasSubstr("expected KEY=VALUE or KEY=LOW..HIGH"));
+  EXPECT_THAT(error_of([] { parse_space_override("lead.speed=9..3"); }), HasSubstr("LOW <= HIGH"));
+  const auto with_string = logical(R"(, "env": {"weather": {"type": "string", "distribution": "choice", "choices": ["dry", "wet"]}})");
+  EXPECT_THAT(error_of([&] { logical_search_space(with_string, {}); }),
+              HasSubstr("parameter \"env.weather\" takes string values: it cannot be searched; fix it with --set env.weather=VALUE"));
+  EXPECT_NO_THROW(logical_search_space(with_string, {parse_space_override("env.weather=wet")}));
+  EXPECT_THAT(error_of([] {
+                logical_search_space(logical(), {parse_space_override("lead.speed=60"), parse_space_override("lead.decel=6"),
+                                                 parse_space_override("lead.lanes=1")});
+              }),
+              HasSubstr("no parameter is left to search"));
+}
+
+TEST(SearchObjective, ReadsMetricsCriteriaAndVerdicts) {
+  const nlohmann::json result = nlohmann::json::parse(R"({
+    "verdict": "failure", "sim_time": 12.5, "collision": null,
+    "actors": [{"actor_id": 0, "ego": true}, {"actor_id": 1, "ego": false}],
+    "metrics": {"Ego": {"min_ttc": {"value": 1.5, "time": 3}, "min_gap": null, "standstill_time": 2.0},
+                "Lead": {"max_decel": {"value": 6.0, "time": 5}}},
+    "criteria": [{"name": "keep_ttc", "actual": 1.5, "success": false}]})");
+  EXPECT_EQ(objective_value(result, "min_ttc"), 1.5);
+  EXPECT_EQ(objective_value(result, "Lead.max_decel"), 6.0);
+  EXPECT_EQ(objective_value(result, "standstill_time"), 2.0);
+  EXPECT_EQ(objective_value(result, "min_gap"), std::nullopt);
+  EXPECT_EQ(objective_value(result, "sim_time"), 12.5);
+  EXPECT_EQ(objective_value(result, "criterion:keep_ttc"), 1.5);
+  EXPECT_FALSE(criterion_passed(result, "verdict"));
+  EXPECT_TRUE(criterion_passed(result, "collision"));
+  EXPECT_FALSE(criterion_passed(result, "keep_ttc"));
+  EXPECT_THAT(error_of([&] { criterion_passed(result, "keep_tc"); }), HasSubstr("did you mean \"keep_ttc\""));
+  EXPECT_THAT(error_of([&] { objective_value(result, "Leed.max_decel"); }), HasSubstr("did you mean \"Lead\""));
+  EXPECT_THAT(error_of([] { check_objective("min_tcc"); }), HasSubstr("no metric \"min_tcc\" (did you mean \"min_ttc\"?)"));
+  EXPECT_NO_THROW(check_objective("Ego.max_decel"));
+}
