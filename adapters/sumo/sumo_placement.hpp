@@ -7,7 +7,8 @@
 //   - the vehicle's route in SUMO is exactly the hinted edge: a scripted vehicle departs on a
 //     route of its first edge, and after a free placement SUMO's route is whatever that match
 //     made it (read back once, before the next fast placement is considered);
-//   - the front lies well inside the hinted lane (front_fits_lane), and the lane lets the
+//   - the front lies well inside the hinted lane (front_fits_lane: near its centre line, not
+//     at its ends, heading along it on an edge of one lane), and the lane lets the
 //     vehicle's class drive on it (SUMO's free match skips lanes that do not).
 // Then both matches pick the hinted lane, the same lane position (the nearest point of its
 // shape) and the same lateral offset, and neither changes the route: the trace is byte for byte
@@ -52,7 +53,7 @@ class Placements {
       return placed_freely(v);
     }
     const Lane& shape = lane_of(edge + "_" + std::to_string(lane));
-    if (!shape.allows(v.vclass) || !front_fits_lane(shape.centre, shape.width, front, heading)) return placed_freely(v);
+    if (!shape.allows(v.vclass) || !front_fits_lane(shape.centre, shape.width, shape.edge_lanes, front, heading)) return placed_freely(v);
     if (!v.route_known) {
       // One query (a round trip on the traci backend); after one that does not allow the
       // fast placement, the next waits a while: placing freely is always right, only slower.
@@ -89,6 +90,7 @@ class Placements {
   struct Lane {
     Polyline centre;
     double width = 0;
+    int edge_lanes = 1;
     std::vector<std::string> allowed;  // empty: every class
     [[nodiscard]] bool allows(const std::string& vclass) const {
       return allowed.empty() || std::find(allowed.begin(), allowed.end(), vclass) != allowed.end();
@@ -109,6 +111,7 @@ class Placements {
     for (const auto& p : sumo::Lane::getShape(lane_id).value) points.emplace_back(p.x, p.y);
     l.centre = Polyline(std::move(points));
     l.width = sumo::Lane::getWidth(lane_id);
+    l.edge_lanes = sumo::Edge::getLaneNumber(sumo::Lane::getEdgeID(lane_id));
     l.allowed = sumo::Lane::getAllowed(lane_id);
     return lanes_.emplace(lane_id, std::move(l)).first->second;
   }

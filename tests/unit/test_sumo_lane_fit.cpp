@@ -30,32 +30,43 @@ Polyline arc() {
 }  // namespace
 
 TEST(SumoLaneFit, FrontOnTheCentreLineFits) {
-  EXPECT_TRUE(front_fits_lane(straight(), 3.2, Vec2(40, 0), 0.0));
-  EXPECT_TRUE(front_fits_lane(straight(), 3.2, Vec2(40, 0.79), 0.1));
+  EXPECT_TRUE(front_fits_lane(straight(), 3.2, 1, Vec2(40, 0), 0.0));
+  EXPECT_TRUE(front_fits_lane(straight(), 3.2, 1, Vec2(40, 0.79), 0.1));
 }
 
 TEST(SumoLaneFit, MoreThanAQuarterOfTheWidthAwayDoesNotFit) {
   // 0.8 m is a quarter of 3.2 m: nearer than that, no other lane of the edge can be nearer.
-  EXPECT_TRUE(front_fits_lane(straight(), 3.2, Vec2(40, -0.79), 0.0));
-  EXPECT_FALSE(front_fits_lane(straight(), 3.2, Vec2(40, -0.81), 0.0));
-  EXPECT_FALSE(front_fits_lane(straight(), 3.2, Vec2(40, 1.6), 0.0));
+  EXPECT_TRUE(front_fits_lane(straight(), 3.2, 1, Vec2(40, -0.79), 0.0));
+  EXPECT_FALSE(front_fits_lane(straight(), 3.2, 1, Vec2(40, -0.81), 0.0));
+  EXPECT_FALSE(front_fits_lane(straight(), 3.2, 1, Vec2(40, 1.6), 0.0));
 }
 
 TEST(SumoLaneFit, NearEitherEndDoesNotFit) {
   // SUMO calls a point beyond (or at) a lane's end ambiguous and matches it elsewhere.
-  EXPECT_FALSE(front_fits_lane(straight(), 3.2, Vec2(0.2, 0), 0.0));
-  EXPECT_FALSE(front_fits_lane(straight(), 3.2, Vec2(-0.3, 0), 0.0));
-  EXPECT_FALSE(front_fits_lane(straight(), 3.2, Vec2(99.7, 0), 0.0));
-  EXPECT_FALSE(front_fits_lane(straight(), 3.2, Vec2(100.4, 0), 0.0));
-  EXPECT_TRUE(front_fits_lane(straight(), 3.2, Vec2(0.6, 0), 0.0));
-  EXPECT_TRUE(front_fits_lane(straight(), 3.2, Vec2(99.4, 0), 0.0));
+  EXPECT_FALSE(front_fits_lane(straight(), 3.2, 1, Vec2(0.2, 0), 0.0));
+  EXPECT_FALSE(front_fits_lane(straight(), 3.2, 1, Vec2(-0.3, 0), 0.0));
+  EXPECT_FALSE(front_fits_lane(straight(), 3.2, 1, Vec2(99.7, 0), 0.0));
+  EXPECT_FALSE(front_fits_lane(straight(), 3.2, 1, Vec2(100.4, 0), 0.0));
+  EXPECT_TRUE(front_fits_lane(straight(), 3.2, 1, Vec2(0.6, 0), 0.0));
+  EXPECT_TRUE(front_fits_lane(straight(), 3.2, 1, Vec2(99.4, 0), 0.0));
 }
 
-TEST(SumoLaneFit, HeadingAgainstTheLaneDoesNotFit) {
-  // SUMO's free match weighs the angle: a vehicle facing backwards could go to another lane.
-  EXPECT_FALSE(front_fits_lane(straight(), 3.2, Vec2(40, 0), std::numbers::pi));
-  EXPECT_FALSE(front_fits_lane(straight(), 3.2, Vec2(40, 0), std::numbers::pi / 2 + 0.01));
-  EXPECT_TRUE(front_fits_lane(straight(), 3.2, Vec2(40, 0), std::numbers::pi / 2 - 0.01));
+TEST(SumoLaneFit, HeadingAgainstTheLaneOfASingleLaneEdgeDoesNotFit) {
+  // SUMO's free match weighs the angle: with no other lane of the edge to bound the distance
+  // scale, a vehicle facing backwards could go to another edge's lane.
+  EXPECT_FALSE(front_fits_lane(straight(), 3.2, 1, Vec2(40, 0), std::numbers::pi));
+  EXPECT_FALSE(front_fits_lane(straight(), 3.2, 1, Vec2(40, 0), std::numbers::pi / 2 + 0.01));
+  EXPECT_TRUE(front_fits_lane(straight(), 3.2, 1, Vec2(40, 0), std::numbers::pi / 2 - 0.01));
+}
+
+TEST(SumoLaneFit, AnyHeadingFitsALaneWithNeighbours) {
+  // Another lane of the edge keeps the hinted lane's bonus ahead of any angle (a cone placed
+  // facing against its lane).
+  EXPECT_TRUE(front_fits_lane(straight(), 3.2, 2, Vec2(40, 0.5), std::numbers::pi));
+  EXPECT_TRUE(front_fits_lane(straight(), 3.2, 4, Vec2(40, 0), -std::numbers::pi / 2));
+  // The other conditions still hold.
+  EXPECT_FALSE(front_fits_lane(straight(), 3.2, 2, Vec2(40, 0.9), std::numbers::pi));
+  EXPECT_FALSE(front_fits_lane(straight(), 3.2, 2, Vec2(99.8, 0), std::numbers::pi));
 }
 
 TEST(SumoLaneFit, FollowsACurvedLane) {
@@ -63,15 +74,15 @@ TEST(SumoLaneFit, FollowsACurvedLane) {
   for (int deg = 5; deg <= 85; deg += 10) {
     const double a = deg * std::numbers::pi / 180;
     const double along = a + std::numbers::pi / 2;  // counter-clockwise travel
-    EXPECT_TRUE(front_fits_lane(lane, 3.5, Vec2(50.5 * std::cos(a), 50.5 * std::sin(a)), along)) << deg;
-    EXPECT_FALSE(front_fits_lane(lane, 3.5, Vec2(51 * std::cos(a), 51 * std::sin(a)), along)) << deg;
-    EXPECT_FALSE(front_fits_lane(lane, 3.5, Vec2(50 * std::cos(a), 50 * std::sin(a)), along + std::numbers::pi)) << deg;
+    EXPECT_TRUE(front_fits_lane(lane, 3.5, 1, Vec2(50.5 * std::cos(a), 50.5 * std::sin(a)), along)) << deg;
+    EXPECT_FALSE(front_fits_lane(lane, 3.5, 1, Vec2(51 * std::cos(a), 51 * std::sin(a)), along)) << deg;
+    EXPECT_FALSE(front_fits_lane(lane, 3.5, 1, Vec2(50 * std::cos(a), 50 * std::sin(a)), along + std::numbers::pi)) << deg;
   }
 }
 
 TEST(SumoLaneFit, DegenerateInputDoesNotFit) {
-  EXPECT_FALSE(front_fits_lane(Polyline(), 3.2, Vec2(0, 0), 0.0));
-  EXPECT_FALSE(front_fits_lane(Polyline({Vec2(0, 0), Vec2(0.8, 0)}), 3.2, Vec2(0.4, 0), 0.0));
-  EXPECT_FALSE(front_fits_lane(straight(), 0.0, Vec2(40, 0), 0.0));
-  EXPECT_FALSE(front_fits_lane(straight(), 3.2, Vec2(std::nan(""), 0), 0.0));
+  EXPECT_FALSE(front_fits_lane(Polyline(), 3.2, 1, Vec2(0, 0), 0.0));
+  EXPECT_FALSE(front_fits_lane(Polyline({Vec2(0, 0), Vec2(0.8, 0)}), 3.2, 1, Vec2(0.4, 0), 0.0));
+  EXPECT_FALSE(front_fits_lane(straight(), 0.0, 1, Vec2(40, 0), 0.0));
+  EXPECT_FALSE(front_fits_lane(straight(), 3.2, 1, Vec2(std::nan(""), 0), 0.0));
 }
