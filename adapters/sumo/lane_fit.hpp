@@ -9,8 +9,8 @@
 // shape (not at an end, where SUMO calls the match ambiguous and looks elsewhere). The free
 // match scores each lane by 0.5 (1 - d / M) (d its distance, M the largest of the candidates'
 // distances, capped at 3.2 m), 0.35 for the angle, 1 for the hinted lane and at most 0.2 for
-// route and edge: the hinted lane wins whenever d_hint / M < 0.9. Another lane of the edge,
-// at least w/4 + (its width)/2 away, makes that so; on an edge of one lane the vehicle must
+// route and edge: the hinted lane wins whenever d_hint / M < 0.9. Another lane of the edge
+// that the vehicle may use, at least w/4 + (its width)/2 away, makes that so; on an edge of one lane the vehicle must
 // also head along the lane (within 90 degrees: then d_hint / M <= 1 suffices, and the hinted
 // lane is a candidate itself). Pure geometry, so that it can be tested without SUMO;
 // sumo_placement.hpp asks SUMO for the shapes.
@@ -27,7 +27,8 @@ constexpr double kLaneFitEndMargin = 0.5;
 
 // Whether a vehicle front at `front` heading `heading` (radians, counter-clockwise from +x)
 // lies well inside the lane of centre line `shape` and width `width` (see above);
-// `edge_lanes` is the number of lanes of the lane's edge.
+// `edge_lanes` is the number of lanes of the lane's edge that the vehicle's class may use
+// (SUMO's free match weighs no others).
 inline bool front_fits_lane(const Polyline& shape, double width, int edge_lanes, const Vec2& front,
                             double heading) {
   if (shape.empty() || !(width > 0) || !std::isfinite(front.x()) || !std::isfinite(front.y())) return false;

@@ -53,7 +53,12 @@ class Placements {
       return placed_freely(v);
     }
     const Lane& shape = lane_of(edge + "_" + std::to_string(lane));
-    if (!shape.allows(v.vclass) || !front_fits_lane(shape.centre, shape.width, shape.edge_lanes, front, heading)) return placed_freely(v);
+    if (!shape.allows(v.vclass)) return placed_freely(v);
+    // Lanes of the edge the vehicle may use: only those are candidates of the free match.
+    int usable = 0;
+    for (int i = 0; i < shape.edge_lanes; ++i)
+      if (lane_of(edge + "_" + std::to_string(i)).allows(v.vclass)) ++usable;
+    if (!front_fits_lane(shape.centre, shape.width, usable, front, heading)) return placed_freely(v);
     if (!v.route_known) {
       // One query (a round trip on the traci backend); after one that does not allow the
       // fast placement, the next waits a while: placing freely is always right, only slower.
