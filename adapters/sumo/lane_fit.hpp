@@ -10,9 +10,9 @@
 // match scores each lane by 0.5 (1 - d / M) (d its distance, M the largest of the candidates'
 // distances, capped at 3.2 m), 0.35 for the angle, 1 for the hinted lane and at most 0.2 for
 // route and edge: the hinted lane wins whenever d_hint / M < 0.9. Another lane of the edge
-// that the vehicle may use, at least w/4 + (its width)/2 away, makes that so; on an edge of one lane the vehicle must
-// also head along the lane (within 90 degrees: then d_hint / M <= 1 suffices, and the hinted
-// lane is a candidate itself). Pure geometry, so that it can be tested without SUMO;
+// that the vehicle may use, at least w/4 + (its width)/2 away, makes that so; without one the
+// vehicle must also head along the lane (within 90 degrees: then d_hint / M <= 1 suffices,
+// and the hinted lane is a candidate itself). Pure geometry, so that it can be tested without SUMO;
 // sumo_placement.hpp asks SUMO for the shapes.
 #include <cmath>
 #include <optional>

@@ -8,7 +8,8 @@
 //     route of its first edge, and after a free placement SUMO's route is whatever that match
 //     made it (read back once, before the next fast placement is considered);
 //   - the front lies well inside the hinted lane (front_fits_lane: near its centre line, not
-//     at its ends, heading along it on an edge of one lane), and the lane lets the
+//     at its ends, heading along it when no other lane of the edge lets the vehicle's class
+//     drive), and the lane lets the
 //     vehicle's class drive on it (SUMO's free match skips lanes that do not).
 // Then both matches pick the hinted lane, the same lane position (the nearest point of its
 // shape) and the same lateral offset, and neither changes the route: the trace is byte for byte
