@@ -18,6 +18,7 @@
 
 #include "core/errors.hpp"
 #include "sumo_api.hpp"
+#include "sumo_placement.hpp"
 #include "sumo_process.hpp"
 #include "sumo_reader.hpp"
 #include "stderr_redirect.hpp"
@@ -304,6 +305,7 @@ class SumoSimulator final : public Simulator {
       sumo::Vehicle::add(c.actor.sumo_id, route, type, "now", std::to_string(c.lane), fmt::format("{:.3f}", front),
                          fmt::format("{:.3f}", depart_speed));
       if (c.scripted) {
+        placements_.spawned(c.actor.sumo_id, c.route, c.model.vclass);
         // Placed by the orchestrator every step: SUMO must neither slow nor steer it.
         sumo::Vehicle::setSpeedMode(c.actor.sumo_id, 0);
         sumo::Vehicle::setLaneChangeMode(c.actor.sumo_id, 0);
@@ -351,8 +353,14 @@ class SumoSimulator final : public Simulator {
         return;
       }
       const Vec2 front = c.position + (c.length / 2) * Vec2(std::cos(c.heading), std::sin(c.heading));
-      sumo::Vehicle::moveToXY(c.sumo_id, c.edge, c.lane, front.x(), front.y(), angle, 2);
-      if (!c.scripted) return;
+      if (!c.scripted) {
+        placements_.forget(c.sumo_id);
+        sumo::Vehicle::moveToXY(c.sumo_id, c.edge, c.lane, front.x(), front.y(), angle, 2);
+        return;
+      }
+      // Free placement (2), or along the route when that gives the same (sumo_placement.hpp).
+      const int keep_route = placements_.keep_route(c.sumo_id, c.edge, c.lane, front, c.heading);
+      sumo::Vehicle::moveToXY(c.sumo_id, c.edge, c.lane, front.x(), front.y(), angle, keep_route);
       // Without an explicit speed SUMO derives one from the lane positions, which jump when
       // the vehicle crosses into another lane of a curved edge: followers would see a
       // phantom brake. The scenario's speed is exact. SUMO keeps a speed and signals set
@@ -415,6 +423,7 @@ class SumoSimulator final : public Simulator {
       else sumo::Vehicle::remove(c.sumo_id);
       sent_.erase(c.sumo_id);
       pending_max_speed_.erase(c.sumo_id);
+      placements_.forget(c.sumo_id);
     });
   }
 
@@ -424,6 +433,7 @@ class SumoSimulator final : public Simulator {
       sumo::Vehicle::setSpeed(c.sumo_id, -1);      // its own speed from now on
       if (c.max_speed > 0) sumo::Vehicle::setMaxSpeed(c.sumo_id, c.max_speed);
       sent_.erase(c.sumo_id);
+      placements_.forget(c.sumo_id);
     });
   }
 
@@ -453,6 +463,7 @@ class SumoSimulator final : public Simulator {
     bool speed_mode_off = false;  // DriveSpeed switched SUMO's own speed checks off
   };
   std::unordered_map<std::string, Sent> sent_;
+  sumo_placing::Placements placements_;  // which scripted vehicles SUMO may match along their route
   // Driven vehicles added this step whose desired speed is below their departure speed: set
   // after the step that inserts them (execute(SpawnVehicle)).
   std::unordered_map<std::string, double> pending_max_speed_;
