@@ -85,7 +85,11 @@ void teleport(const TeleportAction& a, EntityState& state, ActionContext& ctx, c
   state.offset = r.road->t - road.lane_center_t(state.lane, state.s);
   state.height = height_of(a.position, ctx);
   const bool along_lane = faces_driving_direction(a.position);
-  state.direction = along_lane ? travel_direction(road, state.lane) : direction_of_heading(road, state.s, r.pose.heading);
+  // A LanePosition faces its own lane's direction, also with an offset that puts the point in
+  // the lane beside it (esmini's speed-profile.xosc: lane -1, offset 3.07 into lane 1).
+  const auto* lane_position = std::get_if<position::LanePosition>(&a.position);
+  const int named_lane = lane_position && lane_position->road_id == road.id ? lane_position->lane_id : state.lane;
+  state.direction = along_lane ? travel_direction(road, named_lane) : direction_of_heading(road, state.s, r.pose.heading);
   state.lateral_profile.reset();
   state.lateral_rate = 0;
   update_pose(state, ctx.roads);
