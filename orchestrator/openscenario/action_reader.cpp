@@ -88,6 +88,34 @@ LongitudinalDistanceAction read_distance(Element& e) {
   return a;
 }
 
+SpeedProfileAction read_speed_profile(Element& e) {
+  SpeedProfileAction a;
+  if (e.has("entityRef")) a.relative_to = e.text("entityRef");
+  a.follow = e.choice<bool>("followingMode", {{"position", false}, {"follow", true}});
+  if (auto constraints = e.optional_child("DynamicConstraints")) {
+    a.max_acceleration = constraints->optional_number("maxAcceleration");
+    a.max_deceleration = constraints->optional_number("maxDeceleration");
+    a.max_acceleration_rate = constraints->optional_number("maxAccelerationRate");
+    a.max_deceleration_rate = constraints->optional_number("maxDecelerationRate");
+    a.max_speed = constraints->optional_number("maxSpeed");
+    for (const char* name : {"maxAcceleration", "maxDeceleration", "maxAccelerationRate", "maxDecelerationRate"})
+      if (constraints->has(name) && !(*constraints->optional_number(name) > 0))
+        constraints->fail_attribute(name, "must be positive");
+    constraints->finish();
+  }
+  for (Element entry : e.children("SpeedProfileEntry")) {
+    SpeedProfileEntry x;
+    x.time = entry.optional_number("time");
+    if (x.time && *x.time < 0) entry.fail_attribute("time", "cannot be negative");
+    x.speed = entry.number("speed");
+    entry.finish();
+    a.entries.push_back(x);
+  }
+  if (a.entries.empty()) e.fail("a SpeedProfileAction needs at least one SpeedProfileEntry");
+  e.finish();
+  return a;
+}
+
 LaneChangeAction read_lane_change(Element& e, Context& context) {
   LaneChangeAction a;
   a.target_lane_offset = e.optional_number("targetLaneOffset");
@@ -223,6 +251,8 @@ const std::vector<ActionEntry> kPrivateActions = {
     // OpenSCENARIO 1.0 places ActivateControllerAction directly in PrivateAction.
     {"", "ActivateControllerAction", [](Element&, Element& e, Context&) -> PrivateAction { return read_activate(e); }},
     {"LongitudinalAction", "SpeedAction", [](Element&, Element& e, Context& context) -> PrivateAction { return read_speed(e, context); }},
+    {"LongitudinalAction", "SpeedProfileAction",
+     [](Element&, Element& e, Context&) -> PrivateAction { return read_speed_profile(e); }},
     {"LongitudinalAction", "LongitudinalDistanceAction",
      [](Element&, Element& e, Context&) -> PrivateAction { return read_distance(e); }},
     {"LateralAction", "LaneChangeAction",

@@ -96,7 +96,11 @@ void teleport(const TeleportAction& a, EntityState& state, ActionContext& ctx, c
   state.offset = r.road->t - road.lane_center_t(state.lane, state.s);
   state.height = height_of(a.position, ctx);
   const bool along_lane = faces_driving_direction(a.position);
-  state.direction = along_lane ? travel_direction(road, state.lane) : direction_of_heading(road, state.s, r.pose.heading);
+  // A LanePosition faces its own lane's direction, also with an offset that puts the point in
+  // the lane beside it (esmini's speed-profile.xosc: lane -1, offset 3.07 into lane 1).
+  const auto* lane_position = std::get_if<position::LanePosition>(&a.position);
+  const int named_lane = lane_position && lane_position->road_id == road.id ? lane_position->lane_id : state.lane;
+  state.direction = along_lane ? travel_direction(road, named_lane) : direction_of_heading(road, state.s, r.pose.heading);
   state.lateral_profile.reset();
   state.lateral_rate = 0;
   update_pose(state, ctx.roads);
@@ -250,6 +254,13 @@ PathMotion trajectory_path(const FollowTrajectoryAction& a, ActionContext& ctx, 
       throw MapError(fmt::format("trajectory \"{}\" of \"{}\": {}", a.trajectory.name, entity, e.what()));
     }
     for (PathPoint& p : points) p.due = due(p.due);
+  } else if (const auto* spline = std::get_if<ClothoidSplineShape>(&a.trajectory.shape)) {
+    std::vector<std::optional<opendrive::Pose2>> starts;
+    for (const ClothoidSplineSegment& segment : spline->segments)
+      starts.push_back(segment.start ? std::optional(ctx.resolver.resolve(*segment.start, poses(ctx)).pose)
+                                     : std::nullopt);
+    points = clothoid_spline_points(*spline, starts, state_of(ctx, entity).pose);
+    for (PathPoint& p : points) p.due = due(p.due);
   } else {
     const auto& c = std::get<ClothoidShape>(a.trajectory.shape);
     const opendrive::Pose2 start = ctx.resolver.resolve(c.start, poses(ctx)).pose;
@@ -300,7 +311,7 @@ std::vector<std::string> start_action(const PrivateAction& action, const std::st
         ++it;
       }
     }
-    if (takes_time || continuous) running.push_back({action_name, entity, domain, continuous, &action, std::nullopt});
+    if (takes_time || continuous) running.push_back({action_name, entity, domain, continuous, &action, std::nullopt, std::nullopt});
   };
   std::visit(
       [&](const auto& a) {
@@ -318,6 +329,15 @@ std::vector<std::string> start_action(const PrivateAction& action, const std::st
           if (duration > 0) state.speed_profile = SpeedProfile{ctx.t, duration, state.speed, to, a.dynamics.shape};
           else state.speed = to;
           take_over(MotionDomain::Longitudinal, duration > 0, continuous);
+        } else if constexpr (std::is_same_v<T, SpeedProfileAction>) {
+          const double reference = a.relative_to ? placed(ctx, *a.relative_to).speed : 0.0;
+          SpeedProfileRun run = start_speed_profile(a, ctx.t, state.speed, reference);
+          state.speed_profile.reset();
+          take_over(MotionDomain::Longitudinal, true, false);
+          running.back().speed_profile = std::move(run);
+          if (step_speed_profile(a, *running.back().speed_profile, state, ctx.t, ctx.dt)) {
+            running.pop_back();  // every entry a step: done at once
+          }
         } else if constexpr (std::is_same_v<T, LaneChangeAction>) {
           const EntityState& from = a.relative_to ? placed(ctx, *a.relative_to) : state;
           if (!state.placed) throw MapError(fmt::format("entity \"{}\" has no position yet", entity));
@@ -459,6 +479,8 @@ std::vector<std::string> update_running_actions(ActionContext& ctx, std::vector<
       } else if (const auto* distance = std::get_if<LongitudinalDistanceAction>(it->spec)) {
         if (!has_limits(*distance)) longitudinal_distance(*distance, state, ctx, it->entity);  // continuous: keep it
         else done = approach_distance(*distance, state, ctx, it->entity) && !it->continuous;
+      } else if (const auto* profile = std::get_if<SpeedProfileAction>(it->spec)) {
+        done = step_speed_profile(*profile, *it->speed_profile, state, ctx.t, ctx.dt);
       } else if (state.speed_profile && state.speed_profile->done(ctx.t)) {
         state.speed = state.speed_profile->to;
         state.speed_profile.reset();

@@ -8,6 +8,7 @@
 #include "map/position_resolver.hpp"
 #include "openscenario/entity_motion.hpp"
 #include "openscenario/model.hpp"
+#include "openscenario/speed_profile_motion.hpp"
 #include "openscenario/synchronize.hpp"
 #include "openscenario/trailer_motion.hpp"
 
@@ -42,6 +43,7 @@ struct RunningAction {
   bool continuous = false;  // never ends on its own (continuous targets)
   const PrivateAction* spec = nullptr;
   std::optional<SynchronizeRun> synchronize;  // a SynchronizeAction's targets and phase
+  std::optional<SpeedProfileRun> speed_profile;  // a SpeedProfileAction's segments and progress
 };
 
 // Starts `action` for `entity` ("" for global actions): immediate actions take effect now; actions that take time

@@ -135,6 +135,29 @@ EntityCondition read_collision(Element& e) {
   return c;
 }
 
+EntityCondition read_relative_clearance(Element& e) {
+  RelativeClearanceCondition c;
+  c.opposite_lanes = e.boolean("oppositeLanes");
+  c.freespace = e.boolean("freeSpace");
+  c.distance_forward = e.optional_number("distanceForward").value_or(0.0);
+  c.distance_backward = e.optional_number("distanceBackward").value_or(0.0);
+  if (c.distance_forward < 0) e.fail_attribute("distanceForward", "cannot be negative");
+  if (c.distance_backward < 0) e.fail_attribute("distanceBackward", "cannot be negative");
+  for (Element range : e.children("RelativeLaneRange")) {
+    RelativeLaneRange r;
+    r.from = range.optional_integer("from").value_or(0);
+    r.to = range.optional_integer("to").value_or(0);
+    if (r.to < r.from) range.fail_attribute("to", "to must not be less than from");
+    range.finish();
+    c.lanes.push_back(r);
+  }
+  for (Element ref : e.children("EntityRef")) {
+    c.entities.push_back(ref.text("entityRef"));
+    ref.finish();
+  }
+  return c;
+}
+
 const std::vector<std::pair<std::string, EntityReader>> kEntityConditions = {
     {"SpeedCondition",
      [](Element& e) -> EntityCondition {
@@ -203,6 +226,7 @@ const std::vector<std::pair<std::string, EntityReader>> kEntityConditions = {
      }},
     {"TimeToCollisionCondition", read_time_to_collision},
     {"CollisionCondition", read_collision},
+    {"RelativeClearanceCondition", read_relative_clearance},
 };
 
 // `read(reader, element)` calls the table's reader (the value readers also take the context).

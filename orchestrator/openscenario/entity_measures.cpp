@@ -92,4 +92,73 @@ double relative_distance(const Body& from, const Body& to, const std::string& di
   return std::hypot(along, across);
 }
 
+namespace {
+
+// The lane `steps` lanes to the left of `lane` for a body driving `direction` along s (lane
+// ids grow to the left along s; 0 is the reference line, not a lane).
+int lane_beside(int lane, int steps, int direction) {
+  int id = lane;
+  for (int i = 0; i < std::abs(steps); ++i) {
+    id += (steps > 0 ? 1 : -1) * direction;
+    if (id == 0) id += (steps > 0 ? 1 : -1) * direction;
+  }
+  return id;
+}
+
+}  // namespace
+
+bool lanes_clear(const RelativeClearanceCondition& c, const Body& self, const std::vector<Body>& others,
+                 const opendrive::RoadNetwork& roads) {
+  const EntityState& me = *self.state;
+  const opendrive::Road* road = roads.find(me.road_id);
+  if (road == nullptr) return false;
+  const int direction = travel_direction(me, *road);
+  const opendrive::LaneSection& section = road->section_at(me.s);
+  // The lanes of the area: the ranges' (none: every lane of the section), existing at s.
+  std::vector<int> lanes;
+  const auto consider = [&](int id) {
+    if (id == 0 || section.lane(id) == nullptr) return;
+    if (!c.opposite_lanes && travel_direction(*road, id) != direction) return;
+    if (std::find(lanes.begin(), lanes.end(), id) == lanes.end()) lanes.push_back(id);
+  };
+  if (c.lanes.empty()) {
+    for (const opendrive::Lane& l : section.left) consider(l.id);
+    for (const opendrive::Lane& l : section.right) consider(l.id);
+  } else {
+    for (const RelativeLaneRange& r : c.lanes)
+      for (int k = r.from; k <= r.to; ++k) consider(lane_beside(me.lane, k, direction));
+  }
+  if (lanes.empty()) return false;
+  // Along s: distanceBackward behind to distanceForward ahead, in its direction of travel.
+  const double low = direction > 0 ? me.s - c.distance_backward : me.s - c.distance_forward;
+  const double high = direction > 0 ? me.s + c.distance_forward : me.s + c.distance_backward;
+  for (const Body& other : others) {
+    const EntityState& o = *other.state;
+    if (!o.placed || o.road_id != me.road_id) continue;
+    double s_low = o.s, s_high = o.s, t_low = o.t, t_high = o.t;
+    if (c.freespace) {  // the box's extent along s and t (its heading taken along the road)
+      const int way = travel_direction(o, *road);
+      const BoundingBox& b = *other.box;
+      const double back = b.center_x - b.length / 2, front = b.center_x + b.length / 2;
+      s_low = o.s + std::min(way * back, way * front);
+      s_high = o.s + std::max(way * back, way * front);
+      const double right = b.center_y - b.width / 2, left = b.center_y + b.width / 2;
+      t_low = o.t + std::min(way * right, way * left);
+      t_high = o.t + std::max(way * right, way * left);
+    }
+    if (s_high < low || s_low > high) continue;
+    for (int id : lanes) {
+      if (!c.freespace) {
+        if (o.lane == id) return false;
+        continue;
+      }
+      const double at = std::clamp(o.s, 0.0, road->length);
+      if (road->section_at(at).lane(id) == nullptr) continue;  // that lane ends before the other's s
+      const auto [inner, outer] = road->lane_borders(id, at);
+      if (t_high >= std::min(inner, outer) && t_low <= std::max(inner, outer)) return false;
+    }
+  }
+  return true;
+}
+
 }  // namespace orch::openscenario

@@ -2,6 +2,7 @@
 // Distances between two entities for conditions and actions: in the first entity's frame
 // or along the road, between reference points or between bounding boxes (freespace).
 #include <optional>
+#include <vector>
 
 #include "openscenario/entity_motion.hpp"
 #include "openscenario/model.hpp"
@@ -37,6 +38,12 @@ std::optional<double> distance_ahead(const Body& from, const Body& to, const ope
 inline constexpr double kTtcHorizon = 0.1;  // s
 double time_to_collision(const Body& from, const Body& to, const opendrive::RoadNetwork& roads,
                          const std::string& distance_type, const std::string& coordinate_system, bool freespace);
+
+// RelativeClearanceCondition (model.hpp) for `self` among `others` (the entities it may
+// consider, placed ones only). Lanes and distances are on `self`'s road; an entity on
+// another road is never in the area (the checked stretch ends at the road's ends).
+bool lanes_clear(const RelativeClearanceCondition& c, const Body& self, const std::vector<Body>& others,
+                 const opendrive::RoadNetwork& roads);
 
 // The two bounding boxes overlap (touching counts).
 bool boxes_overlap(const Body& a, const Body& b);

@@ -124,6 +124,21 @@ struct LongitudinalDistanceAction {
   std::string displacement = "trailingReferencedEntity";
   std::optional<double> max_acceleration, max_deceleration, max_speed;
 };
+// SpeedProfileAction (1.2): the speeds to reach one after the other, each in its entry's time
+// (from the entry before; absent: as fast as the DynamicConstraints allow). With an entity
+// the speeds are relative to its speed when the action starts. followingMode "position": the
+// speed changes linearly along the profile; "follow": it tracks the profile within the
+// constraints (acceleration, deceleration and their rates, maxSpeed).
+struct SpeedProfileEntry {
+  std::optional<double> time;
+  double speed = 0;
+};
+struct SpeedProfileAction {
+  std::optional<std::string> relative_to;  // entityRef
+  bool follow = false;
+  std::optional<double> max_acceleration, max_deceleration, max_acceleration_rate, max_deceleration_rate, max_speed;
+  std::vector<SpeedProfileEntry> entries;
+};
 struct ActivateControllerAction {
   std::optional<bool> lateral, longitudinal;
   std::string object_controller;  // objectControllerRef (1.3; controllerRef deprecated): "" the current one
@@ -146,6 +161,20 @@ struct ClothoidShape {
   double curvature = 0, curvature_dot = 0, length = 0;
   std::optional<double> start_time, stop_time;
 };
+// ClothoidSpline (1.3): segments joined end to start. A segment starts at its PositionStart
+// (its heading + hOffset) or, without one, where the segment before ends (the first: where
+// the entity is when the action starts), heading + hOffset; its curvature changes linearly
+// from curvatureStart to curvatureEnd over its length. Timed when every segment has a
+// timeStart and the spline a timeEnd.
+struct ClothoidSplineSegment {
+  std::optional<Position> start;
+  double curvature_start = 0, curvature_end = 0, length = 0, heading_offset = 0;
+  std::optional<double> time_start;
+};
+struct ClothoidSplineShape {
+  std::vector<ClothoidSplineSegment> segments;
+  std::optional<double> time_end;
+};
 // Nurbs: order, control points (weight, optional time), knots (openscenario/nurbs.hpp).
 struct NurbsControlPoint {
   std::optional<double> time;
@@ -160,7 +189,7 @@ struct NurbsShape {
 struct Trajectory {
   std::string name;
   bool closed = false;
-  std::variant<PolylineShape, ClothoidShape, NurbsShape> shape;
+  std::variant<PolylineShape, ClothoidShape, NurbsShape, ClothoidSplineShape> shape;
 };
 // TimeReference/Timing: trajectory time = (simulation time, or time since the action
 // started when relative) ; a vertex is due at vertex time * scale + offset.
@@ -222,7 +251,7 @@ struct SynchronizeAction {
 };
 struct ConnectTrailerAction { std::string entity; };  // the trailer (checked like every `entity`)
 struct DisconnectTrailerAction {};
-using PrivateAction = std::variant<TeleportAction, SpeedAction, LaneChangeAction, LaneOffsetAction,
+using PrivateAction = std::variant<TeleportAction, SpeedAction, SpeedProfileAction, LaneChangeAction, LaneOffsetAction,
                                    LongitudinalDistanceAction, ActivateControllerAction, AssignControllerAction,
                                    VisibilityAction, FollowTrajectoryAction, AssignRouteAction, AcquirePositionAction,
                                    AddEntityAction, DeleteEntityAction, ParameterSetAction, ParameterModifyAction,
@@ -297,13 +326,27 @@ struct CollisionCondition {
   std::optional<std::string> entity;
   std::string object_type;
 };
+// RelativeClearanceCondition (1.2): no entity (of `entities`, else any other) in the lanes
+// `lanes` counts from the triggering entity's (relative: 0 its own, + to the left in its
+// direction of travel; none given: every lane of its road), opposite-direction lanes only
+// with opposite_lanes, from distance_backward behind its reference point to distance_forward
+// ahead of it along the road. The others by their reference point, or by any part of their
+// bounding box with freespace. No lane there to check: false (not clear).
+struct RelativeLaneRange { int from = 0, to = 0; };
+struct RelativeClearanceCondition {
+  std::vector<RelativeLaneRange> lanes;
+  std::vector<std::string> entities;
+  bool opposite_lanes = false;
+  bool freespace = false;
+  double distance_forward = 0, distance_backward = 0;
+};
 struct ByEntityCondition {
   bool all = false;  // triggeringEntitiesRule
   std::vector<std::string> triggering_entities;
   std::variant<SpeedCondition, RelativeDistanceCondition, TraveledDistanceCondition, StandStillCondition,
                EndOfRoadCondition, OffroadCondition, AccelerationCondition, ReachPositionCondition,
                RelativeSpeedCondition, TimeHeadwayCondition, DistanceCondition, TimeToCollisionCondition,
-               CollisionCondition>
+               CollisionCondition, RelativeClearanceCondition>
       condition;
 };
 struct Condition {

@@ -75,6 +75,33 @@ ClothoidShape read_clothoid(Element& clothoid) {
   return shape;
 }
 
+ClothoidSplineShape read_clothoid_spline(Element& spline) {
+  ClothoidSplineShape shape;
+  shape.time_end = spline.optional_number("timeEnd");
+  for (Element e : spline.children("ClothoidSplineSegment")) {
+    ClothoidSplineSegment segment;
+    segment.curvature_start = e.number("curvatureStart");
+    segment.curvature_end = e.number("curvatureEnd");
+    segment.length = e.number("length");
+    if (!(segment.length > 0)) e.fail_attribute("length", "a ClothoidSplineSegment's length must be positive");
+    segment.heading_offset = e.optional_number("hOffset").value_or(0.0);
+    segment.time_start = e.optional_number("timeStart");
+    if (auto start = e.optional_child("PositionStart")) segment.start = read_position(*start);
+    e.finish();
+    if (segment.time_start.has_value() != shape.time_end.has_value())
+      e.fail(shape.time_end ? "the ClothoidSpline has a timeEnd: give every ClothoidSplineSegment a timeStart"
+                            : "a ClothoidSplineSegment's timeStart needs the ClothoidSpline's timeEnd");
+    if (segment.time_start && !shape.segments.empty() && *segment.time_start < *shape.segments.back().time_start)
+      e.fail_attribute("timeStart", "timeStart is earlier than the one of the segment before");
+    shape.segments.push_back(std::move(segment));
+  }
+  if (shape.segments.empty()) spline.fail("a ClothoidSpline needs at least one ClothoidSplineSegment");
+  if (shape.time_end && *shape.time_end <= *shape.segments.back().time_start)
+    spline.fail_attribute("timeEnd", "timeEnd must be after the last segment's timeStart");
+  spline.finish();
+  return shape;
+}
+
 NurbsShape read_nurbs(Element& nurbs) {
   NurbsShape shape;
   shape.order = nurbs.integer("order");
@@ -117,10 +144,11 @@ Trajectory read_trajectory(Element& e) {
   if (t.closed) e.fail_attribute("closed", "closed trajectories are not supported");
   e.ignore_children({"ParameterDeclarations"});  // read by Context::resolve or open_scope
   Element holder = e.child("Shape");
-  Element shape = holder.one_of({"Polyline", "Clothoid", "Nurbs"});  // ClothoidSpline: "not supported"
+  Element shape = holder.one_of({"Polyline", "Clothoid", "ClothoidSpline", "Nurbs"});
   holder.finish();
   if (shape.name() == "Polyline") t.shape = read_polyline(shape);
   else if (shape.name() == "Nurbs") t.shape = read_nurbs(shape);
+  else if (shape.name() == "ClothoidSpline") t.shape = read_clothoid_spline(shape);
   else t.shape = read_clothoid(shape);
   e.finish();
   return t;
@@ -207,12 +235,15 @@ FollowTrajectoryAction read_follow_trajectory(Element& e, Context& context) {
             return shape.vertices.front().time.has_value();
           else if constexpr (std::is_same_v<std::decay_t<decltype(shape)>, NurbsShape>)
             return shape.points.front().time.has_value();
+          else if constexpr (std::is_same_v<std::decay_t<decltype(shape)>, ClothoidSplineShape>)
+            return shape.time_end.has_value();
           else
             return shape.start_time.has_value();
         },
         a.trajectory.shape);
     if (!timed)
-      e.fail("a Timing needs vertex times (Polyline), control point times (Nurbs) or startTime and stopTime (Clothoid)");
+      e.fail("a Timing needs vertex times (Polyline), control point times (Nurbs), startTime and stopTime (Clothoid) "
+             "or timeStart and timeEnd (ClothoidSpline)");
   }
   e.finish();
   return a;

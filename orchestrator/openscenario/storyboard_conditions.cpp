@@ -145,6 +145,15 @@ bool StoryboardRuntime::Impl::entity_condition(const ByEntityCondition& c, const
             if (boxes_overlap(me, {&entities.at(other.name), &other.box})) return true;
           }
           return false;
+        } else if constexpr (std::is_same_v<T, RelativeClearanceCondition>) {
+          std::vector<Body> others;
+          for (const Entity& other : scenario.entities) {
+            if (other.name == name) continue;
+            if (!k.entities.empty() && std::find(k.entities.begin(), k.entities.end(), other.name) == k.entities.end())
+              continue;
+            if (entities.at(other.name).placed) others.push_back({&entities.at(other.name), &other.box});
+          }
+          return lanes_clear(k, me, others, roads);
         } else if constexpr (std::is_same_v<T, RelativeDistanceCondition>) {
           const EntityState& other = entities.at(k.entity);
           if (!other.placed) return false;

@@ -47,8 +47,12 @@ std::vector<std::string> referenced_entities(const PrivateAction& action) {
             for (const TrajectoryVertex& v : polyline->vertices) position_entities(v.position, names);
           else if (const auto* nurbs = std::get_if<NurbsShape>(&a.trajectory.shape))
             for (const NurbsControlPoint& c : nurbs->points) position_entities(c.position, names);
-          else
+          else if (const auto* spline = std::get_if<ClothoidSplineShape>(&a.trajectory.shape)) {
+            for (const ClothoidSplineSegment& segment : spline->segments)
+              if (segment.start) position_entities(*segment.start, names);
+          } else {
             position_entities(std::get<ClothoidShape>(a.trajectory.shape).start, names);
+          }
         }
       },
       action);
@@ -200,6 +204,7 @@ class StoryboardReader {
       } else if (m.name() == "CatalogReference") {
         Element entry = context_.resolve(m, {"Maneuver"});
         g.maneuvers.push_back(read_maneuver(entry, g.actors, false));  // resolve() read its declarations
+        catalog_maneuvers_.insert(g.maneuvers.back().key);
       }
     }
     e.ignore_children({"Maneuver", "CatalogReference"});
@@ -257,7 +262,15 @@ class StoryboardReader {
 
   // Every StoryboardElementStateCondition names one element of its type: by its name, or by
   // the end of its path of names ("event::action") where the name alone is not unique.
-  void check_trigger(std::optional<Trigger>& t, const std::string& file) {
+  //
+  // A Maneuver from a catalog can name its own elements only by their names: it cannot know
+  // where it will be instantiated, and it may be instantiated more than once (esmini's
+  // synchronize.xosc uses one twice). A reference written in such a Maneuver (`scope`, its
+  // path of names) that names several elements is resolved within that instance first: the
+  // element the standard's unique-reference rule means is the one of this instance (where
+  // the reference names exactly one); else it is ambiguous as anywhere.
+  void check_trigger(std::optional<Trigger>& t, const std::string& file,
+                     const std::vector<std::string>* scope = nullptr) {
     if (!t) return;
     for (auto& group : t->groups)
       for (Condition& c : group) {
@@ -265,7 +278,16 @@ class StoryboardReader {
           const SourceLocation where{file, c.place.path, c.place.line};
           std::vector<std::pair<std::vector<std::string>, std::string>> elements;
           for (const DeclaredElement& d : declared_[s->type]) elements.emplace_back(d.path, d.key);
-          const ReferenceMatch match = resolve_reference(s->ref, elements);
+          ReferenceMatch match = resolve_reference(s->ref, elements);
+          if (match.keys.size() > 1 && scope != nullptr) {
+            ReferenceMatch own;
+            for (const std::string& key : match.keys) {
+              const std::vector<std::string>& path = declared(s->type, key).path;
+              if (path.size() > scope->size() && std::equal(scope->begin(), scope->end(), path.begin()))
+                own.keys.push_back(key);
+            }
+            if (own.keys.size() == 1) match = own;
+          }
           if (match.keys.empty()) {
             std::vector<std::string> choices;
             for (const DeclaredElement& d : declared_[s->type]) choices.push_back(d.path.back());
@@ -294,6 +316,8 @@ class StoryboardReader {
                 } else if constexpr (requires { kind.entity; }) {
                   names.push_back(kind.entity);
                 }
+                if constexpr (requires { kind.entities; })
+                  names.insert(names.end(), kind.entities.begin(), kind.entities.end());
                 if constexpr (std::is_same_v<K, TimeToCollisionCondition>) {
                   if (kind.position) position_entities(*kind.position, names);
                 } else if constexpr (requires { kind.position; }) {
@@ -375,8 +399,11 @@ class StoryboardReader {
         check_trigger(act.start_trigger, file);
         check_trigger(act.stop_trigger, file);
         for (ManeuverGroup& g : act.groups)
-          for (Maneuver& m : g.maneuvers)
-            for (Event& ev : m.events) check_trigger(ev.start_trigger, file);
+          for (Maneuver& m : g.maneuvers) {
+            const std::vector<std::string>* scope = nullptr;
+            if (catalog_maneuvers_.count(m.key) != 0) scope = &declared("maneuver", m.key).path;
+            for (Event& ev : m.events) check_trigger(ev.start_trigger, file, scope);
+          }
       }
   }
 
@@ -396,6 +423,7 @@ class StoryboardReader {
   std::vector<std::string> path_;                              // names of the elements being read
   std::set<std::pair<std::string, std::string>> keys_;         // (type, key) given out
   std::map<std::string, std::vector<DeclaredElement>> declared_;  // by type, in file order
+  std::set<std::string> catalog_maneuvers_;                    // keys of Maneuvers read from a catalog
 };
 
 }  // namespace

@@ -19,6 +19,36 @@ std::vector<PathPoint> clothoid_points(const opendrive::Pose2& start, double k0,
   return points;
 }
 
+std::vector<PathPoint> clothoid_spline_points(const ClothoidSplineShape& spline,
+                                              const std::vector<std::optional<opendrive::Pose2>>& starts,
+                                              const opendrive::Pose2& entity) {
+  std::vector<PathPoint> points;
+  opendrive::Pose2 end = entity;
+  for (std::size_t i = 0; i < spline.segments.size(); ++i) {
+    const ClothoidSplineSegment& segment = spline.segments[i];
+    opendrive::Pose2 start = i < starts.size() && starts[i] ? *starts[i] : end;
+    start.heading += segment.heading_offset;
+    std::vector<PathPoint> piece =
+        clothoid_points(start, segment.curvature_start,
+                        (segment.curvature_end - segment.curvature_start) / segment.length, segment.length);
+    if (segment.time_start) {
+      const double to = i + 1 < spline.segments.size() ? spline.segments[i + 1].time_start.value_or(0.0)
+                                                       : spline.time_end.value_or(0.0);
+      for (std::size_t j = 0; j < piece.size(); ++j)
+        piece[j].due = *segment.time_start + (to - *segment.time_start) * static_cast<double>(j) /
+                                                 static_cast<double>(piece.size() - 1);
+    }
+    end = opendrive::evaluate(opendrive::Geometry{0.0, start, segment.length,
+                                                  opendrive::Spiral{segment.curvature_start, segment.curvature_end}},
+                              segment.length);
+    // A segment that starts where the one before ends repeats that point: keep one.
+    if (!points.empty() && std::hypot(piece.front().x - points.back().x, piece.front().y - points.back().y) < 1e-3)
+      piece.erase(piece.begin());
+    points.insert(points.end(), piece.begin(), piece.end());
+  }
+  return points;
+}
+
 PathMotion make_path(std::vector<PathPoint> points, bool timed) {
   PathMotion path;
   path.timed = timed;

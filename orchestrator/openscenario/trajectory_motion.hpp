@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "opendrive/plan_view.hpp"
+#include "openscenario/model.hpp"
 
 namespace orch::openscenario {
 
@@ -50,6 +51,13 @@ inline constexpr double kFollowEnd = 0.1;       // m: a followed path is done th
 
 // Points of a clothoid from `start`: curvature k0 + k' s for s in [0, length].
 std::vector<PathPoint> clothoid_points(const opendrive::Pose2& start, double k0, double k_prime, double length);
+// Points of a ClothoidSpline: each segment from its resolved PositionStart (`starts[i]`) or
+// where the one before ends (the first: `entity`, the entity's pose when the action starts),
+// its heading turned by hOffset. Timed splines: `due` is the spline's own time, constant
+// speed within a segment from its timeStart to the next one's (the last: timeEnd).
+std::vector<PathPoint> clothoid_spline_points(const ClothoidSplineShape& spline,
+                                              const std::vector<std::optional<opendrive::Pose2>>& starts,
+                                              const opendrive::Pose2& entity);
 // Fills in distances; points closer than 1 mm to the one before are dropped.
 PathMotion make_path(std::vector<PathPoint> points, bool timed);
 
