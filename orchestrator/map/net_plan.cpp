@@ -348,19 +348,19 @@ class CorridorPlanner {
   [[nodiscard]] PlannedNode plan_node(std::size_t c, const std::vector<std::ptrdiff_t>& edge_of_segment,
                                       const std::vector<PlannedEdge>& edges) const {
     const Vec2 n = left_normal(cuts_[c].direction);
-    struct LaneEnd {
+    struct CutLaneEnd {
       double lateral;
       Vec2 point;
       Vec2 normal;  // left normal of the lane there
     };
-    std::vector<LaneEnd> ends;
+    std::vector<CutLaneEnd> ends;
     for (const Member& m : members_) {
       if (m.start_cut > c || m.end_cut < c) continue;
       const double s = m.cut_at(c);
       const Vec2 p = m.line.point_at(s);
       ends.push_back({p.dot(n), p, left_normal(m.line.tangent_at(s))});
     }
-    std::sort(ends.begin(), ends.end(), [](const LaneEnd& a, const LaneEnd& b) { return a.lateral < b.lateral; });
+    std::sort(ends.begin(), ends.end(), [](const CutLaneEnd& a, const CutLaneEnd& b) { return a.lateral < b.lateral; });
     double half_width = 0;
     for (const std::size_t seg : {c - 1, c}) {
       if (seg >= edge_of_segment.size() || edge_of_segment[seg] < 0) continue;
@@ -373,7 +373,7 @@ class CorridorPlanner {
     // Out through the lane ends and back the same way: netconvert closes the shape into a
     // polygon, and a closing chord straight across a curved cut would clip the lanes.
     node.shape.push_back(ends.front().point - half_width * ends.front().normal);
-    for (const LaneEnd& e : ends) node.shape.push_back(e.point);
+    for (const CutLaneEnd& e : ends) node.shape.push_back(e.point);
     node.shape.push_back(ends.back().point + half_width * ends.back().normal);
     for (auto e = ends.rbegin(); e != ends.rend(); ++e) node.shape.push_back(e->point);
     return node;
