@@ -278,18 +278,17 @@ std::vector<Proposal> propose_boundary(std::size_t dims, const std::vector<Point
   return {};  // the boundary is resolved to min_cell
 }
 
-BoundaryEstimate estimate_boundary(const std::vector<Point>& x, const std::vector<bool>& pass, std::size_t levels,
-                                   const SnapPoint& snap) {
-  BoundaryEstimate out;
-  const std::size_t dims = x.front().size();
-  std::size_t per_dim = std::max<std::size_t>(2, levels);
+namespace {
+
+// The evaluation lattice of a boundary estimate: `levels` points a dimension in the unit
+// box (fewer when that would exceed 20,000 points), in index order.
+std::vector<Point> estimate_lattice(std::size_t dims, std::size_t levels, std::size_t& per_dim) {
+  per_dim = std::max<std::size_t>(2, levels);
   while (per_dim > 2 && std::pow(static_cast<double>(per_dim), static_cast<double>(dims)) > 20000) --per_dim;
-  out.levels = per_dim;
   std::size_t total = 1;
   for (std::size_t j = 0; j < dims; ++j) total *= per_dim;
-  const Known known = known_of(x, pass);
-  const std::vector<Cell> roots = level0(dims);
-  std::size_t uncertain = 0, passing = 0;
+  std::vector<Point> lattice;
+  lattice.reserve(total);
   for (std::size_t index = 0; index < total; ++index) {
     Point p(dims);
     std::size_t rest = index;
@@ -297,6 +296,23 @@ BoundaryEstimate estimate_boundary(const std::vector<Point>& x, const std::vecto
       p[j] = static_cast<double>(rest % per_dim) / static_cast<double>(per_dim - 1);
       rest /= per_dim;
     }
+    lattice.push_back(std::move(p));
+  }
+  return lattice;
+}
+
+}  // namespace
+
+BoundaryEstimate estimate_boundary(const std::vector<Point>& x, const std::vector<bool>& pass, std::size_t levels,
+                                   const SnapPoint& snap) {
+  BoundaryEstimate out;
+  const std::size_t dims = x.front().size();
+  std::vector<Point> lattice = estimate_lattice(dims, levels, out.levels);
+  const std::size_t total = lattice.size();
+  const Known known = known_of(x, pass);
+  const std::vector<Cell> roots = level0(dims);
+  std::size_t uncertain = 0, passing = 0;
+  for (Point& p : lattice) {
     // The smallest cell holding p whose corners were all run.
     Cell leaf = *std::find_if(roots.begin(), roots.end(), [&](const Cell& c) { return contains(c, p); });
     while (known.state(leaf, snap) == 1) {
@@ -339,25 +355,15 @@ BoundaryEstimate estimate_boundary(const std::vector<Point>& x, const std::vecto
 
 BoundaryEstimate estimate_boundary_gp(const std::vector<Point>& x, const std::vector<bool>& pass, std::size_t levels) {
   BoundaryEstimate out;
-  const std::size_t dims = x.front().size();
-  std::size_t per_dim = std::max<std::size_t>(2, levels);
-  while (per_dim > 2 && std::pow(static_cast<double>(per_dim), static_cast<double>(dims)) > 20000) --per_dim;
-  out.levels = per_dim;
-  std::size_t total = 1;
-  for (std::size_t j = 0; j < dims; ++j) total *= per_dim;
+  std::vector<Point> lattice = estimate_lattice(x.front().size(), levels, out.levels);
+  const std::size_t total = lattice.size();
   const GaussianProcess gp = GaussianProcess::fit(x, [&] {
     std::vector<double> y;
     for (bool p : pass) y.push_back(p ? 1.0 : -1.0);
     return y;
   }());
   std::size_t uncertain = 0, passing = 0;
-  for (std::size_t index = 0; index < total; ++index) {
-    Point p(dims);
-    std::size_t rest = index;
-    for (std::size_t j = dims; j-- > 0;) {
-      p[j] = static_cast<double>(rest % per_dim) / static_cast<double>(per_dim - 1);
-      rest /= per_dim;
-    }
+  for (Point& p : lattice) {
     const GpPrediction pr = gp.predict(p);
     const bool ok = pr.mean >= 0;
     if (std::abs(pr.mean) < 1.96 * std::sqrt(pr.variance)) ++uncertain;

@@ -7,6 +7,7 @@
 
 #include "core/errors.hpp"
 #include "core/files.hpp"
+#include "core/xml_text.hpp"
 
 namespace orch::report {
 
@@ -18,19 +19,8 @@ using nlohmann::json;
 constexpr double kSize = 420;  // plot square, px
 constexpr double kMargin = 56;
 
-std::string escape(const std::string& s) {
-  std::string out;
-  for (char c : s) {
-    switch (c) {
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '&': out += "&amp;"; break;
-      case '"': out += "&quot;"; break;
-      default: out += c;
-    }
-  }
-  return out;
-}
+// The page's text and attribute values, escaped as in the orchestrator's XML files.
+std::string escape(const std::string& s) { return xml_escape(s); }
 
 std::string number(const json& v) {
   if (!v.is_number()) return "–";
