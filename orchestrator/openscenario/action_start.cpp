@@ -8,6 +8,7 @@
 
 #include "core/errors.hpp"
 #include "core/exhaustive.hpp"
+#include "openscenario/distance_keeping.hpp"
 #include "openscenario/expression.hpp"
 #include "openscenario/lane_offset.hpp"
 #include "openscenario/nurbs.hpp"
@@ -134,69 +135,6 @@ TransitionDynamics within_performance(TransitionDynamics dynamics, const Entity*
 // Lane `value` lanes to the left of `from`'s lane, in the direction `from` drives.
 int lane_to_the_left(const opendrive::Road& road, const EntityState& from, int value) {
   return shifted_lane(from.lane, travel_direction(from, road) * value);
-}
-
-bool has_limits(const LongitudinalDistanceAction& a) {
-  return a.max_acceleration || a.max_deceleration || a.max_speed;
-}
-
-// Where the entity keeps the distance: the s on the referenced entity's road, and the
-// direction of travel there.
-struct DistanceTarget {
-  const EntityState* ref = nullptr;
-  double s = 0;
-  int direction = 1;
-};
-
-DistanceTarget distance_target(const LongitudinalDistanceAction& a, const EntityState& state, ActionContext& ctx,
-                               const std::string& entity) {
-  const EntityState& ref = placed(ctx, a.entity);
-  if (!state.placed) throw MapError(fmt::format("entity \"{}\" has no position yet", entity));
-  const opendrive::Road& road = ctx.roads.road(ref.road_id);
-  const int direction = travel_direction(ref, road);
-  double gap = a.distance ? *a.distance : *a.time_gap * ref.speed;
-  const bool ahead = a.displacement == "leadingReferencedEntity" ||
-                     (a.displacement == "any" && (state.s - ref.s) * direction >= 0);
-  if (a.freespace) {
-    const BoundingBox& own = ctx.scenario.entity(entity)->box;
-    const BoundingBox& other = ctx.scenario.entity(a.entity)->box;
-    gap += ahead ? (other.center_x + other.length / 2) - (own.center_x - own.length / 2)
-                 : (own.center_x + own.length / 2) - (other.center_x - other.length / 2);
-  }
-  return {&ref, ref.s + direction * (ahead ? gap : -gap), direction};
-}
-
-// Without DynamicConstraints: placed at the distance at once, at the referenced speed.
-void longitudinal_distance(const LongitudinalDistanceAction& a, EntityState& state, ActionContext& ctx,
-                           const std::string& entity) {
-  const DistanceTarget target = distance_target(a, state, ctx, entity);
-  state.road_id = target.ref->road_id;
-  state.s = target.s;
-  state.direction = target.direction;
-  state.speed = target.ref->speed;
-  update_pose(state, ctx.roads);
-}
-
-// With DynamicConstraints: the entity stays in its lane and sets its speed for the next
-// step towards the distance: the speed from which braking (or speeding up) at the limit
-// ends at the referenced speed on the target, v = v_ref + sign(e) sqrt(2 a |e|) (e: metres
-// short of the target), within [0, maxSpeed] and changed by at most maxAcceleration /
-// maxDeceleration per second (absent limits: none). True once within kDistanceReached m
-// and m/s of the target and the referenced speed.
-inline constexpr double kDistanceReached = 0.1;
-bool approach_distance(const LongitudinalDistanceAction& a, EntityState& state, ActionContext& ctx,
-                       const std::string& entity) {
-  const DistanceTarget target = distance_target(a, state, ctx, entity);
-  const double unlimited = std::numeric_limits<double>::infinity();
-  const double accelerate = a.max_acceleration.value_or(unlimited);
-  const double decelerate = a.max_deceleration.value_or(unlimited);
-  const double error = state.road_id == target.ref->road_id ? (target.s - state.s) * target.direction : 0.0;
-  const double v_ref = target.ref->speed;
-  double wanted = v_ref + std::copysign(std::sqrt(2 * (error > 0 ? decelerate : accelerate) * std::abs(error)), error);
-  wanted = std::clamp(wanted, 0.0, a.max_speed.value_or(unlimited));
-  const double dt = ctx.dt > 0 ? ctx.dt : unlimited;
-  state.speed += std::clamp(wanted - state.speed, -decelerate * dt, accelerate * dt);
-  return std::abs(error) <= kDistanceReached && std::abs(state.speed - v_ref) <= kDistanceReached;
 }
 
 // A resolved position as a route waypoint on a lane of the roads.
@@ -373,7 +311,7 @@ std::vector<std::string> start_action(const PrivateAction& action, const std::st
         } else if constexpr (std::is_same_v<T, LongitudinalDistanceAction>) {
           state.speed_profile.reset();
           if (has_limits(a)) {
-            (void)distance_target(a, state, ctx, entity);  // both placed: checked now
+            check_distance_entities(a, state, ctx, entity);  // both placed: checked now
             take_over(MotionDomain::Longitudinal, true, a.continuous);
           } else {
             longitudinal_distance(a, state, ctx, entity);
