@@ -53,13 +53,10 @@ class Placements {
       v.departed = true;
       return placed_freely(v);
     }
-    const Lane& shape = lane_of(edge + "_" + std::to_string(lane));
+    if (v.hint == nullptr || edge != v.hint_edge || lane != v.hint_lane) hint(v, edge, lane);
+    const Lane& shape = *v.hint;
     if (!shape.allows(v.vclass)) return placed_freely(v);
-    // Lanes of the edge the vehicle may use: only those are candidates of the free match.
-    int usable = 0;
-    for (int i = 0; i < shape.edge_lanes; ++i)
-      if (lane_of(edge + "_" + std::to_string(i)).allows(v.vclass)) ++usable;
-    if (!front_fits_lane(shape.centre, shape.width, usable, front, heading)) return placed_freely(v);
+    if (!front_fits_lane(shape.centre, shape.width, v.usable_lanes, front, heading)) return placed_freely(v);
     if (!v.route_known) {
       // One query (a round trip on the traci backend); after one that does not allow the
       // fast placement, the next waits a while: placing freely is always right, only slower.
@@ -85,6 +82,7 @@ class Placements {
   static constexpr int kAlongRoute = 3;  // along the route, may leave the network
   static constexpr int kQueryPause = 20;  // poses placed freely before the route is read again
 
+  struct Lane;
   struct Vehicle {
     bool eligible = false;
     bool departed = false;
@@ -92,6 +90,13 @@ class Placements {
     int wait = 0;  // poses before the route may be read again
     std::optional<std::string> route_edge;  // the route's only edge
     std::string vclass;
+    // The hinted lane of the last pose and how many lanes of its edge the vehicle's class may
+    // use (only those are candidates of the free match): looked up when the hint changes,
+    // not every step.
+    std::string hint_edge;
+    int hint_lane = -1;
+    const Lane* hint = nullptr;
+    int usable_lanes = 0;
   };
   struct Lane {
     Polyline centre;
@@ -102,6 +107,15 @@ class Placements {
       return allowed.empty() || std::find(allowed.begin(), allowed.end(), vclass) != allowed.end();
     }
   };
+
+  void hint(Vehicle& v, const std::string& edge, int lane) {
+    v.hint_edge = edge;
+    v.hint_lane = lane;
+    v.hint = &lane_of(edge + "_" + std::to_string(lane));  // the map's nodes never move
+    v.usable_lanes = 0;
+    for (int i = 0; i < v.hint->edge_lanes; ++i)
+      if (lane_of(edge + "_" + std::to_string(i)).allows(v.vclass)) ++v.usable_lanes;
+  }
 
   // A free placement may change the route: read it again before the next fast one.
   static int placed_freely(Vehicle& v) {
