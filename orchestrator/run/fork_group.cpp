@@ -114,8 +114,10 @@ class Group {
     for (auto i : live) {
       std::optional<std::size_t> found;
       for (auto l : leaders)
-        if (same_commands(commands.at(l), commands.at(i)) && same_tracked(runs_[l]->tracked(), runs_[i]->tracked()))
-          found = l;
+        if (same_commands(commands.at(l), commands.at(i)) && same_tracked(runs_[l]->tracked(), runs_[i]->tracked())) {
+          found = l;  // the classes are disjoint: no other leader can match
+          break;
+        }
       if (!found) leaders.push_back(i);
       leader_of[i] = found.value_or(i);
     }
