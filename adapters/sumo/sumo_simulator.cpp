@@ -353,14 +353,21 @@ class SumoSimulator final : public Simulator {
         return;
       }
       const Vec2 front = c.position + (c.length / 2) * Vec2(std::cos(c.heading), std::sin(c.heading));
-      if (!c.scripted) {
-        placements_.forget(c.sumo_id);
-        sumo::Vehicle::moveToXY(c.sumo_id, c.edge, c.lane, front.x(), front.y(), angle, 2);
-        return;
+      if (!c.scripted) placements_.forget(c.sumo_id);
+      // Free placement (2), or along the route when that gives the same (sumo_placement.hpp),
+      // or on the network when a free match might find no lane (lane_fit.hpp says why).
+      int keep_route = c.scripted ? placements_.keep_route(c.sumo_id, c.edge, c.lane, front, c.heading) : 2;
+      if (keep_route == 2)
+        keep_route = placements_.keep_free_or_on_network(c.sumo_id, placements_.vclass_of(c.sumo_id), c.edge,
+                                                         c.lane, front);
+      try {
+        sumo::Vehicle::moveToXY(c.sumo_id, c.edge, c.lane, front.x(), front.y(), angle, keep_route);
+      } catch (const sumo::TraCIException&) {
+        // No road within 100 m of the point: SUMO keeps the vehicle where it last was (it
+        // cannot hold a vehicle off its network); the orchestrator's world has the pose.
+        if (!sumo_placing::Placements::on_network_only(keep_route)) throw;
       }
-      // Free placement (2), or along the route when that gives the same (sumo_placement.hpp).
-      const int keep_route = placements_.keep_route(c.sumo_id, c.edge, c.lane, front, c.heading);
-      sumo::Vehicle::moveToXY(c.sumo_id, c.edge, c.lane, front.x(), front.y(), angle, keep_route);
+      if (!c.scripted) return;
       // Without an explicit speed SUMO derives one from the lane positions, which jump when
       // the vehicle crosses into another lane of a curved edge: followers would see a
       // phantom brake. The scenario's speed is exact. SUMO keeps a speed and signals set
