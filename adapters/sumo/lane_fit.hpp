@@ -41,21 +41,4 @@ inline bool front_fits_lane(const Polyline& shape, double width, int edge_lanes,
   return along.dot(Vec2(std::cos(heading), std::sin(heading))) > 0;
 }
 
-// Whether SUMO's free match (keepRoute 2) surely finds a lane for a vehicle front at `front`,
-// given one lane of centre line `shape` that the vehicle may use. SUMO 1.15 calls a lane whose
-// nearest point to the front is one of its ends an ambiguous match and scores it below every
-// other; when no lane is better (beyond a dead end, far from any road) the match finds no lane,
-// and moveToXY then reads a lane position it never set (libsumo/Vehicle.cpp, an uninitialised
-// `lanePos`): Debian's build asserts on it, so the run aborts or not depending on what the
-// stack held. A lane whose nearest point lies inside its shape within kSureMatchDistance scores
-// at least 0 against at most -3.45 for an ambiguous one (the scores of front_fits_lane above),
-// so the match finds a lane. Otherwise the caller keeps the vehicle on the network (keepRoute 0).
-constexpr double kSureMatchDistance = 3.0;
-
-inline bool free_match_finds_lane(const Polyline& shape, const Vec2& front) {
-  if (shape.empty() || !std::isfinite(front.x()) || !std::isfinite(front.y())) return false;
-  const std::optional<Polyline::Projection> p = shape.project_within(front, kSureMatchDistance);
-  return p && !p->before_start && !p->after_end && p->s > 0 && p->s < shape.length();
-}
-
 }  // namespace orch

@@ -32,12 +32,6 @@ namespace sumo = orch_sumo;
 
 class Placements {
  public:
-  [[nodiscard]] static bool on_network_only(int keep_route) { return keep_route == kOnNetwork; }
-  [[nodiscard]] std::string vclass_of(const std::string& id) const {
-    const auto it = vehicles_.find(id);
-    return it == vehicles_.end() ? sumo::Vehicle::getVehicleClass(id) : it->second.vclass;
-  }
-
   // A scripted vehicle departs: on a route of one edge it may take the fast placement.
   void spawned(const std::string& id, const std::vector<std::string>& route, const std::string& vclass) {
     Vehicle& v = vehicles_[id];
@@ -46,39 +40,7 @@ class Placements {
     if (v.eligible) v.route_edge = route.front();
     v.vclass = vclass;
   }
-  void forget(const std::string& id) {
-    vehicles_.erase(id);
-    hints_.erase(id);
-  }
-
-  // keepRoute 2 (free, may leave the network) when SUMO's free match surely finds a lane for
-  // the front (lane_fit.hpp, free_match_finds_lane): on the hinted lane, else on the lane SUMO
-  // calls nearest (one query, only off the hinted lane). Otherwise keepRoute 0: the nearest
-  // lane within 100 m, on the network (SUMO throws when there is none; no uninitialised read).
-  int keep_free_or_on_network(const std::string& id, const std::string& vclass, const std::string& edge, int lane,
-                              const Vec2& front) {
-    Hint& h = hints_[id];
-    if (h.lane == nullptr || edge != h.edge || lane != h.index) {
-      h.edge = edge;
-      h.index = lane;
-      h.lane = nullptr;
-      try {
-        if (!edge.empty() && lane >= 0) h.lane = &lane_of(edge + "_" + std::to_string(lane));
-      } catch (const sumo::TraCIException&) {
-        // A hint SUMO does not know (moveToXY only weighs it): the nearest lane decides.
-      }
-    }
-    if (h.lane != nullptr && h.lane->allows(vclass) && free_match_finds_lane(h.lane->centre, front)) return kFree;
-    try {
-      const auto road = sumo::Simulation::convertRoad(front.x(), front.y(), false, vclass.empty() ? "ignoring" : vclass);
-      const Lane& nearest = lane_of(road.edgeID + "_" + std::to_string(road.laneIndex));
-      if (nearest.allows(vclass) && free_match_finds_lane(nearest.centre, front)) return kFree;
-    } catch (const sumo::TraCIException&) {
-      // No road near the point: placing on the network fails as cleanly.
-    }
-    if (const auto it = vehicles_.find(id); it != vehicles_.end()) it->second.route_known = false;
-    return kOnNetwork;
-  }
+  void forget(const std::string& id) { vehicles_.erase(id); }
 
   // keepRoute for the pose of vehicle `id` with front `front` on hinted lane (edge, lane).
   int keep_route(const std::string& id, const std::string& edge, int lane, const Vec2& front, double heading) {
@@ -116,7 +78,6 @@ class Placements {
   }
 
  private:
-  static constexpr int kOnNetwork = 0;   // may leave the route, not the network
   static constexpr int kFree = 2;        // may leave the route and the network
   static constexpr int kAlongRoute = 3;  // along the route, may leave the network
   static constexpr int kQueryPause = 20;  // poses placed freely before the route is read again
@@ -175,14 +136,7 @@ class Placements {
     return lanes_.emplace(lane_id, std::move(l)).first->second;
   }
 
-  struct Hint {  // the last hinted lane of a vehicle, looked up when it changes
-    std::string edge;
-    int index = -1;
-    const Lane* lane = nullptr;
-  };
-
   std::unordered_map<std::string, Vehicle> vehicles_;
-  std::unordered_map<std::string, Hint> hints_;
   std::unordered_map<std::string, Lane> lanes_;  // shapes never change during a run
 };
 

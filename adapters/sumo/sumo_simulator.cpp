@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstring>
 #include <numbers>
 #include <optional>
 #include <string_view>
@@ -345,6 +346,29 @@ class SumoSimulator final : public Simulator {
     });
   }
 
+  // SUMO 1.15's Vehicle::moveToXY leaves its local `lanePos` unset when the point matches no
+  // lane (beyond a dead end, far off the road: a placement off the network, which a scripted
+  // entity may need) and then asserts that it is not NaN; Debian's build keeps assertions, so
+  // whether such a run aborted depended on what earlier calls had left on the stack (it did in
+  // the CI's unity build). In-process that local lies in the stack just below this frame:
+  // zeroing that stack first makes the read a 0, every time. On the traci backend the read
+  // happens in the sumo process, on a stack of its own that this build does not change.
+  void move_to_xy(const std::string& id, const std::string& edge, int lane, const Vec2& front, double angle,
+                  int keep_route) {
+#ifndef LIBTRACI
+    clear_stack_below();
+#endif
+    sumo::Vehicle::moveToXY(id, edge, lane, front.x(), front.y(), angle, keep_route);
+  }
+#ifndef LIBTRACI
+  // Not instrumented: under AddressSanitizer the buffer must be on the real stack too.
+  [[gnu::noinline]] __attribute__((no_sanitize("address"))) static void clear_stack_below() {
+    char pad[16384];
+    std::memset(pad, 0, sizeof pad);
+    asm volatile("" : : "r"(pad) : "memory");  // the stores must happen
+  }
+#endif
+
   void execute(const sim::SetPose& c) {
     guard("placing an actor", [&] {
       const double angle = to_sumo_angle(c.heading);
@@ -353,21 +377,14 @@ class SumoSimulator final : public Simulator {
         return;
       }
       const Vec2 front = c.position + (c.length / 2) * Vec2(std::cos(c.heading), std::sin(c.heading));
-      if (!c.scripted) placements_.forget(c.sumo_id);
-      // Free placement (2), or along the route when that gives the same (sumo_placement.hpp),
-      // or on the network when a free match might find no lane (lane_fit.hpp says why).
-      int keep_route = c.scripted ? placements_.keep_route(c.sumo_id, c.edge, c.lane, front, c.heading) : 2;
-      if (keep_route == 2)
-        keep_route = placements_.keep_free_or_on_network(c.sumo_id, placements_.vclass_of(c.sumo_id), c.edge,
-                                                         c.lane, front);
-      try {
-        sumo::Vehicle::moveToXY(c.sumo_id, c.edge, c.lane, front.x(), front.y(), angle, keep_route);
-      } catch (const sumo::TraCIException&) {
-        // No road within 100 m of the point: SUMO keeps the vehicle where it last was (it
-        // cannot hold a vehicle off its network); the orchestrator's world has the pose.
-        if (!sumo_placing::Placements::on_network_only(keep_route)) throw;
+      if (!c.scripted) {
+        placements_.forget(c.sumo_id);
+        move_to_xy(c.sumo_id, c.edge, c.lane, front, angle, 2);
+        return;
       }
-      if (!c.scripted) return;
+      // Free placement (2), or along the route when that gives the same (sumo_placement.hpp).
+      move_to_xy(c.sumo_id, c.edge, c.lane, front, angle,
+                 placements_.keep_route(c.sumo_id, c.edge, c.lane, front, c.heading));
       // Without an explicit speed SUMO derives one from the lane positions, which jump when
       // the vehicle crosses into another lane of a curved edge: followers would see a
       // phantom brake. The scenario's speed is exact. SUMO keeps a speed and signals set

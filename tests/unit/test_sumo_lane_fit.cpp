@@ -86,19 +86,3 @@ TEST(SumoLaneFit, DegenerateInputDoesNotFit) {
   EXPECT_FALSE(front_fits_lane(straight(), 0.0, 1, Vec2(40, 0), 0.0));
   EXPECT_FALSE(front_fits_lane(straight(), 3.2, 1, Vec2(std::nan(""), 0), 0.0));
 }
-
-// SUMO's free match finds a lane surely only when the front's nearest point on some lane lies
-// inside that lane's shape, near it; beyond a dead end or far off the road it may find none.
-TEST(SumoFreeMatch, AFrontBesideTheLaneIsSurelyMatched) {
-  EXPECT_TRUE(orch::free_match_finds_lane(straight(), Vec2(40, 0)));
-  EXPECT_TRUE(orch::free_match_finds_lane(straight(), Vec2(99.9, 2.9)));
-  EXPECT_TRUE(orch::free_match_finds_lane(arc(), Vec2(0, 49)));
-}
-
-TEST(SumoFreeMatch, AFrontBeyondEitherEndOrFarAwayIsNot) {
-  EXPECT_FALSE(orch::free_match_finds_lane(straight(), Vec2(100.15, 0)));  // past a dead end
-  EXPECT_FALSE(orch::free_match_finds_lane(straight(), Vec2(-0.5, 0.2)));  // before the start
-  EXPECT_FALSE(orch::free_match_finds_lane(straight(), Vec2(40, 3.1)));    // beside, too far
-  EXPECT_FALSE(orch::free_match_finds_lane(Polyline(), Vec2(0, 0)));
-  EXPECT_FALSE(orch::free_match_finds_lane(straight(), Vec2(std::nan(""), 0)));
-}
