@@ -62,7 +62,7 @@ def run_file(xosc: pathlib.Path, work: pathlib.Path, orchestrator: pathlib.Path,
         max_time = min(peer.end_time + 1.0, MAX_TIME)
         ours = players.run_ours(orchestrator, xosc, folder / "ours", max_time, OURS_TIMEOUT)
         if not ours.ok:
-            out.update(status="ours-error" if ours.timed_out else "unreadable", detail=ours.error)
+            out.update(status="ours-error" if ours.timed_out or ours.crashed else "unreadable", detail=ours.error)
         else:
             c = compare.compare_runs(ours.folder, peer.folder, ours.end_time, min(peer.end_time, MAX_TIME))
             out["comparison"] = c

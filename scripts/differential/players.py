@@ -26,6 +26,7 @@ class Run:
     end_time: float = 0.0      # last simulated time it recorded
     seconds: float = 0.0       # wall-clock time the run took
     timed_out: bool = False
+    crashed: bool = False      # ended without writing its result (killed, or a crash)
 
 
 def _first_line(text: str, prefix: str = "") -> str:
@@ -128,6 +129,12 @@ def run_ours(orchestrator: pathlib.Path, xosc: pathlib.Path, folder: pathlib.Pat
     # The simulated time it reached (the trace ends earlier when every entity has left the road).
     end = float(result.get("sim_time") or (_last_time(trace) if trace.exists() else 0.0))
     has_rows = trace.exists() and trace.stat().st_size > 0 and sum(1 for _ in trace.open()) > 1
+    if not result_file.exists():
+        # The program writes result.json whatever the verdict: without one it was killed or
+        # crashed (a negative status is the signal), which the comparison must not hide.
+        how = f"signal {-proc.returncode}" if proc.returncode < 0 else f"exit status {proc.returncode}"
+        return Run(folder, False, f"ended without a result.json ({how}){': ' + reason if reason else ''}",
+                   seconds=seconds, crashed=True)
     if not has_rows:
         return Run(folder, False, reason or f"exit status {proc.returncode}", seconds=seconds)
     run = Run(folder, True, end_time=end, seconds=seconds)
