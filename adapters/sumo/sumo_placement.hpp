@@ -41,6 +41,8 @@ class Placements {
     v.vclass = vclass;
   }
   void forget(const std::string& id) { vehicles_.erase(id); }
+  // Whether the orchestrator places vehicle `id` (a scripted vehicle, spawned and not released).
+  [[nodiscard]] bool placed(const std::string& id) const { return vehicles_.count(id) > 0; }
 
   // keepRoute for the pose of vehicle `id` with front `front` on hinted lane (edge, lane).
   int keep_route(const std::string& id, const std::string& edge, int lane, const Vec2& front, double heading) {

@@ -90,7 +90,11 @@ class SumoSimulator final : public Simulator {
 
   sim::WorldSnapshot read(const std::vector<TrackedActor>& actors) override {
     sim::WorldSnapshot snap;
-    guard("reading the simulation", [&] { snap = reader_.read(actors); });
+    guard("reading the simulation", [&] {
+      snap = reader_.read(actors);
+      if (step_ <= 0) step_ = sumo::Simulation::getDeltaT();
+    });
+    placed_accelerations(actors, snap);
     return snap;
   }
 
@@ -369,6 +373,22 @@ class SumoSimulator final : public Simulator {
   }
 #endif
 
+  // A vehicle the orchestrator places has the speeds it is given, one per step; SUMO's own
+  // acceleration of it is the change from the speed SUMO had at the start of the step, which
+  // SUMO itself may have changed in between (an emergency stop at a dead end it was placed
+  // beyond reads as 200 m/s^2 the next step). Its acceleration is the change of the speeds
+  // read, computed as SUMO computes it (the same double wherever SUMO did not interfere).
+  void placed_accelerations(const std::vector<TrackedActor>& actors, sim::WorldSnapshot& snap) {
+    for (std::size_t i = 0; i < actors.size() && i < snap.actors.size(); ++i) {
+      sim::ActorState& a = snap.actors[i];
+      const std::string& id = actors[i].sumo_id;
+      if (!a.present || actors[i].kind == ActorKind::Pedestrian || !placements_.placed(id)) continue;
+      const auto [it, first] = placed_speed_.try_emplace(id, a.speed);
+      if (!first) a.accel = (a.speed - it->second) / step_;
+      it->second = a.speed;
+    }
+  }
+
   void execute(const sim::SetPose& c) {
     guard("placing an actor", [&] {
       const double angle = to_sumo_angle(c.heading);
@@ -379,6 +399,7 @@ class SumoSimulator final : public Simulator {
       const Vec2 front = c.position + (c.length / 2) * Vec2(std::cos(c.heading), std::sin(c.heading));
       if (!c.scripted) {
         placements_.forget(c.sumo_id);
+        placed_speed_.erase(c.sumo_id);
         move_to_xy(c.sumo_id, c.edge, c.lane, front, angle, 2);
         return;
       }
@@ -448,6 +469,7 @@ class SumoSimulator final : public Simulator {
       sent_.erase(c.sumo_id);
       pending_max_speed_.erase(c.sumo_id);
       placements_.forget(c.sumo_id);
+      placed_speed_.erase(c.sumo_id);
     });
   }
 
@@ -458,6 +480,7 @@ class SumoSimulator final : public Simulator {
       if (c.max_speed > 0) sumo::Vehicle::setMaxSpeed(c.sumo_id, c.max_speed);
       sent_.erase(c.sumo_id);
       placements_.forget(c.sumo_id);
+      placed_speed_.erase(c.sumo_id);
     });
   }
 
@@ -487,6 +510,8 @@ class SumoSimulator final : public Simulator {
     bool speed_mode_off = false;  // DriveSpeed switched SUMO's own speed checks off
   };
   std::unordered_map<std::string, Sent> sent_;
+  std::unordered_map<std::string, double> placed_speed_;  // the last speed read of each placed vehicle
+  double step_ = 0;  // SUMO's step length (s), read once
   sumo_placing::Placements placements_;  // which scripted vehicles SUMO may match along their route
   // Driven vehicles added this step whose desired speed is below their departure speed: set
   // after the step that inserts them (execute(SpawnVehicle)).

@@ -146,4 +146,34 @@ TEST_F(SumoDeparture, AVehiclePlacedBeyondADeadEndOrFarFromEveryRoadLeavesTheNet
   }
 }
 
+// A placed vehicle driving at a constant 10 m/s off the end of a dead end: SUMO stops its own
+// copy at the lane's end (an emergency stop) before the next pose gives it its speed back, and
+// SUMO's acceleration of it reads +200 m/s^2 that step. The snapshot's acceleration of a placed
+// vehicle is that of the speeds it was given: 0 throughout.
+TEST_F(SumoDeparture, APlacedVehicleDrivingOffADeadEndKeepsTheAccelerationOfItsSpeeds) {
+  const std::string last = kNorth + "7";
+  const Vec2 end(185.9958, 1015.4363);
+  const Vec2 along = (end - Vec2(135.3365, 772.9482)).normalized();
+  sim::SpawnVehicle car = vehicle("offend", 0, 0, 10, true);
+  car.route = {last};
+  car.edge = last;
+  car.lane_pos = 220;
+  sim::SetPose pose = standing_pose("offend", last, end - 25.0 * along, along);
+  pose.speed = 10;
+  ASSERT_NO_THROW(sim->apply({car, pose}));
+  ASSERT_NO_THROW(sim->advance());
+  int off_network = 0;
+  for (int step = 1; step <= 60; ++step) {  // 30 m: from 25 m before the end to 5 m beyond it
+    pose.position = end + (-25.0 + 0.5 * step) * along;
+    ASSERT_NO_THROW(sim->apply({pose}));
+    ASSERT_NO_THROW(sim->advance());
+    const auto snap = sim->read({car.actor});
+    ASSERT_TRUE(snap.actors.at(0).present) << step;
+    EXPECT_NEAR(snap.actors.at(0).speed, 10.0, 1e-9) << step;
+    EXPECT_NEAR(snap.actors.at(0).accel, 0.0, 1e-9) << "step " << step;
+    if (libsumo::Vehicle::getLaneID("offend").empty()) ++off_network;
+  }
+  EXPECT_GT(off_network, 0);  // it did drive off the end
+}
+
 }  // namespace
