@@ -39,7 +39,7 @@ TEST(SearchCli, FalsificationImprovesOnItsInitialDesignAndResumesExactly) {
   ASSERT_EQ(runs.size(), 10u);
   // The initial design, then expected-improvement batches of --jobs points.
   ASSERT_GE(s["iterations"].size(), 2u);
-  EXPECT_EQ(s["iterations"][0]["points"][0]["why"], "latin hypercube");
+  EXPECT_EQ(s["iterations"][0]["points"][0]["why"], "corner of the box");
   EXPECT_EQ(s["iterations"][1]["points"].size(), 2u);
   EXPECT_EQ(s["iterations"][1]["points"][0]["why"], "expected improvement");
   EXPECT_GT(s["iterations"][1]["points"][0]["acquisition"].get<double>(), 0);
