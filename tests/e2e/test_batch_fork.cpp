@@ -171,9 +171,11 @@ TEST(RunForkWith, EqualVariantsShareEveryStep) {
 TEST(BatchForkAt, ForksAtTheRequestedTimeAndWarnsWhereTheVariantsPartEarlier) {
   TempDir dir;
   const std::string late = "logical_" + kLateBrake + ".json", early = "logical_9202dd94-2666-4583-a45c-f8396b848ae9.json";
+  for (const auto& e : fs::directory_iterator(source_path("scenarios/nightly")))
+    if (e.path().filename().string().find("_parameters.json") == std::string::npos)
+      fs::copy_file(e.path(), dir / e.path().filename().string());
   std::vector<std::string> args{"batch"};
   for (const auto& name : {late, early}) {
-    fs::copy_file(source_path("scenarios/nightly/" + name), dir / name);
     ASSERT_EQ(run_cli({"sample", (dir / name).string(), "--count", "3", "--seed", "1"}).exit_code, 0);
     args.push_back((dir / name).string());
   }
