@@ -46,51 +46,54 @@ std::vector<Point> candidates(std::size_t dims, const std::vector<Point>& centre
         for (double& v : p) v += scale * rng.normal();
         out.push_back(snap(clamp_unit(p)));
       }
+  // Points on the faces of the box: criticality is often monotone in a parameter (harder
+  // braking, a shorter gap), so minima lie on the faces, where uniform candidates never are.
+  for (std::size_t i = 0; i < uniform / 4; ++i) {
+    Point p(dims);
+    for (double& v : p) v = rng.uniform();
+    p[rng.next() % dims] = static_cast<double>(rng.next() % 2);
+    out.push_back(snap(p));
+  }
   std::vector<Point> fresh;
   for (auto& p : out)
     if (!already_there(taken, p)) fresh.push_back(std::move(p));
   return fresh;
 }
 
-// Chooses `count` points one after the other; after each, the model is refitted with the
-// chosen point "believed" to give `believe(prediction)` (hyperparameters kept).
-template <typename Score, typename Believe>
-std::vector<Proposal> believer_batch(std::vector<Point> x, std::vector<double> y, std::size_t count,
-                                     const std::vector<Point>& centres, SearchRng& rng, const SnapPoint& snap,
-                                     const char* why, Score score, Believe believe) {
-  std::vector<Proposal> out;
-  const std::size_t dims = x.front().size();
-  GaussianProcess gp = GaussianProcess::fit(x, y);
-  const GpHyper hyper = gp.hyper();
-  std::vector<Point> pool = candidates(dims, centres, x, rng, snap);
-  for (std::size_t k = 0; k < count; ++k) {
-    double best_score = -std::numeric_limits<double>::infinity();
-    std::size_t best = pool.size();
-    for (std::size_t i = 0; i < pool.size(); ++i) {
-      if (already_there(x, pool[i])) continue;
-      const double s = score(gp, gp.predict(pool[i]), y);
-      if (s > best_score) {
-        best_score = s;
-        best = i;
+// The poll of a pattern search around the incumbent `c`: c +- step along each coordinate
+// (clamped to the box), at the largest step of 1/4, 1/8, ... of the range that still has a
+// point not run. An improvement moves the incumbent and the poll starts again at 1/4; a
+// poll with every point run and none better halves the step. A pure function of the runs.
+std::vector<Point> poll_points(const Point& c, const std::vector<Point>& taken, const SnapPoint& snap, double& step) {
+  for (step = 0.25; step > 1.0 / 1024; step /= 2) {
+    std::vector<Point> out;
+    for (std::size_t j = 0; j < c.size(); ++j)
+      for (double sign : {-1.0, 1.0}) {
+        Point p = c;
+        p[j] += sign * step;
+        p = snap(clamp_unit(p));
+        if (!already_there(taken, p) && !already_there(out, p)) out.push_back(std::move(p));
       }
-    }
-    Point chosen;
-    if (best == pool.size()) {  // every candidate taken (a small discrete space): any free point
-      Point p(dims);
-      for (double& v : p) v = rng.uniform();
-      chosen = snap(p);
-      best_score = 0;
-    } else {
-      chosen = pool[best];
-    }
-    out.push_back(Proposal{chosen, best_score, why});
-    y.push_back(believe(gp.predict(chosen)));
-    x.push_back(chosen);
-    gp = GaussianProcess::fit_with(x, y, hyper);
+    if (!out.empty()) return out;
   }
-  return out;
+  return {};
 }
 
+// The best-scoring candidate of `pool` not yet in `x` (pool.size() when none is free).
+template <typename Score>
+std::size_t best_candidate(const std::vector<Point>& pool, const std::vector<Point>& x, Score score, double& best_score) {
+  best_score = -std::numeric_limits<double>::infinity();
+  std::size_t best = pool.size();
+  for (std::size_t i = 0; i < pool.size(); ++i) {
+    if (already_there(x, pool[i])) continue;
+    const double s = score(pool[i]);
+    if (s > best_score) {
+      best_score = s;
+      best = i;
+    }
+  }
+  return best;
+}
 
 }  // namespace
 
@@ -153,19 +156,71 @@ std::vector<Proposal> grid_points(std::size_t budget, std::size_t dims, std::siz
   return out;
 }
 
-std::vector<Proposal> propose_minimum(const std::vector<Point>& x, const std::vector<double>& y, std::size_t count,
+std::vector<Proposal> propose_minimum(const std::vector<Point>& x0, const std::vector<double>& y0, std::size_t count,
                                       SearchRng& rng, const SnapPoint& snap) {
-  // Steps around the few best runs so far refine the minimum; uniform candidates explore.
-  std::vector<std::size_t> order(x.size());
-  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
-  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return y[a] < y[b]; });
-  std::vector<Point> centres;
-  for (std::size_t i = 0; i < std::min<std::size_t>(5, order.size()); ++i) centres.push_back(x[order[i]]);
-  const double best = y[order.front()];
-  return believer_batch(
-      x, y, count, centres, rng, snap, "expected improvement",
-      [best](const GaussianProcess&, const GpPrediction& p, const std::vector<double>&) { return expected_improvement(p, best); },
-      [](const GpPrediction& p) { return p.mean; });
+  // Two kinds of points, alternating (within a batch, and from batch to batch when a batch is
+  // one point): exploration, the largest expected improvement over the whole box; and
+  // exploitation, the smallest lower confidence bound (mean - sigma) in a trust region around
+  // the best run so far, which refines a minimum once one is in sight. The batch is built by
+  // the "kriging believer": each chosen point is added with its predicted mean (the
+  // hyperparameters of the first fit kept) before the next is chosen.
+  std::vector<Point> x = x0;
+  std::vector<double> y = y0;
+  const std::size_t dims = x.front().size();
+  const std::size_t incumbent = static_cast<std::size_t>(std::min_element(y0.begin(), y0.end()) - y0.begin());
+  const double best = y0[incumbent];
+  GaussianProcess gp = GaussianProcess::fit(x, y);
+  const GpHyper hyper = gp.hyper();
+  const std::vector<Point> global = candidates(dims, {x0[incumbent]}, x, rng, snap);
+  double step = 0;
+  const std::vector<Point> local = poll_points(x0[incumbent], x, snap, step);
+  std::vector<Proposal> out;
+  for (std::size_t k = 0; k < count; ++k) {
+    bool exploit = ((count == 1 ? x0.size() : k) % 2) == 1;
+    double score = 0;
+    std::size_t i = local.size();
+    if (exploit)
+      i = best_candidate(local, x, [&](const Point& p) {
+            const GpPrediction pr = gp.predict(p);
+            return -(pr.mean - std::sqrt(std::max(0.0, pr.variance)));
+          }, score);
+    exploit = exploit && i < local.size();  // the poll exhausted by this batch: explore instead
+    const std::vector<Point>& pool = exploit ? local : global;
+    if (!exploit)
+      i = best_candidate(pool, x, [&](const Point& p) { return expected_improvement(gp.predict(p), best); }, score);
+    Point chosen;
+    if (i == pool.size()) {  // every candidate taken (a small discrete space): any free point
+      Point p(dims);
+      for (double& v : p) v = rng.uniform();
+      chosen = snap(p);
+      score = 0;
+    } else {
+      chosen = pool[i];
+    }
+    out.push_back(exploit ? Proposal{chosen, step, "pattern search around the best"}
+                          : Proposal{chosen, score, "expected improvement"});
+    y.push_back(gp.predict(chosen).mean);
+    x.push_back(chosen);
+    gp = GaussianProcess::fit_with(x, y, hyper);
+  }
+  return out;
+}
+
+std::vector<Proposal> initial_design(std::size_t n, std::size_t dims, SearchRng& rng, const SnapPoint& snap) {
+  std::vector<Proposal> out;
+  if (dims <= 3)
+    for (std::size_t bits = 0; bits < (std::size_t{1} << dims) && out.size() < n; ++bits) {
+      Point p(dims);
+      for (std::size_t j = 0; j < dims; ++j) p[j] = (bits >> j) & 1U ? 1.0 : 0.0;
+      out.push_back(Proposal{snap(p), 0, "corner of the box"});
+    }
+  if (out.size() < n)
+    for (auto& p : latin_hypercube(n - out.size(), dims, rng, snap)) out.push_back(std::move(p));
+  return out;
+}
+
+std::size_t initial_design_size(std::size_t dims, std::size_t jobs) {
+  return std::max(jobs, dims <= 3 ? std::size_t{1} << dims : dims + 1);
 }
 
 namespace {
@@ -185,7 +240,7 @@ struct Cell {
   double size = 1;
 };
 
-std::size_t initial_cells(std::size_t dims) { return dims <= 2 ? 4 : 2; }
+std::size_t initial_cells(std::size_t dims) { return dims <= 3 ? 2 : 1; }
 
 std::vector<Point> corners(const Cell& c, const SnapPoint& snap) {
   const std::size_t d = c.lower.size();
@@ -242,9 +297,58 @@ struct Known {
   }
 };
 
-Known known_of(const std::vector<Point>& x, const std::vector<bool>& pass) {
+// The points a disagreeing cell's children need, other than its corners: the 3^d lattice of
+// half steps. A point in the interior of a face (an edge, a side) whose corners all agree
+// gets their outcome without a run: the boundary crosses the faces whose corners disagree,
+// so only those are bisected (one run per crossing edge and halving, plus the centre) and a
+// cell costs about 3 runs in two dimensions instead of 5. The price: a failing island that
+// touches a face without reaching its corners is missed (as a coarse grid misses it).
+void infer_half_points(const Cell& c, Known& known, const SnapPoint& snap) {
+  const std::size_t d = c.lower.size();
+  std::size_t total = 1;
+  for (std::size_t j = 0; j < d; ++j) total *= 3;
+  for (std::size_t index = 0; index < total; ++index) {
+    Point p = c.lower;
+    std::vector<std::size_t> free_dims;
+    std::size_t rest = index;
+    for (std::size_t j = 0; j < d; ++j, rest /= 3) {
+      const std::size_t t = rest % 3;
+      p[j] = std::min(1.0, c.lower[j] + static_cast<double>(t) * c.size / 2);
+      if (t == 1) free_dims.push_back(j);
+    }
+    if (free_dims.empty() || free_dims.size() == d) continue;  // a corner, or the centre (always run)
+    const Key key = key_of(snap(p));
+    if (known.pass.count(key)) continue;
+    bool any_pass = false, any_fail = false, all_known = true;
+    for (std::size_t bits = 0; bits < (std::size_t{1} << free_dims.size()) && all_known; ++bits) {
+      Point q = p;
+      for (std::size_t f = 0; f < free_dims.size(); ++f)
+        q[free_dims[f]] = std::min(1.0, c.lower[free_dims[f]] + ((bits >> f) & 1U ? c.size : 0.0));
+      const auto it = known.pass.find(key_of(snap(q)));
+      if (it == known.pass.end()) all_known = false;
+      else (it->second ? any_pass : any_fail) = true;
+    }
+    if (all_known && any_pass != any_fail) known.pass[key] = any_pass;
+  }
+}
+
+// The runs' outcomes, completed with what the refinement infers (above), walking the same
+// cells as propose_boundary: the level-0 grid, then the children of every disagreeing cell
+// of at least 2 * min_cell.
+Known known_of(std::size_t dims, const std::vector<Point>& x, const std::vector<bool>& pass, double min_cell,
+               const SnapPoint& snap) {
   Known k;
   for (std::size_t i = 0; i < x.size(); ++i) k.pass[key_of(x[i])] = pass[i];
+  std::vector<Cell> cells = level0(dims);
+  while (!cells.empty()) {
+    std::vector<Cell> next;
+    for (const Cell& c : cells)
+      if (c.size / 2 >= min_cell - 1e-12 && k.state(c, snap) == 1) {
+        infer_half_points(c, k, snap);
+        for (auto& child : children(c)) next.push_back(std::move(child));
+      }
+    cells = std::move(next);
+  }
   return k;
 }
 
@@ -258,7 +362,7 @@ bool contains(const Cell& c, const Point& p) {
 
 std::vector<Proposal> propose_boundary(std::size_t dims, const std::vector<Point>& x, const std::vector<bool>& pass, std::size_t count,
                                        double min_cell, const SnapPoint& snap) {
-  const Known known = known_of(x, pass);
+  const Known known = known_of(dims, x, pass, min_cell, snap);
   std::vector<Cell> cells = level0(dims);
   for (int level = 0; !cells.empty(); ++level) {
     std::vector<Proposal> missing;
@@ -309,7 +413,7 @@ BoundaryEstimate estimate_boundary(const std::vector<Point>& x, const std::vecto
   const std::size_t dims = x.front().size();
   std::vector<Point> lattice = estimate_lattice(dims, levels, out.levels);
   const std::size_t total = lattice.size();
-  const Known known = known_of(x, pass);
+  const Known known = known_of(dims, x, pass, 0.0, snap);
   const std::vector<Cell> roots = level0(dims);
   std::size_t uncertain = 0, passing = 0;
   for (Point& p : lattice) {

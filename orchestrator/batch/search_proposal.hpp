@@ -51,7 +51,13 @@ std::vector<Proposal> uniform_random(std::size_t n, std::size_t dims, SearchRng&
 std::vector<Proposal> grid_points(std::size_t budget, std::size_t dims, std::size_t first, std::size_t n);
 std::size_t grid_levels(std::size_t budget, std::size_t dims);
 
-// `count` points maximising expected improvement below the smallest of `y`.
+// The first runs of a falsification: the 2^d corners of the box (d <= 3; criticality is
+// often monotone in the parameters, so the extremes come first), filled up with a Latin
+// hypercube to `n`; initial_design_size: how many (at least `jobs`).
+std::vector<Proposal> initial_design(std::size_t n, std::size_t dims, SearchRng& rng, const SnapPoint& snap);
+std::size_t initial_design_size(std::size_t dims, std::size_t jobs);
+// `count` points, alternately maximising expected improvement below the smallest of `y`
+// over the box and minimising the lower confidence bound around the best run.
 std::vector<Proposal> propose_minimum(const std::vector<Point>& x, const std::vector<double>& y, std::size_t count,
                                       SearchRng& rng, const SnapPoint& snap);
 // Up to `count` corners the sparse grid needs next (`pass[i]` is the outcome of x[i]), the

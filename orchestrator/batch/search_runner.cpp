@@ -192,10 +192,13 @@ std::vector<Proposal> propose(const State& s, SearchRng& rng) {
     return uniform_random(n, dims, rng, snap);
   }
   if (!s.o.boundary.empty())
-    return propose_boundary(dims, points_of(s.runs), passes_of(s.runs), budget - done,
+    return propose_boundary(dims, points_of(s.runs), passes_of(s.runs), std::min(jobs, budget - done),
                             *s.o.resolution, snap);
-  const std::size_t initial = std::min(budget, std::max(jobs, 2 * dims + 2));
-  if (done < initial) return latin_hypercube(initial - done, dims, rng, snap);
+  const std::size_t initial = std::min(budget, initial_design_size(dims, jobs));
+  if (done < initial) {  // the design's first `done` points are run: propose the rest of it
+    std::vector<Proposal> design = initial_design(initial, dims, rng, snap);
+    return {design.begin() + static_cast<std::ptrdiff_t>(done), design.end()};
+  }
   const std::size_t count = std::min(jobs, budget - done);
   return propose_minimum(points_of(s.runs), model_values(s.runs), count, rng, snap);
 }

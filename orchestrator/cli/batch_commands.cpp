@@ -50,6 +50,7 @@ struct BatchCliOptions {
   bool ssm = false;    // --ssm: passed to every run
   bool fork = false;     // --fork: one seed per logical scenario, its sets share their prefix
   bool no_fork = false;  // --no-fork: every run from t = 0 in a process of its own
+  std::optional<double> fork_at;  // --fork-at SECONDS: --fork with a checkpoint there
   std::string ego_model;       // --ego-model: passed to every run
   bool reference_run = false;  // --reference-run: passed to every run
   CommonOptions common;
@@ -131,9 +132,10 @@ int batch_command(const BatchCliOptions& o, const CLI::App& app) {
   b.catalog = o.common.catalog.empty() ? "" : fs::absolute(o.common.catalog).string();
   b.wrapper = resolve_program(o.wrapper);
   b.ssm = o.ssm;
-  b.fork = o.fork;
+  b.fork = o.fork || o.fork_at.has_value();
   b.no_fork = o.no_fork;
-  if (o.fork && o.no_fork) throw OrchError("--fork and --no-fork contradict each other: give one");
+  b.fork_at = o.fork_at;
+  if (b.fork && o.no_fork) throw OrchError(fmt::format("{} and --no-fork contradict each other: give one", o.fork_at ? "--fork-at" : "--fork"));
   if (o.video) {
     if (const auto missing = video::missing_video_tools(); !missing.empty()) throw OrchError("batch " + missing);
   }
@@ -240,6 +242,10 @@ Handler setup_batch(CLI::App& cmd) {
                "Run the sets of each logical scenario with one seed (its first set's) so that they run their common "
                "prefix once (docs/forking.md)");
   cmd.add_flag("--no-fork", o->no_fork, "Run every set from t = 0 in a process of its own, even sets that share a seed");
+  cmd.add_option("--fork-at", o->fork_at,
+                 "--fork, and every set continues in a process of its own from this SUMO time (s) on; sets whose "
+                 "commands part earlier still part there, with a warning in fork.json (docs/forking.md)")
+      ->check(CLI::Range(0.0, 1e7));
   cmd.add_option("--ego-model", o->ego_model, "What drives the ego in every run: sumo, r157 or cruise (run --ego-model)")
       ->check(CLI::IsMember(ego_model_names()));
   cmd.add_flag("--reference-run", o->reference_run,

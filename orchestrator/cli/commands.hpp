@@ -78,6 +78,7 @@ struct RunOptions {
   // run with the same options, sharing SUMO while they give the same commands (docs/forking.md).
   std::vector<std::string> fork_with;
   std::vector<std::string> fork_out;
+  std::optional<double> fork_at;  // --fork-at SECONDS: a requested checkpoint (run/fork_group.hpp)
 };
 int run_command(const RunOptions& o);
 }  // namespace orch::cli

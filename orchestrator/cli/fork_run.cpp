@@ -41,7 +41,7 @@ int run_forked(const RunOptions& o, const RunRequest& request, const std::string
     }
   } else {
     const auto sim = make_sumo_simulator(backend, sumo_options);
-    results = run_fork_group(requests, *sim);
+    results = run_fork_group(requests, *sim, o.fork_at);
   }
   int code = 0;
   for (std::size_t i = 0; i < requests.size(); ++i) {

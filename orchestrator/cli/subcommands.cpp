@@ -94,6 +94,10 @@ Handler setup_run(CLI::App& cmd) {
       ->allow_extra_args(false);
   r->add_option("--fork-out", run->fork_out, "Output folder of the --fork-with variant in the same place")
       ->allow_extra_args(false);
+  r->add_option("--fork-at", run->fork_at,
+                "With --fork-with: every variant continues in a process of its own from this SUMO time (s) on; "
+                "variants that part earlier still part where they part, with a warning in fork.json")
+      ->check(CLI::Range(0.0, 1e7));
   add_common(r, run->common);
   return [run, r] {
     for (const char* name : {"--step", "--seed", "--max-time", "--traffic", "--backend", "--ego-model", "--reference-run"})

@@ -37,11 +37,13 @@ struct Sharing {
   double own_from_s = 0;                // SUMO time at which this run's process began simulating
   std::optional<std::string> forked_from;  // the run folder that kept the shared SUMO
   long long shared_steps = 0;
+  std::string warning;  // --fork-at: the run parted from others before the requested time
 };
 
 class Group {
  public:
-  Group(const std::vector<RunRequest>& requests, Simulator& sim) : reqs_(requests), sim_(sim) {
+  Group(const std::vector<RunRequest>& requests, Simulator& sim, std::optional<double> fork_at_s)
+      : reqs_(requests), sim_(sim), fork_at_s_(fork_at_s) {
     for (const auto& r : requests) runs_.push_back(std::make_unique<RunSession>(r, sim));
     sharing_.resize(requests.size());
   }
@@ -71,6 +73,7 @@ class Group {
       if (auto c = runs_[i]->first_commands()) commands[i] = std::move(*c);
     std::erase_if(live, [&](std::size_t i) { return !commands.count(i) && end_run(i); });
     live = split_by_commands(live, commands, 0, 0);
+    live = checkpoint(live, 0, 0);
     long long steps = 0;
     while (!live.empty()) {
       if (!simulate(live, commands[live.front()])) break;
@@ -82,7 +85,15 @@ class Group {
         if (auto c = runs_[i]->next_commands(snapshot_)) commands[i] = std::move(*c);
       std::erase_if(live, [&](std::size_t i) { return !commands.count(i) && end_run(i); });
       live = split_by_commands(live, commands, snapshot_.time, steps);
+      live = checkpoint(live, snapshot_.time, steps);
     }
+  }
+
+  // --fork-at: at the first step at or after the requested time, one process per variant.
+  std::vector<std::size_t> checkpoint(const std::vector<std::size_t>& live, double time, long long steps) {
+    if (!fork_at_s_ || checkpoint_done_ || time < *fork_at_s_ - 1e-9) return live;
+    checkpoint_done_ = true;
+    return split(live, [](std::size_t i) { return std::to_string(i); }, time, steps);
   }
 
   // Applies the class's commands, advances SUMO one step and reads it (every run of the
@@ -121,6 +132,15 @@ class Group {
       if (!found) leaders.push_back(i);
       leader_of[i] = found.value_or(i);
     }
+    if (leaders.size() > 1 && fork_at_s_ && time < *fork_at_s_ - 1e-9)
+      for (auto i : live)
+        if (sharing_[i].warning.empty())
+          sharing_[i].warning = fmt::format(
+              "--fork-at {:g} s: its commands differed from those of {} at t = {:g} s, before the requested time (the "
+              "parameters act earlier): the variants parted there, so that its outputs stay exactly those of its run "
+              "from t = 0",
+              *fork_at_s_, reqs_[leaders.front() == leader_of[i] ? leaders[1] : leaders.front()].out_dir.string(),
+              time);
     return split(live, [&](std::size_t i) { return std::to_string(leader_of[i]); }, time, steps);
   }
 
@@ -200,6 +220,8 @@ class Group {
     j["simulated_s"] = sim_time;
     j["saved_s"] = s.own_from_s;
     j["process"] = static_cast<long long>(::getpid());
+    if (fork_at_s_) j["fork_at_s"] = *fork_at_s_;
+    if (!s.warning.empty()) j["warning"] = s.warning;
     write_file_atomically(reqs_[i].out_dir / "fork.json", j.dump(2) + "\n");
   }
 
@@ -223,6 +245,8 @@ class Group {
   std::map<std::size_t, RunResult> results_;
   sim::WorldSnapshot snapshot_;
   bool child_ = false;
+  std::optional<double> fork_at_s_;
+  bool checkpoint_done_ = false;
 
  public:
   [[nodiscard]] const std::map<std::size_t, RunResult>& results() const { return results_; }
@@ -267,8 +291,9 @@ void write_unforked(const RunRequest& request, const std::string& why) {
   write_file_atomically(request.out_dir / "fork.json", j.dump(2) + "\n");
 }
 
-std::vector<RunResult> run_fork_group(const std::vector<RunRequest>& requests, Simulator& simulator) {
-  Group group(requests, simulator);
+std::vector<RunResult> run_fork_group(const std::vector<RunRequest>& requests, Simulator& simulator,
+                                      std::optional<double> fork_at_s) {
+  Group group(requests, simulator, fork_at_s);
   group.run();
   std::vector<RunResult> out(requests.size());
   for (std::size_t i = 0; i < requests.size(); ++i) {

@@ -19,6 +19,7 @@
 // writes (result.json's wall-clock timing aside).
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -35,7 +36,13 @@ std::string fork_refusal(const std::vector<RunRequest>& requests, const std::str
 // Runs every request, sharing `simulator` (libsumo) as described above, and returns once
 // every run has finished (the forked processes too, one at a time: a group uses one core).
 // Returns the results of the runs in their order as their result.json says them.
-std::vector<RunResult> run_fork_group(const std::vector<RunRequest>& requests, Simulator& simulator);
+// `fork_at_s` (--fork-at): a checkpoint requested by the user: at the first step at or after
+// that SUMO time every variant continues in a process of its own, even variants whose
+// commands are still the same. Exactness comes first: variants whose commands part before it
+// still part where they part (nothing can make them share a world they do not share), and
+// their fork.json says so in `warning`.
+std::vector<RunResult> run_fork_group(const std::vector<RunRequest>& requests, Simulator& simulator,
+                                      std::optional<double> fork_at_s = std::nullopt);
 
 // fork.json of a run that was to share and ran from t = 0 instead, and why.
 void write_unforked(const RunRequest& request, const std::string& why);

@@ -61,6 +61,35 @@ const std::string kLateBrake = "8fcbbaab-a3d0-472b-b3d5-1046910ecff3";
 
 class BatchFork : public ::testing::TestWithParam<std::string> {};
 
+// Runs the run of `trace` (an execution trace of the batch in `out`) again alone from t = 0,
+// into its own folder (paths in the outputs stay the same), the forked outputs kept aside in
+// `forked`, and returns the files that differ.
+std::vector<std::string> rerun_alone(const fs::path& out, const nlohmann::json& trace, const fs::path& forked) {
+  std::vector<std::string> command;  // the child's command line, as one string
+  std::istringstream words(trace["trace"]["implementation"]["command"].get<std::string>());
+  for (std::string w; words >> w;) command.push_back(w);
+  const fs::path run_dir = out / trace["outputs"]["run_dir"].get<std::string>();
+  fs::copy(run_dir, forked);
+  for (const auto& f : fs::directory_iterator(run_dir))
+    if (f.path().filename() != "scenario.json") fs::remove_all(f.path());
+  std::vector<std::string> alone;
+  for (std::size_t i = 1; i < command.size(); ++i) {
+    const std::string& a = command[i];
+    if (a == "--fork-with" || a == "--fork-out" || a == "--fork-at") {
+      ++i;
+      continue;
+    }
+    alone.push_back(a);
+  }
+  // The group's command names its first run: this run's file and folder instead.
+  alone[1] = (run_dir / "scenario.json").string();
+  alone[3] = run_dir.string();
+  const auto r = run_cli(alone);
+  EXPECT_LE(r.exit_code, 1) << r.output;
+  EXPECT_TRUE(fs::exists(forked / "trace.csv")) << forked;
+  return differences(run_dir, forked);
+}
+
 }  // namespace
 
 TEST_P(BatchFork, EveryForkedRunWritesWhatTheRunFromZeroWrites) {
@@ -87,9 +116,6 @@ TEST_P(BatchFork, EveryForkedRunWritesWhatTheRunFromZeroWrites) {
   int runs = 0;
   for (const auto& e : fs::directory_iterator(out / "executions")) {
     const auto trace = read_json(e.path());
-    std::vector<std::string> command;  // the child's command line, as one string
-    std::istringstream words(trace["trace"]["implementation"]["command"].get<std::string>());
-    for (std::string w; words >> w;) command.push_back(w);
     const fs::path run_dir = out / trace["outputs"]["run_dir"].get<std::string>();
     const auto fork = read_json(run_dir / "fork.json");
     if (backend == "traci") {
@@ -98,28 +124,9 @@ TEST_P(BatchFork, EveryForkedRunWritesWhatTheRunFromZeroWrites) {
     }
     if (trace["logical_uuid"] == kLateBrake) saved_late_brake += fork["saved_s"].get<double>();
     EXPECT_EQ(trace["trace"]["implementation"]["fork"], fork) << e.path();  // the execution trace says it too
-    // The same run from t = 0: its own command without the other variants, into the same
-    // folder (paths in the outputs stay the same), the forked outputs kept aside.
-    const fs::path forked = dir / ("forked_" + std::to_string(runs++));
-    fs::copy(run_dir, forked);
-    for (const auto& f : fs::directory_iterator(run_dir))
-      if (f.path().filename() != "scenario.json") fs::remove_all(f.path());
-    std::vector<std::string> alone;
-    for (std::size_t i = 1; i < command.size(); ++i) {
-      const std::string& a = command[i];
-      if (a == "--fork-with" || a == "--fork-out") {
-        ++i;
-        continue;
-      }
-      alone.push_back(a);
-    }
-    // The group's command names its first run: this run's file and folder instead.
-    alone[1] = (run_dir / "scenario.json").string();
-    alone[3] = run_dir.string();
-    const auto r = run_cli(alone);
-    ASSERT_LE(r.exit_code, 1) << r.output;
-    ASSERT_TRUE(fs::exists(forked / "trace.csv")) << forked;
-    EXPECT_EQ(differences(run_dir, forked), std::vector<std::string>{}) << run_dir << " (" << backend << ")";
+    // The same run from t = 0: its own command without the other variants.
+    EXPECT_EQ(rerun_alone(out, trace, dir / ("forked_" + std::to_string(runs++))), std::vector<std::string>{})
+        << run_dir << " (" << backend << ")";
   }
   EXPECT_EQ(runs, 12);
   // The late brake's sets share at least their first 20 s (libsumo): two of three forked.
@@ -155,4 +162,58 @@ TEST(RunForkWith, EqualVariantsShareEveryStep) {
   EXPECT_FALSE(read_json(dir / "b" / "fork.json")["forked"].get<bool>());
   EXPECT_EQ(read_json(dir / "a" / "fork.json")["process"], read_json(dir / "b" / "fork.json")["process"]);
   EXPECT_EQ(slurp(dir / "a" / "trace.csv"), slurp(dir / "b" / "trace.csv"));
+}
+
+// --fork-at: a checkpoint by request. The late brake's sets part at 20 to 30 s; asked for 10 s,
+// every set continues in a process of its own from 10 s. The lead brake's sets part at t = 0
+// (the lead's speed): they still part there, exactly, and fork.json warns. Either way every
+// run writes what the run from t = 0 writes.
+TEST(BatchForkAt, ForksAtTheRequestedTimeAndWarnsWhereTheVariantsPartEarlier) {
+  TempDir dir;
+  const std::string late = "logical_" + kLateBrake + ".json", early = "logical_9202dd94-2666-4583-a45c-f8396b848ae9.json";
+  for (const auto& e : fs::directory_iterator(source_path("scenarios/nightly")))
+    if (e.path().filename().string().find("_parameters.json") == std::string::npos)
+      fs::copy_file(e.path(), dir / e.path().filename().string());
+  std::vector<std::string> args{"batch"};
+  for (const auto& name : {late, early}) {
+    ASSERT_EQ(run_cli({"sample", (dir / name).string(), "--count", "3", "--seed", "1"}).exit_code, 0);
+    args.push_back((dir / name).string());
+  }
+  const fs::path out = dir / "out";
+  args.insert(args.end(), {"--fork-at", "10", "--out", out.string(), "--jobs", "2"});
+  const auto batch = run_cli(args);
+  ASSERT_LE(batch.exit_code, 1) << batch.output;
+  EXPECT_EQ(read_json(out / "batch.json")["options"]["fork_at"], 10.0);
+  int runs = 0, forked_at_checkpoint = 0, warned = 0;
+  for (const auto& e : fs::directory_iterator(out / "executions")) {
+    const auto trace = read_json(e.path());
+    const fs::path run_dir = out / trace["outputs"]["run_dir"].get<std::string>();
+    const auto fork = read_json(run_dir / "fork.json");
+    EXPECT_EQ(fork["fork_at_s"], 10.0) << run_dir;
+    if (trace["logical_uuid"] == kLateBrake) {
+      EXPECT_FALSE(fork.contains("warning")) << fork;
+      if (fork["forked"].get<bool>()) {
+        EXPECT_GE(fork["own_from_s"].get<double>(), 10.0) << fork;
+        EXPECT_LT(fork["own_from_s"].get<double>(), 10.5) << fork;  // not at 20 s, where they part
+        ++forked_at_checkpoint;
+      }
+    } else {
+      ASSERT_TRUE(fork.contains("warning")) << fork;
+      EXPECT_NE(fork["warning"].get<std::string>().find("before the requested time"), std::string::npos) << fork;
+      EXPECT_LT(fork["own_from_s"].get<double>(), 10.0) << fork;
+      ++warned;
+    }
+    EXPECT_EQ(rerun_alone(out, trace, dir / ("forked_" + std::to_string(runs++))), std::vector<std::string>{}) << run_dir;
+  }
+  EXPECT_EQ(runs, 6);
+  EXPECT_EQ(forked_at_checkpoint, 2);
+  EXPECT_EQ(warned, 3);
+}
+
+TEST(RunForkAt, NeedsVariants) {
+  TempDir dir;
+  const auto r = run_cli({"run", source_path("scenarios/highway_cut_in.json"), "--out", (dir / "a").string(), "-q",
+                          "--fork-at", "5"});
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("--fork-at: a checkpoint for variants"), std::string::npos) << r.output;
 }

@@ -3,6 +3,9 @@
 // files beside it and a resumed search that must continue exactly where the first stopped.
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <map>
+
 #include "support/cli_runner.hpp"
 
 using namespace orch::test;
@@ -39,7 +42,7 @@ TEST(SearchCli, FalsificationImprovesOnItsInitialDesignAndResumesExactly) {
   ASSERT_EQ(runs.size(), 10u);
   // The initial design, then expected-improvement batches of --jobs points.
   ASSERT_GE(s["iterations"].size(), 2u);
-  EXPECT_EQ(s["iterations"][0]["points"][0]["why"], "latin hypercube");
+  EXPECT_EQ(s["iterations"][0]["points"][0]["why"], "corner of the box");
   EXPECT_EQ(s["iterations"][1]["points"].size(), 2u);
   EXPECT_EQ(s["iterations"][1]["points"][0]["why"], "expected improvement");
   EXPECT_GT(s["iterations"][1]["points"][0]["acquisition"].get<double>(), 0);
@@ -87,4 +90,42 @@ TEST(SearchCli, BadInputIsNamedBeforeAnyRun) {
   const std::string cut_in = source_path("scenarios/nightly/logical_344b1b1a-8831-46a0-a4e1-e7104d3ce4b5.json");
   fails_with({"search", cut_in, "--boundary", "verdict", "--budget", "4", "--set", "cut_in.decel=2.5..3.5"},
              "none of its choices is in that range");
+}
+
+// Boundary mode on real runs: the 3 x 3 initial grid, then --jobs points at a time, each a
+// half point of a grid cell whose corners disagree (a run or an inferred corner never
+// repeats), and the estimate in search.json after every iteration.
+TEST(SearchCli, BoundaryRefinesOnlyCellsWhoseCornersDisagree) {
+  TempDir dir;
+  const CliResult r = run_cli({"search", kLeadBrake, "--boundary", "verdict", "--objective", "min_ttc", "--budget", "15",
+                               "--jobs", "2", "--set", "lead.brake_time=30", "--max-time", "45", "--out",
+                               (dir / "b").string()});
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const nlohmann::json s = read_json(dir / "b" / "search.json");
+  const auto runs = runs_of(s);
+  ASSERT_EQ(runs.size(), 15u);
+  std::map<std::pair<int, int>, bool> grid;  // the initial grid's outcomes by lattice index
+  for (std::size_t i = 0; i < 9; ++i) {
+    EXPECT_EQ(runs[i]["why"], "initial grid") << i;
+    const double u = runs[i]["unit"][0].get<double>() * 2, v = runs[i]["unit"][1].get<double>() * 2;
+    ASSERT_DOUBLE_EQ(u, std::round(u));
+    ASSERT_DOUBLE_EQ(v, std::round(v));
+    grid[{static_cast<int>(u), static_cast<int>(v)}] = runs[i]["pass"].get<bool>();
+  }
+  ASSERT_EQ(grid.size(), 9u);
+  for (std::size_t i = 9; i < runs.size(); ++i) {
+    EXPECT_EQ(runs[i]["why"], "refine a cell whose corners disagree") << i;
+    const double u = runs[i]["unit"][0].get<double>() * 2, v = runs[i]["unit"][1].get<double>() * 2;
+    bool disagree = false;  // some grid cell holding the point has corners that disagree
+    for (int a = 0; a < 2; ++a)
+      for (int b = 0; b < 2; ++b) {
+        if (u < a - 1e-9 || u > a + 1 + 1e-9 || v < b - 1e-9 || v > b + 1 + 1e-9) continue;
+        const bool first = grid[{a, b}];
+        disagree = disagree || grid[{a + 1, b}] != first || grid[{a, b + 1}] != first || grid[{a + 1, b + 1}] != first;
+      }
+    EXPECT_TRUE(disagree) << runs[i];
+  }
+  EXPECT_EQ(s["iterations"].back()["points"].size(), 2u);  // --jobs at a time after the grid
+  EXPECT_TRUE(s["iterations"].back().contains("boundary"));
+  EXPECT_GT(s["boundary"]["pass"].get<std::string>().size(), 0u);
 }
