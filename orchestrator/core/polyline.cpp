@@ -201,11 +201,28 @@ std::optional<Polyline::Projection> Polyline::project_within(const Vec2& p, doub
 Polyline::Projection Polyline::project_near(const Vec2& p, double s_hint, double window) const {
   const std::size_t first = segment_at(s_hint - window);
   const std::size_t last = segment_at(s_hint + window);
+  // The same answer as measuring every segment of the window in order (the first of equally
+  // near ones), without measuring the far ones: every point of the segments after vertex k
+  // within arc length D lies within D of it, so those segments are at least
+  // |p - points_[k]| - D from p. Segments whose bound exceeds the nearest distance known so
+  // far (the hint's segment to begin with) by more than kPruneMargin cannot be the nearest
+  // and are skipped; the margin is far above the rounding of these sums and norms (1e-8 m on
+  // a 10 km line), so every segment that could tie for the nearest is measured, in order.
+  constexpr double kPruneMargin = 1e-4;  // m
+  double bound = project_on_segment(p, std::clamp(segment_at(s_hint), first, last)).distance;
   Projection best;
   best.distance = std::numeric_limits<double>::infinity();
-  for (std::size_t seg = first; seg <= last; ++seg) {
+  std::size_t seg = first;
+  while (seg <= last) {
+    const double until = cumulative_[seg] + (p - points_[seg]).norm() - bound - kPruneMargin;
+    while (seg <= last && cumulative_[seg + 1] < until) ++seg;  // all of segment seg lies nearer than `until`
+    if (seg > last) break;
     Projection r = project_on_segment(p, seg);
-    if (r.distance < best.distance) best = r;
+    if (r.distance < best.distance) {
+      best = r;
+      bound = std::min(bound, best.distance);
+    }
+    ++seg;
   }
   return finish(best, p);
 }

@@ -33,7 +33,7 @@ void EntityTrace::step(const StepView& view) {
     const Vec2 ref = actors_.reference_point(a);
     const std::string& name = actors_.name_of(a.id);
     const opendrive::SurfacePose surface = surface_under(roads_, ref, a.heading);
-    file_.print("{:.3f},,{},{:.3f},{:.3f},{:.4f},{:.3f},{:.3f},{},{},{:.3f},{:.3f},{},0,{},{:.3f},{:.4f},{:.4f}\n", time,
+    file_.print(FMT_COMPILE("{:.3f},,{},{:.3f},{:.3f},{:.4f},{:.3f},{:.3f},{},{},{:.3f},{:.3f},{},0,{},{:.3f},{:.4f},{:.4f}\n"), time,
                name, ref.x(), ref.y(), a.heading, a.speed, a.accel, a.edge, a.lane, a.lane_pos,
                a.lat_offset.value_or(0.0), a.signals,
                name == ego ? ego_driver_() : (actors_.is_sumo_driven(name) ? "sumo" : "script"), surface.z + actors_.height_of(name) + 0.0,

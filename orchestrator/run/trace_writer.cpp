@@ -26,7 +26,7 @@ void TraceWriter::record(const engine::Engine& engine, std::optional<sim::ActorI
                          : engine.scripted(a.id)  ? "script"
                          : model_driven_ == a.id ? model_label_.c_str()
                                                   : "sumo";
-    file_.print("{:.3f},{},{},{:.3f},{:.3f},{:.4f},{:.3f},{:.3f},{},{},{:.3f},{:.3f},{},{},{}\n", snap.time,
+    file_.print(FMT_COMPILE("{:.3f},{},{},{:.3f},{:.3f},{:.4f},{:.3f},{:.3f},{},{},{:.3f},{:.3f},{},{},{}\n"), snap.time,
                engine.scene(), a.id, a.position.x(), a.position.y(), a.heading, a.speed, a.accel, a.edge, a.lane,
                a.lane_pos, lateral_offset(a), a.signals, a.siren ? 1 : 0, driver);
     ++rows_;

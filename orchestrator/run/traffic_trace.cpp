@@ -8,10 +8,10 @@ TrafficTrace::TrafficTrace(const std::filesystem::path& dir, bool background_row
 }
 
 void TrafficTrace::record(const sim::WorldSnapshot& snap) {
-  counts_.print("{:.3f},{},{},{}\n", snap.time, snap.other_vehicles, snap.nearby.size(), snap.long_waiting);
+  counts_.print(FMT_COMPILE("{:.3f},{},{},{}\n"), snap.time, snap.other_vehicles, snap.nearby.size(), snap.long_waiting);
   if (background_) {
     for (const auto& v : snap.nearby) {
-      background_->print("{:.3f},{},{:.3f},{:.3f},{:.4f},{:.3f},{:.3f},{:.3f}\n", snap.time, v.sumo_id,
+      background_->print(FMT_COMPILE("{:.3f},{},{:.3f},{:.3f},{:.4f},{:.3f},{:.3f},{:.3f}\n"), snap.time, v.sumo_id,
                  v.position.x(), v.position.y(), v.heading, v.speed, v.length, v.width);
       ++background_rows_;
     }
