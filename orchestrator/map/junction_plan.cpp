@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <map>
 
 #include "core/errors.hpp"
@@ -98,10 +99,30 @@ struct LaneEnd {
   bool incoming = false;  // the lane ends at the junction (else it starts there)
 };
 
-// How far `shape` cuts into lane end `e` (m).
+// Whether p lies inside the closed polygon `shape` (even-odd rule; a shape with no area has
+// no inside).
+bool inside(const std::vector<Vec2>& shape, const Vec2& p) {
+  bool in = false;
+  for (std::size_t k = 0, j = shape.size() - 1; k < shape.size(); j = k++) {
+    const Vec2& a = shape[k];
+    const Vec2& b = shape[j];
+    if ((a.y() > p.y()) != (b.y() > p.y()) && p.x() < (b.x() - a.x()) * (p.y() - a.y()) / (b.y() - a.y()) + a.x())
+      in = !in;
+  }
+  return in;
+}
+
+// How far `shape` cuts into lane end `e` (m). A lane lying wholly inside the shape (a short
+// dead-end lane inside its junction) crosses it nowhere, and netconvert moves it to a
+// stub of 0.2 m: that is a cut of the whole lane.
 double cut_into(const std::vector<Vec2>& shape, const LaneEnd& e) {
   double cut = 0;
   for (const double s : crossings(shape, *e.shape)) cut = std::max(cut, e.incoming ? e.shape->length() - s : s);
+  if (cut <= kMaxShapeCut && shape.size() >= 3) {
+    const double length = e.shape->length();
+    const double probe = std::min(0.5, length / 2);
+    if (inside(shape, e.shape->point_at(e.incoming ? length - probe : probe))) cut = length;
+  }
   return cut > kMaxShapeCut ? cut : 0.0;
 }
 
@@ -117,6 +138,74 @@ std::vector<Vec2> there_and_back(std::vector<Vec2> pts) {
   const std::size_t n = pts.size();
   for (std::size_t i = n - 1; i-- > 1;) pts.push_back(pts[i]);
   return pts;
+}
+
+// A shape with no area that reaches every lane end and crosses none of the lanes: a tree of
+// straight segments between the lane ends (and the junction's middle), each segment chosen
+// shortest first among those that cut no lane, walked around (there and back) into the
+// polygon netconvert closes. Where a lane ends on the next one's start, the tree runs across
+// that point between the lane's corners (a vertex on it would give netconvert's internal lane
+// between the two no length). Empty when some lane end cannot be reached without a cut (lanes
+// that enclose one another's ends: the caller keeps the best of its other shapes).
+struct TreeNode {
+  Vec2 p;
+  int partner = -1;  // the other corner of a lane end crossed between its corners
+};
+
+std::vector<Vec2> uncut_tree(const std::vector<TreeNode>& nodes, const std::vector<LaneEnd>& ends) {
+  const std::size_t n = nodes.size();
+  if (n < 2) return {};
+  const auto clear = [&](const Vec2& a, const Vec2& b) {
+    if ((a - b).norm() < 1e-9) return false;
+    const std::vector<Vec2> seg{a, b};
+    return std::none_of(ends.begin(), ends.end(), [&](const LaneEnd& e) { return cut_into(seg, e) > 0; });
+  };
+  std::vector<int> parent(n, -1);
+  std::vector<bool> in(n, false);
+  std::vector<std::vector<std::size_t>> children(n);
+  in[0] = true;
+  // Corner pairs are joined first: the segment across a lane end is the lane end itself.
+  const auto join = [&](std::size_t child, std::size_t par) {
+    in[child] = true;
+    parent[child] = static_cast<int>(par);
+    children[par].push_back(child);
+  };
+  if (nodes[0].partner >= 0) join(static_cast<std::size_t>(nodes[0].partner), 0);
+  for (std::size_t added = 1; added < n;) {
+    double best = std::numeric_limits<double>::infinity();
+    std::size_t bu = 0;
+    std::size_t bv = 0;
+    for (std::size_t u = 0; u < n; ++u) {
+      if (!in[u]) continue;
+      for (std::size_t v = 0; v < n; ++v) {
+        if (in[v]) continue;
+        const double d = (nodes[u].p - nodes[v].p).norm();
+        if (d < best && clear(nodes[u].p, nodes[v].p)) {
+          best = d;
+          bu = u;
+          bv = v;
+        }
+      }
+    }
+    if (!std::isfinite(best)) return {};
+    join(bv, bu);
+    added = static_cast<std::size_t>(std::count(in.begin(), in.end(), true));
+    if (nodes[bv].partner >= 0 && !in[static_cast<std::size_t>(nodes[bv].partner)]) {
+      join(static_cast<std::size_t>(nodes[bv].partner), bv);
+      added = static_cast<std::size_t>(std::count(in.begin(), in.end(), true));
+    }
+  }
+  std::vector<Vec2> tour;
+  const auto walk = [&](const auto& self, std::size_t u) -> void {
+    tour.push_back(nodes[u].p);
+    for (const std::size_t c : children[u]) {
+      self(self, c);
+      tour.push_back(nodes[u].p);
+    }
+  };
+  walk(walk, 0);
+  tour.pop_back();  // back at the root: netconvert closes the polygon
+  return tour;
 }
 
 // The route's points from the lane end `from` to the lane start `to`, around arc lengths
@@ -312,6 +401,32 @@ class JunctionPlanner {
             node.shape = other;
           }
         }
+      }
+      if (cut_length(node.shape, ends) > 0) {
+        // Every shape above cuts a lane (lanes ending at very different places: a branch
+        // along a curve, a dead-end lane inside the junction): a tree that cuts none.
+        std::vector<TreeNode> tree;
+        for (std::size_t i = 0; i < ends.size(); ++i) {
+          const LaneEnd& a = ends[i];
+          const Vec2 p = a.incoming ? a.shape->points().back() : a.shape->point(0);
+          const bool shared = std::any_of(ends.begin(), ends.end(), [&](const LaneEnd& b) {
+            return &b != &a && b.incoming != a.incoming &&
+                   (p - (b.incoming ? b.shape->points().back() : b.shape->point(0))).norm() < kSamePoint;
+          });
+          if (!shared) {
+            tree.push_back({p, -1});
+            continue;
+          }
+          const bool added = std::any_of(tree.begin(), tree.end(), [&](const TreeNode& t) {
+            return (t.p - corners[2 * i]).norm() < kSamePoint || (t.p - corners[2 * i + 1]).norm() < kSamePoint;
+          });
+          if (added) continue;  // the lane it continues is crossed there already
+          const std::size_t k = tree.size();
+          tree.push_back({corners[2 * i], static_cast<int>(k + 1)});
+          tree.push_back({corners[2 * i + 1], static_cast<int>(k)});
+        }
+        tree.push_back({node.position, -1});
+        if (std::vector<Vec2> t = uncut_tree(tree, ends); !t.empty() && cut_length(t, ends) == 0) node.shape = t;
       }
       node.type = "priority";
       node_of_zone_[z] = plan.nodes.size();
