@@ -26,6 +26,9 @@ constexpr double kMaxSharedPathMiss = 0.25;
 // `map check`'s tolerance (the shipped urban map's corner shapes cut up to 0.06 m).
 constexpr double kMaxShapeCut = 0.10;
 constexpr double kSamePoint = 0.02;  // m: lane ends closer than this meet
+// m cut off each of two lanes where one ends on the other's start, so that the internal lane
+// joining them has a length (SUMO refuses one of none; more than 0.1 m: `map check`'s floor)
+constexpr double kEndOnStartCut = 0.08;
 
 std::string junction_id(int zone) { return fmt::format("J{}", zone); }
 
@@ -144,12 +147,12 @@ std::vector<Vec2> there_and_back(std::vector<Vec2> pts) {
 // straight segments between the lane ends (and the junction's middle), each segment chosen
 // shortest first among those that cut no lane, walked around (there and back) into the
 // polygon netconvert closes. Where a lane ends on the next one's start, the tree runs across
-// that point between the lane's corners (a vertex on it would give netconvert's internal lane
-// between the two no length). Empty when some lane end cannot be reached without a cut (lanes
+// both lanes between their corners kEndOnStartCut from that point (a vertex on it would give
+// netconvert's internal lane between the two no length). Empty when some lane end cannot be reached without a cut (lanes
 // that enclose one another's ends: the caller keeps the best of its other shapes).
 struct TreeNode {
   Vec2 p;
-  int partner = -1;  // the other corner of a lane end crossed between its corners
+  std::vector<std::size_t> partners;  // corners joined to this one across a lane end
 };
 
 std::vector<Vec2> uncut_tree(const std::vector<TreeNode>& nodes, const std::vector<LaneEnd>& ends) {
@@ -163,15 +166,18 @@ std::vector<Vec2> uncut_tree(const std::vector<TreeNode>& nodes, const std::vect
   std::vector<int> parent(n, -1);
   std::vector<bool> in(n, false);
   std::vector<std::vector<std::size_t>> children(n);
-  in[0] = true;
-  // Corner pairs are joined first: the segment across a lane end is the lane end itself.
-  const auto join = [&](std::size_t child, std::size_t par) {
+  // Corner pairs are joined at once: the segment across a lane end is the lane end itself.
+  const auto join = [&](const auto& self, std::size_t child, std::size_t par) -> void {
     in[child] = true;
     parent[child] = static_cast<int>(par);
     children[par].push_back(child);
+    for (const std::size_t q : nodes[child].partners)
+      if (!in[q]) self(self, q, child);
   };
-  if (nodes[0].partner >= 0) join(static_cast<std::size_t>(nodes[0].partner), 0);
-  for (std::size_t added = 1; added < n;) {
+  in[0] = true;
+  for (const std::size_t q : nodes[0].partners)
+    if (!in[q]) join(join, q, 0);
+  while (std::count(in.begin(), in.end(), true) < static_cast<std::ptrdiff_t>(n)) {
     double best = std::numeric_limits<double>::infinity();
     std::size_t bu = 0;
     std::size_t bv = 0;
@@ -188,12 +194,7 @@ std::vector<Vec2> uncut_tree(const std::vector<TreeNode>& nodes, const std::vect
       }
     }
     if (!std::isfinite(best)) return {};
-    join(bv, bu);
-    added = static_cast<std::size_t>(std::count(in.begin(), in.end(), true));
-    if (nodes[bv].partner >= 0 && !in[static_cast<std::size_t>(nodes[bv].partner)]) {
-      join(static_cast<std::size_t>(nodes[bv].partner), bv);
-      added = static_cast<std::size_t>(std::count(in.begin(), in.end(), true));
-    }
+    join(join, bv, bu);
   }
   std::vector<Vec2> tour;
   const auto walk = [&](const auto& self, std::size_t u) -> void {
@@ -414,18 +415,32 @@ class JunctionPlanner {
                    (p - (b.incoming ? b.shape->points().back() : b.shape->point(0))).norm() < kSamePoint;
           });
           if (!shared) {
-            tree.push_back({p, -1});
+            tree.push_back({p, {}});
             continue;
           }
-          const bool added = std::any_of(tree.begin(), tree.end(), [&](const TreeNode& t) {
-            return (t.p - corners[2 * i]).norm() < kSamePoint || (t.p - corners[2 * i + 1]).norm() < kSamePoint;
-          });
-          if (added) continue;  // the lane it continues is crossed there already
-          const std::size_t k = tree.size();
-          tree.push_back({corners[2 * i], static_cast<int>(k + 1)});
-          tree.push_back({corners[2 * i + 1], static_cast<int>(k)});
+          // Its corners, shared with a neighbouring lane's (or the lane it continues) where they meet.
+          const auto corner = [&](const Vec2& c) {
+            for (std::size_t k = 0; k < tree.size(); ++k)
+              if ((tree[k].p - c).norm() <= kSamePoint) return k;
+            tree.push_back({c, {}});
+            return tree.size() - 1;
+          };
+          // Across the lane a little before its end (within kMaxShapeCut): netconvert's
+          // internal lane between the two then has a length (a shape through the meeting point
+          // itself would give it none).
+          const double length = a.shape->length();
+          const double at = a.incoming ? length - std::min(kEndOnStartCut, length / 2) : std::min(kEndOnStartCut, length / 2);
+          const Vec2 q = a.shape->point_at(at);
+          const Vec2 across = left_normal(a.shape->tangent_at(at)) * (corners[2 * i] - corners[2 * i + 1]).norm() / 2;
+          const std::size_t c0 = corner(q + across);
+          const std::size_t c1 = corner(q - across);
+          if (c0 == c1) continue;
+          if (std::find(tree[c0].partners.begin(), tree[c0].partners.end(), c1) == tree[c0].partners.end()) {
+            tree[c0].partners.push_back(c1);
+            tree[c1].partners.push_back(c0);
+          }
         }
-        tree.push_back({node.position, -1});
+        tree.push_back({node.position, {}});
         if (std::vector<Vec2> t = uncut_tree(tree, ends); !t.empty() && cut_length(t, ends) == 0) node.shape = t;
       }
       node.type = "priority";
