@@ -29,6 +29,11 @@ constexpr double kSamePoint = 0.02;  // m: lane ends closer than this meet
 // m cut off each of two lanes where one ends on the other's start, so that the internal lane
 // joining them has a length (SUMO refuses one of none; more than 0.1 m: `map check`'s floor)
 constexpr double kEndOnStartCut = 0.08;
+// The grid a junction's uncut tree may run through around its lanes (m; at most that many points).
+constexpr double kGridStep = 1.5;
+constexpr double kGridMargin = 6.0;
+constexpr double kGridReach = 1.5 * kGridStep;  // m: grid neighbours, diagonals included
+constexpr long long kMaxGridPoints = 4000;
 
 std::string junction_id(int zone) { return fmt::format("J{}", zone); }
 
@@ -155,21 +160,19 @@ struct TreeNode {
   std::vector<std::size_t> partners;  // corners joined to this one across a lane end
 };
 
-std::vector<Vec2> uncut_tree(const std::vector<TreeNode>& nodes, const std::vector<LaneEnd>& ends) {
-  const std::size_t n = nodes.size();
-  if (n < 2) return {};
+std::vector<Vec2> uncut_tree(std::vector<TreeNode> nodes, const std::vector<LaneEnd>& ends) {
+  const std::size_t terminals = nodes.size();
+  if (terminals < 2) return {};
   const auto clear = [&](const Vec2& a, const Vec2& b) {
     if ((a - b).norm() < 1e-9) return false;
     const std::vector<Vec2> seg{a, b};
     return std::none_of(ends.begin(), ends.end(), [&](const LaneEnd& e) { return cut_into(seg, e) > 0; });
   };
-  std::vector<int> parent(n, -1);
-  std::vector<bool> in(n, false);
-  std::vector<std::vector<std::size_t>> children(n);
+  std::vector<bool> in(terminals, false);
+  std::vector<std::vector<std::size_t>> children(terminals);
   // Corner pairs are joined at once: the segment across a lane end is the lane end itself.
   const auto join = [&](const auto& self, std::size_t child, std::size_t par) -> void {
     in[child] = true;
-    parent[child] = static_cast<int>(par);
     children[par].push_back(child);
     for (const std::size_t q : nodes[child].partners)
       if (!in[q]) self(self, q, child);
@@ -177,13 +180,15 @@ std::vector<Vec2> uncut_tree(const std::vector<TreeNode>& nodes, const std::vect
   in[0] = true;
   for (const std::size_t q : nodes[0].partners)
     if (!in[q]) join(join, q, 0);
-  while (std::count(in.begin(), in.end(), true) < static_cast<std::ptrdiff_t>(n)) {
+  const auto connected = [&] { return std::all_of(in.begin(), in.begin() + static_cast<std::ptrdiff_t>(terminals), [](bool b) { return b; }); };
+  bool grid = false;
+  while (!connected()) {
     double best = std::numeric_limits<double>::infinity();
     std::size_t bu = 0;
     std::size_t bv = 0;
-    for (std::size_t u = 0; u < n; ++u) {
+    for (std::size_t u = 0; u < nodes.size(); ++u) {
       if (!in[u]) continue;
-      for (std::size_t v = 0; v < n; ++v) {
+      for (std::size_t v = 0; v < terminals; ++v) {
         if (in[v]) continue;
         const double d = (nodes[u].p - nodes[v].p).norm();
         if (d < best && clear(nodes[u].p, nodes[v].p)) {
@@ -193,8 +198,63 @@ std::vector<Vec2> uncut_tree(const std::vector<TreeNode>& nodes, const std::vect
         }
       }
     }
-    if (!std::isfinite(best)) return {};
-    join(join, bv, bu);
+    if (std::isfinite(best)) {
+      join(join, bv, bu);
+      continue;
+    }
+    // No straight segment reaches the rest (a lane curving between them): around the lanes,
+    // through a grid of points over the junction, shortest path first (Dijkstra).
+    if (!grid) {
+      grid = true;
+      Vec2 lo = nodes[0].p;
+      Vec2 hi = nodes[0].p;
+      for (std::size_t k = 0; k < terminals; ++k) {
+        lo = lo.cwiseMin(nodes[k].p);
+        hi = hi.cwiseMax(nodes[k].p);
+      }
+      lo -= Vec2(kGridMargin, kGridMargin);
+      hi += Vec2(kGridMargin, kGridMargin);
+      const auto cells = [&](double span) { return static_cast<int>(std::ceil(span / kGridStep)); };
+      if (static_cast<long long>(cells(hi.x() - lo.x()) + 1) * (cells(hi.y() - lo.y()) + 1) > kMaxGridPoints) return {};
+      for (int i = 0; i <= cells(hi.x() - lo.x()); ++i)
+        for (int j = 0; j <= cells(hi.y() - lo.y()); ++j)
+          nodes.push_back({lo + Vec2(i * kGridStep, j * kGridStep), {}});
+      in.resize(nodes.size(), false);
+      children.resize(nodes.size());
+    }
+    const std::size_t n = nodes.size();
+    std::vector<double> dist(n, std::numeric_limits<double>::infinity());
+    std::vector<std::size_t> prev(n, n);
+    std::vector<bool> done(n, false);
+    for (std::size_t u = 0; u < n; ++u)
+      if (in[u]) dist[u] = 0;
+    std::size_t reached = n;
+    for (;;) {
+      std::size_t u = n;
+      for (std::size_t k = 0; k < n; ++k)
+        if (!done[k] && std::isfinite(dist[k]) && (u == n || dist[k] < dist[u])) u = k;
+      if (u == n) break;
+      done[u] = true;
+      if (!in[u] && u < terminals) {
+        reached = u;
+        break;
+      }
+      for (std::size_t v = 0; v < n; ++v) {
+        if (done[v] || in[v]) continue;
+        const double d = (nodes[u].p - nodes[v].p).norm();
+        if (d > kGridReach || dist[u] + d >= dist[v] || !clear(nodes[u].p, nodes[v].p)) continue;
+        dist[v] = dist[u] + d;
+        prev[v] = u;
+      }
+    }
+    if (reached == n) return {};
+    std::vector<std::size_t> path;
+    for (std::size_t v = reached; !in[v]; v = prev[v]) path.push_back(v);
+    std::size_t par = prev[path.back()];
+    for (auto it = path.rbegin(); it != path.rend(); ++it) {
+      join(join, *it, par);
+      par = *it;
+    }
   }
   std::vector<Vec2> tour;
   const auto walk = [&](const auto& self, std::size_t u) -> void {
