@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 
 #include "core/checked_numeric.hpp"
 
@@ -120,6 +121,20 @@ void attach_loose_ends(const WaypointFile& wf, JunctionPieces& out) {
 // end through that junction, when no other route drives that lane: the route takes no part
 // in the junction, whose other routes are connected as before.
 void end_lanes_in_junctions(const WaypointFile& wf, JunctionPieces& out) {
+  // Per lane and end (true: the lane's end), the routes that end (start) inside the junction
+  // there: when they are all the routes on that lane, the lane goes on through the junction
+  // for all of them (routes drawn together from one start point inside a junction).
+  std::map<std::pair<int, bool>, std::vector<std::string>> loose_on;
+  std::map<std::pair<int, bool>, double> longest;  // their longest passage there
+  for (const JunctionPassage& jp : out.passages) {
+    const bool loose_end = jp.after < 0 && jp.before >= 0;
+    const bool loose_start = jp.before < 0 && jp.after >= 0;
+    if (!(loose_end || loose_start) || is_closed_route(wf.routes[jp.route])) continue;
+    const std::pair<int, bool> key{loose_end ? jp.before : jp.after, loose_end};
+    loose_on[key].push_back(wf.routes[jp.route].id);
+    longest[key] = std::max(longest[key], jp.s1 - jp.s0);
+  }
+  std::vector<bool> extended(out.pieces.size(), false);
   std::vector<JunctionPassage> kept;
   for (const JunctionPassage& jp : out.passages) {
     const bool loose_end = jp.after < 0 && jp.before >= 0;
@@ -130,8 +145,16 @@ void end_lanes_in_junctions(const WaypointFile& wf, JunctionPieces& out) {
       kept.push_back(jp);
       continue;
     }
-    if (out.pieces[static_cast<std::size_t>(k)].routes.size() != 1 ||
-        out.pieces[static_cast<std::size_t>(k)].route != jp.route) {
+    const std::vector<std::string>& together = loose_on[{k, loose_end}];
+    const auto& on_lane = out.pieces[static_cast<std::size_t>(k)].routes;
+    // Shared by several routes, the lane goes on only where their passage is too short for
+    // dead-end lanes of their own (below): there they are drawn together.
+    const bool all_loose = (on_lane.size() == 1 || longest[{k, loose_end}] < 2 * kMinLooseLane) &&
+                           std::all_of(on_lane.begin(), on_lane.end(), [&](const std::string& id) {
+                             return std::find(together.begin(), together.end(), id) != together.end();
+                           });
+    if (extended[static_cast<std::size_t>(k)] && all_loose) continue;  // the lane already goes on for it
+    if (!all_loose) {
       // Its lane is driven by other routes too, which go on through the junction: the route
       // gets a dead-end lane of its own for the second half of its passage (the first half
       // is its connection from the shared lane), or the first half when it starts there.
@@ -156,6 +179,7 @@ void end_lanes_in_junctions(const WaypointFile& wf, JunctionPieces& out) {
       kept.push_back(jp);
       continue;
     }
+    extended[static_cast<std::size_t>(k)] = true;
     RoutePiece& piece = out.pieces[static_cast<std::size_t>(k)];
     std::vector<WaypointPoint> pts = piece.line.points;
     if (loose_end) {

@@ -5,10 +5,12 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <map>
 
 #include "core/errors.hpp"
 #include "map/junction_pieces.hpp"
+#include "map/junction_shape.hpp"
 #include "map/junction_zones.hpp"
 
 namespace orch {
@@ -21,10 +23,6 @@ constexpr double kParallelCos = 0.9848;  // cos 10 deg
 // m: a second route through a junction between the same lanes lying farther than this from
 // the first one's path is noted (drawing noise; `map check` holds every waypoint to 0.10 m).
 constexpr double kMaxSharedPathMiss = 0.25;
-// m: a junction shape that cuts no more than this off a lane leaves its waypoints within
-// `map check`'s tolerance (the shipped urban map's corner shapes cut up to 0.06 m).
-constexpr double kMaxShapeCut = 0.10;
-constexpr double kSamePoint = 0.02;  // m: lane ends closer than this meet
 
 std::string junction_id(int zone) { return fmt::format("J{}", zone); }
 
@@ -33,91 +31,6 @@ struct LaneRef {
   int lane = 0;
 };
 
-double cross2(const Vec2& o, const Vec2& a, const Vec2& b) {
-  return (a - o).x() * (b - o).y() - (a - o).y() * (b - o).x();
-}
-
-// Andrew's monotone chain, counter-clockwise, without collinear points.
-std::vector<Vec2> convex_hull(std::vector<Vec2> pts) {
-  std::sort(pts.begin(), pts.end(), [](const Vec2& a, const Vec2& b) {
-    return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y());
-  });
-  if (pts.size() < 3) return pts;
-  std::vector<Vec2> hull(2 * pts.size());
-  std::size_t k = 0;
-  for (const Vec2& p : pts) {
-    while (k >= 2 && cross2(hull[k - 2], hull[k - 1], p) <= 1e-9) --k;
-    hull[k++] = p;
-  }
-  for (std::size_t i = pts.size() - 1, t = k + 1; i-- > 0;) {
-    while (k >= t && cross2(hull[k - 2], hull[k - 1], pts[i]) <= 1e-9) --k;
-    hull[k++] = pts[i];
-  }
-  hull.resize(k - 1);
-  return hull;
-}
-
-// The lane-end corners in the order of their angle around the centre: a polygon whose
-// boundary runs across each lane's end between its two corners, so it touches every lane
-// at its end only (a convex hull would reach over lanes that end further out and make
-// netconvert cut them short).
-std::vector<Vec2> star_polygon(std::vector<Vec2> corners, const Vec2& centre) {
-  std::stable_sort(corners.begin(), corners.end(), [&](const Vec2& a, const Vec2& b) {
-    return std::atan2(a.y() - centre.y(), a.x() - centre.x()) < std::atan2(b.y() - centre.y(), b.x() - centre.x());
-  });
-  return corners;
-}
-
-// The arc lengths along `lane` where the closed polygon `shape` crosses it.
-std::vector<double> crossings(const std::vector<Vec2>& shape, const Polyline& lane) {
-  std::vector<double> out;
-  const auto& pts = lane.points();
-  for (std::size_t k = 0; k < shape.size(); ++k) {
-    const Vec2& a = shape[k];
-    const Vec2& b = shape[(k + 1) % shape.size()];
-    for (std::size_t i = 0; i + 1 < pts.size(); ++i) {
-      const Vec2 r = pts[i + 1] - pts[i];
-      const Vec2 q = b - a;
-      const double den = r.x() * q.y() - r.y() * q.x();
-      if (std::abs(den) < 1e-12) continue;  // parallel: touching along a line is no cut
-      const Vec2 w = a - pts[i];
-      const double t = (w.x() * q.y() - w.y() * q.x()) / den;
-      const double u = (w.x() * r.y() - w.y() * r.x()) / den;
-      if (t < -1e-9 || t > 1 + 1e-9 || u < -1e-9 || u > 1 + 1e-9) continue;
-      out.push_back(lane.s_at_index(i) + t * (lane.s_at_index(i + 1) - lane.s_at_index(i)));
-    }
-  }
-  return out;
-}
-
-// A lane end at a junction: netconvert cuts the lane at the crossing of the junction's shape
-// farthest from that end (NBEdge::startShapeAt), so a shape that crosses the lane anywhere
-// else than at its end shortens it and leaves waypoints beside no lane.
-struct LaneEnd {
-  const Polyline* shape = nullptr;
-  bool incoming = false;  // the lane ends at the junction (else it starts there)
-};
-
-// How far `shape` cuts into lane end `e` (m).
-double cut_into(const std::vector<Vec2>& shape, const LaneEnd& e) {
-  double cut = 0;
-  for (const double s : crossings(shape, *e.shape)) cut = std::max(cut, e.incoming ? e.shape->length() - s : s);
-  return cut > kMaxShapeCut ? cut : 0.0;
-}
-
-// How much of the lanes `shape` would cut off (m, summed).
-double cut_length(const std::vector<Vec2>& shape, const std::vector<LaneEnd>& ends) {
-  double sum = 0;
-  for (const LaneEnd& e : ends) sum += cut_into(shape, e);
-  return sum;
-}
-
-// `pts` as a polygon with no area (there and back), so that netconvert closes no other edge.
-std::vector<Vec2> there_and_back(std::vector<Vec2> pts) {
-  const std::size_t n = pts.size();
-  for (std::size_t i = n - 1; i-- > 1;) pts.push_back(pts[i]);
-  return pts;
-}
 
 // The route's points from the lane end `from` to the lane start `to`, around arc lengths
 // [s0, s1] of the passage (s1 may run past the end of a closed route).
@@ -312,6 +225,46 @@ class JunctionPlanner {
             node.shape = other;
           }
         }
+      }
+      if (cut_length(node.shape, ends) > 0) {
+        // Every shape above cuts a lane (lanes ending at very different places: a branch
+        // along a curve, a dead-end lane inside the junction): a tree that cuts none.
+        std::vector<TreeNode> tree;
+        for (std::size_t i = 0; i < ends.size(); ++i) {
+          const LaneEnd& a = ends[i];
+          const Vec2 p = a.incoming ? a.shape->points().back() : a.shape->point(0);
+          const bool shared = std::any_of(ends.begin(), ends.end(), [&](const LaneEnd& b) {
+            return &b != &a && b.incoming != a.incoming &&
+                   (p - (b.incoming ? b.shape->points().back() : b.shape->point(0))).norm() < kSamePoint;
+          });
+          if (!shared) {
+            tree.push_back({p, {}});
+            continue;
+          }
+          // Its corners, shared with a neighbouring lane's (or the lane it continues) where they meet.
+          const auto corner = [&](const Vec2& c) {
+            for (std::size_t k = 0; k < tree.size(); ++k)
+              if ((tree[k].p - c).norm() <= kSamePoint) return k;
+            tree.push_back({c, {}});
+            return tree.size() - 1;
+          };
+          // Across the lane a little before its end (within kMaxShapeCut): netconvert's
+          // internal lane between the two then has a length (a shape through the meeting point
+          // itself would give it none).
+          const double length = a.shape->length();
+          const double at = a.incoming ? length - std::min(kEndOnStartCut, length / 2) : std::min(kEndOnStartCut, length / 2);
+          const Vec2 q = a.shape->point_at(at);
+          const Vec2 across = left_normal(a.shape->tangent_at(at)) * (corners[2 * i] - corners[2 * i + 1]).norm() / 2;
+          const std::size_t c0 = corner(q + across);
+          const std::size_t c1 = corner(q - across);
+          if (c0 == c1) continue;
+          if (std::find(tree[c0].partners.begin(), tree[c0].partners.end(), c1) == tree[c0].partners.end()) {
+            tree[c0].partners.push_back(c1);
+            tree[c1].partners.push_back(c0);
+          }
+        }
+        tree.push_back({node.position, {}});
+        if (std::vector<Vec2> t = uncut_tree(tree, ends); !t.empty() && cut_length(t, ends) == 0) node.shape = t;
       }
       node.type = "priority";
       node_of_zone_[z] = plan.nodes.size();

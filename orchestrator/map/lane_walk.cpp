@@ -21,6 +21,7 @@ namespace {
 constexpr double kLookahead = 6.0;     // m of route that decides between successors
 constexpr double kMaxMiss = 1.0;       // m: farther from every successor, the path is broken
 constexpr int kMaxChain = 4;           // lanes followed ahead when scoring a successor
+constexpr double kStartTie = 0.10;     // m: lanes this much farther from the first waypoint may start it
 
 bool drives(const LaneInfo& lane, const std::string& route) {
   return std::find(lane.routes.begin(), lane.routes.end(), route) != lane.routes.end();
@@ -72,7 +73,20 @@ RouteLanes LaneMap::walk(const WaypointRoute& route, const std::string& net_file
   if (own.empty())
     throw MapError(fmt::format("route \"{}\" has no lanes in {}: the net was not built from this waypoint file (run "
                                "`orchestrator map build`)", route.id, net_file));
-  int lane = nearest_of(own, route.line.point(0)).lane;
+  // The first lane: the nearest of the route's own lanes, unless another one it lies on as
+  // well (within kStartTie) follows its first metres better: a route that ends (or passes
+  // again) where it began lies on two of its lanes there, and only one of them starts it.
+  const LanePlace nearest = nearest_of(own, route.line.point(0));
+  int lane = nearest.lane;
+  double best_start = score(lane, 0);
+  for (const int l : own) {
+    if (l == nearest.lane || place_on_lane(l, route.line.point(0)).distance > nearest.distance + kStartTie) continue;
+    const double sc = score(l, 0);
+    if (sc < best_start - 1e-9) {
+      best_start = sc;
+      lane = l;
+    }
+  }
   rl.lanes.push_back(lane);
   for (std::size_t i = 0; i < route.points.size(); ++i) {
     const Vec2& p = route.line.point(i);
