@@ -105,6 +105,29 @@ std::optional<int> Road::lane_at(double s, double t) const {
   return std::nullopt;
 }
 
+double Road::lane_height(double s, double t) const {
+  const LaneSection& section = section_at(s);
+  const double ds = s - section.s;
+  const double centre = lane_offset(s);
+  const bool left = t >= centre;
+  const auto& side = left ? section.left : section.right;
+  double inner = centre;
+  for (const Lane& lane : side) {
+    const double width = lane.width(ds);
+    const double outer = inner + (left ? width : -width);
+    if (left ? (t >= inner && t <= outer) : (t <= inner && t >= outer)) {
+      const auto past = std::partition_point(lane.heights.begin(), lane.heights.end(),
+                                             [&](const LaneHeight& h) { return h.s_offset <= ds + 1e-9; });
+      if (past == lane.heights.begin()) return 0.0;
+      const LaneHeight& h = *(past - 1);
+      const double across = width > 0.0 ? std::abs(t - inner) / width : 0.0;
+      return h.inner + (h.outer - h.inner) * across;
+    }
+    inner = outer;
+  }
+  return 0.0;
+}
+
 Pose2 Road::world(double s, double t) const {
   const Pose2 ref = plan_view.pose(s);
   const double side = superelevations.empty() ? t : t * std::cos(roll(s));

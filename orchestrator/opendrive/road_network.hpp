@@ -32,11 +32,19 @@ struct SpeedRecord {
   double max_mps = 0.0;
 };
 
+// <height sOffset inner outer>: the lane's surface raised above the road's (a curb), at its
+// inner and outer border (OpenDRIVE 1.6, 9.5.7 Lane height).
+struct LaneHeight {
+  double s_offset = 0.0;  // from the section start
+  double inner = 0.0, outer = 0.0;
+};
+
 struct Lane {
   int id = 0;
   std::string type;                 // "driving", "stop", "border", "shoulder", "sidewalk", ...
   std::vector<CubicRecord> widths;  // s = sOffset from the section start
   std::vector<SpeedRecord> speeds;
+  std::vector<LaneHeight> heights;  // sorted by s_offset
   std::optional<int> predecessor, successor;  // lane <link>: the lane before / after this section
   [[nodiscard]] double width(double ds_in_section) const;
 };
@@ -82,7 +90,12 @@ struct Road {
   [[nodiscard]] double elevation(double s) const;
   [[nodiscard]] double elevation_slope(double s) const;
   [[nodiscard]] double roll(double s) const;
-  [[nodiscard]] double height(double s, double t) const { return elevation(s) + t * std::sin(roll(s)); }
+  [[nodiscard]] double height(double s, double t) const {
+    return elevation(s) + t * std::sin(roll(s)) + lane_height(s, t);
+  }
+  // The lane height at (s, t): the <height> record in effect in the lane holding t, from its
+  // inner value at the inner border to its outer value at the outer border (0 off the lanes).
+  [[nodiscard]] double lane_height(double s, double t) const;
 };
 
 // The attitude of a body standing on the surface at (s, t) facing `heading` (inertial):

@@ -205,6 +205,17 @@ class Reader {
                      [](const CubicRecord& a, const CubicRecord& b) { return a.s < b.s; });
     for (const pugi::xml_node sp : node.children("speed"))
       lane.speeds.push_back({number(sp, "sOffset", 0.0), speed_mps(sp)});
+    for (const pugi::xml_node h : node.children("height")) {
+      LaneHeight height{number(h, "sOffset", 0.0), number(h, "inner", 0.0), number(h, "outer", 0.0)};
+      for (const auto& [value, name] : {std::pair{height.inner, "inner"}, {height.outer, "outer"}})
+        if (std::abs(value) > kMaxHeight)
+          throw ScenarioError(src_.where(h, name),
+                              fmt::format("lane height {:g} m: a lane lies at most {:g} m above or below its road", value,
+                                          kMaxHeight));
+      lane.heights.push_back(height);
+    }
+    std::stable_sort(lane.heights.begin(), lane.heights.end(),
+                     [](const LaneHeight& a, const LaneHeight& b) { return a.s_offset < b.s_offset; });
     lane.predecessor = lane_link(node.child("link").child("predecessor"));
     lane.successor = lane_link(node.child("link").child("successor"));
     return lane;

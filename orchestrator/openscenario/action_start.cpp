@@ -437,7 +437,12 @@ std::vector<std::string> update_running_actions(ActionContext& ctx, std::vector<
         // the path ends, as esmini does (the standard does not say; esmini's trailer_connect
         // and truck_with_rotating_axle rely on it, docs/openscenario.md "Without a road").
         if (state.road_id.empty()) state.speed = state.acceleration = 0;
+        // The step ends facing along the path's end: an action started now relative to the
+        // entity (a chained trajectory) continues from that heading, as in esmini; the lane's
+        // heading takes over from the next step on (the standard does not say).
+        const double heading = state.pose.heading;
         update_pose(state, ctx.roads);
+        state.pose.heading = heading;
         done = true;
       }
     } else if (state.lateral_profile && state.lateral_profile->done(ctx.t)) {

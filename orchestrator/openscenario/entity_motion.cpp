@@ -91,8 +91,14 @@ void advance_on_path(EntityState& state, const opendrive::RoadNetwork& roads, do
       // trailer along a path written behind it, Orientation h=pi relative to the car).
       path.distance = std::min(path.length(), before + std::abs(state.speed) * dt);
     }
-    state.odometer += std::abs(path.distance - before);
+    // The step's travel left when an untimed path ends within the step: the entity keeps its
+    // speed for the whole step, on along the last segment (the action ends at the end, the
+    // entity does not stop there; esmini moves the same way).
+    const double beyond = path.timed ? 0.0 : std::max(0.0, before + std::abs(state.speed) * dt - path.length());
+    state.odometer += std::abs(path.distance - before) + beyond;
     state.pose = path.pose_at(path.distance);
+    state.pose.x += beyond * std::cos(state.pose.heading);
+    state.pose.y += beyond * std::sin(state.pose.heading);
     if (!path.timed && state.speed < 0) {
       state.pose.heading = std::fmod(state.pose.heading + M_PI, 2 * M_PI);
       if (state.pose.heading < 0) state.pose.heading += 2 * M_PI;

@@ -240,7 +240,8 @@ void StoryboardRuntime::Impl::step(double dt) {
   ++step_index;
   last_dt = dt;
   t = static_cast<double>(step_index) * dt;
-  for (auto& [name, state] : entities) advance(state, roads, t, dt);
+  for (auto& [name, state] : entities)
+    if (!is_towed(trailers, name)) advance(state, roads, t, dt);  // a towed trailer only follows its bar
   pull_trailers(scenario, entities, trailers, roads, dt);
   ActionContext ctx = context();
   for (const std::string& ended : update_running_actions(ctx, running))

@@ -102,6 +102,12 @@ void disconnect_trailer(std::map<std::string, EntityState>& entities, TrailerLin
   links.erase(it);
 }
 
+bool is_towed(const TrailerLinks& links, const std::string& entity) {
+  for (const auto& [tractor, trailer] : links)
+    if (trailer == entity) return true;
+  return false;
+}
+
 void pull_trailers(const Scenario& scenario, std::map<std::string, EntityState>& entities, const TrailerLinks& links,
                    const opendrive::RoadNetwork& roads, double dt) {
   std::map<std::string, bool> is_trailer;

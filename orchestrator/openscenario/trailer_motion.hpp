@@ -33,6 +33,10 @@ void align_initial_trailers(const Scenario& scenario, std::map<std::string, Enti
 // The tractor's trailer stays where it is, at rest (it has no drive of its own).
 void disconnect_trailer(std::map<std::string, EntityState>& entities, TrailerLinks& links, const std::string& tractor);
 
+// Whether `entity` is a trailer connected to a tractor now: it has no motion of its own (it
+// is not advanced by its speed; only pulled, else it would run ahead of its bar).
+bool is_towed(const TrailerLinks& links, const std::string& entity);
+
 // Moves every connected trailer after its tractor moved (`dt` the step; 0 at the start),
 // along chains (a trailer towing another) from the front.
 void pull_trailers(const Scenario& scenario, std::map<std::string, EntityState>& entities, const TrailerLinks& links,

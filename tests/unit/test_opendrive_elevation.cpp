@@ -1,6 +1,6 @@
 // Roads with elevation and superelevation (opendrive/road_network.hpp): the height of a point,
 // the attitude of a body on the surface, t along the rolled surface (its projected offset
-// shrinks by cos(roll), OpenDRIVE 1.6 8.4.1), and the reader's limits.
+// shrinks by cos(roll), OpenDRIVE 1.6 8.4.1), and the reader's limits, and a lane's own height (a curb).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -90,4 +90,40 @@ TEST(OpenDriveElevation, TheReaderRefusesHeightsAndRollsNoRoadHas) {
   EXPECT_EQ(error_of(R"(<lateralProfile><superelevation s="0" a="-1.0471975511965976" b="0" c="0" d="0"/></lateralProfile>
 <elevationProfile><elevation s="0" a="2400" b="0.08" c="0" d="0"/></elevationProfile>)"),
             "read");
+}
+
+TEST(OpenDriveElevation, LaneHeightRaisesItsLaneFromTheInnerToTheOuterBorder) {
+  // A curb: lane -2 (t in [-7, -3.5]) rises from 0.10 m at its inner border to 0.16 m at
+  // its outer one from s = 50 on (OpenDRIVE 1.6, 9.5.7); lane -1 and s < 50 stay on the road.
+  const RoadNetwork net = read_xodr_text(R"(<OpenDRIVE><header revMajor="1" revMinor="6"/>
+<road id="1" length="200" junction="-1"><planView><geometry s="0" x="0" y="0" hdg="0" length="200"><line/></geometry></planView>
+<elevationProfile><elevation s="0" a="1" b="0" c="0" d="0"/></elevationProfile>
+<lanes><laneSection s="0"><right>
+<lane id="-1" type="driving"><width sOffset="0" a="3.5" b="0" c="0" d="0"/></lane>
+<lane id="-2" type="sidewalk"><width sOffset="0" a="3.5" b="0" c="0" d="0"/>
+<height sOffset="50" inner="0.10" outer="0.16"/></lane>
+</right></laneSection></lanes></road></OpenDRIVE>)",
+                                         "curb.xodr");
+  const Road& road = net.road("1");
+  EXPECT_NEAR(road.height(100, -1.75), 1.0, 1e-12);
+  EXPECT_NEAR(road.height(20, -5.25), 1.0, 1e-12);
+  EXPECT_NEAR(road.height(100, -3.5 - 1e-9), 1.10, 1e-6);
+  EXPECT_NEAR(road.height(100, -5.25), 1.13, 1e-12);
+  EXPECT_NEAR(road.height(100, -7.0), 1.16, 1e-12);
+  EXPECT_NEAR(surface_pose(road, 100, -5.25, 0.0).z, 1.13, 1e-12);
+}
+
+TEST(OpenDriveElevation, TheReaderRefusesALaneHeightNoCurbHas) {
+  try {
+    (void)read_xodr_text(R"(<OpenDRIVE><header revMajor="1" revMinor="6"/>
+<road id="1" length="200" junction="-1"><planView><geometry s="0" x="0" y="0" hdg="0" length="200"><line/></geometry></planView>
+<lanes><laneSection s="0"><right>
+<lane id="-1" type="sidewalk"><width sOffset="0" a="3.5" b="0" c="0" d="0"/><height sOffset="0" inner="0" outer="3e5"/></lane>
+</right></laneSection></lanes></road></OpenDRIVE>)",
+                         "curb.xodr");
+    FAIL() << "read";
+  } catch (const orch::ScenarioError& e) {
+    EXPECT_NE(std::string(e.what()).find("lane height 300000 m"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("outer"), std::string::npos) << e.what();
+  }
 }

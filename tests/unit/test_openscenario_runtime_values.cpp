@@ -278,5 +278,58 @@ TEST_F(RuntimeValues, ARelativePositionsDzIsTheEntitysHeightAboveTheRoad) {
   EXPECT_NEAR(runtime_->entities().at("A").height, 0.1, 1e-12);  // 0.1 m below B
 }
 
+// esmini's cut-in_cr.xosc: a towed trailer has no motion of its own. Each step its reference
+// point moves straight towards the tractor's new hitch point (a bar), whatever speed it was
+// given; before, it was first advanced along its lane at its speed and then pulled, so in a
+// turn it swung in behind its tractor far faster than a trailer does.
+TEST_F(RuntimeValues, ATowedTrailerMovesOnlyAlongItsBarTowardsTheHitch) {
+  const std::string change = R"(<Event name="Change" priority="parallel"><Action name="Left"><PrivateAction><LateralAction><LaneChangeAction>
+    <LaneChangeActionDynamics dynamicsShape="sinusoidal" dynamicsDimension="time" value="3"/><LaneChangeTarget><AbsoluteTargetLane value="-1"/></LaneChangeTarget>
+    </LaneChangeAction></LateralAction></PrivateAction></Action>)" + at_time("ChangeStart", 1) + "</Event>";
+  load(tractor_and_trailer("<Trailer><TrailerRef entityRef=\"T\"/></Trailer>"), place("A", 100, -2, 20), change);
+  run_until(*runtime_, 1.5);  // A turns to the left
+  for (int i = 0; i < 20; ++i) {
+    const EntityState before = runtime_->entities().at("T");
+    runtime_->step(0.05);
+    const EntityState& a = runtime_->entities().at("A");
+    const EntityState& t = runtime_->entities().at("T");
+    const double hx = a.pose.x - 1.0 * std::cos(a.pose.heading), hy = a.pose.y - 1.0 * std::sin(a.pose.heading);
+    EXPECT_NEAR(t.pose.heading, std::atan2(hy - before.pose.y, hx - before.pose.x), 1e-9) << runtime_->time();
+    EXPECT_NEAR(std::hypot(hx - t.pose.x, hy - t.pose.y), 7.0, 1e-9);
+  }
+  const double lag = runtime_->entities().at("A").pose.heading - runtime_->entities().at("T").pose.heading;
+  EXPECT_GT(lag, 0.01);  // mid-change the trailer still points more to the right than its tractor
+}
+
+// esmini's lane-change_clothoid_based_trajectory.xosc and follow_trajectory_by_front_axle.xosc:
+// an untimed trajectory that ends within a step. The entity keeps its speed for the whole step
+// (on along the last segment past the end), and the step ends facing the path's end, so a
+// trajectory started then relative to the entity goes on in that direction.
+TEST_F(RuntimeValues, AnUntimedTrajectoryEndingWithinAStepKeepsTheStepsTravelAndHeading) {
+  // From (100, -5.25) 10.3 m at 10 m/s, 45 degrees to the left: it ends 0.03 s into the step at 1.05 s.
+  const std::string first = R"(<Event name="First" priority="parallel"><Action name="Diagonal"><PrivateAction><RoutingAction><FollowTrajectoryAction>
+    <Trajectory name="D" closed="false"><Shape><Polyline>
+    <Vertex><Position><WorldPosition x="100" y="-5.25"/></Position></Vertex>
+    <Vertex><Position><WorldPosition x="107.2832" y="2.0332"/></Position></Vertex></Polyline></Shape></Trajectory>
+    <TimeReference><None/></TimeReference><TrajectoryFollowingMode followingMode="position"/></FollowTrajectoryAction></RoutingAction></PrivateAction></Action>)" +
+                            at_time("FirstStart", 0) + "</Event>";
+  const std::string second = R"(<Event name="Second" priority="parallel"><Action name="Straight"><PrivateAction><RoutingAction><FollowTrajectoryAction>
+    <Trajectory name="S" closed="false"><Shape><Clothoid curvature="0" curvaturePrime="0" length="5"><Position>
+    <RelativeObjectPosition entityRef="A" dx="0" dy="0"><Orientation type="relative" h="0"/></RelativeObjectPosition></Position></Clothoid></Shape></Trajectory>
+    <TimeReference><None/></TimeReference><TrajectoryFollowingMode followingMode="position"/></FollowTrajectoryAction></RoutingAction></PrivateAction></Action>
+    <StartTrigger><ConditionGroup><Condition name="AfterFirst" delay="0" conditionEdge="none"><ByValueCondition>
+    <StoryboardElementStateCondition storyboardElementType="event" storyboardElementRef="First" state="completeState"/>
+    </ByValueCondition></Condition></ConditionGroup></StartTrigger></Event>)";
+  load(vehicle("A"), place("A", 100, -2, 10), first + second);
+  run_until(*runtime_, 1.1);
+  ASSERT_EQ(transition_times(*runtime_, "Diagonal", "endTransition").size(), 1U);
+  const EntityState& a = runtime_->entities().at("A");
+  // 10.5 m travelled by 1.05 s: 0.2 m past the end along 45 degrees, then the straight goes on at 45 degrees.
+  const double along = 10.0 * (runtime_->time() - transition_times(*runtime_, "Diagonal", "startTransition").front());
+  EXPECT_NEAR(a.odometer, along, 1e-6);
+  EXPECT_NEAR(a.pose.x - 100.0, a.pose.y + 5.25, 1e-6);
+  EXPECT_NEAR(std::hypot(a.pose.x - 100.0, a.pose.y + 5.25), along, 1e-6);
+}
+
 }  // namespace
 }  // namespace orch::openscenario
