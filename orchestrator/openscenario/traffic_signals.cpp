@@ -30,12 +30,14 @@ TrafficSignals::TrafficSignals(const std::vector<TrafficSignalController>& contr
 
 int TrafficSignals::phase_at(const Running& c, double t) const {
   const auto& phases = c.spec->phases;
-  if (phases.empty() || t + 1e-9 < c.start) return c.phase;  // not started: as it is
+  if (phases.empty()) return c.phase;
   double cycle = 0;
   for (const TrafficSignalPhase& p : phases) cycle += p.duration;
   if (cycle <= 0) return 0;
   // Times are whole steps: a phase due at t starts at t, not one step later.
+  // Before its start the cycle runs backwards from it (its first phase "virtually" starts then).
   double in_cycle = std::fmod(t - c.start + 1e-9, cycle);
+  if (in_cycle < 0) in_cycle += cycle;
   for (std::size_t i = 0; i < phases.size(); ++i) {
     if (in_cycle < phases[i].duration) return static_cast<int>(i);
     in_cycle -= phases[i].duration;
