@@ -495,6 +495,15 @@ class SumoSimulator final : public Simulator {
     });
   }
 
+  void execute(const sim::SetTrafficLight& c) {
+    guard("setting a traffic light", [&] {
+      std::string state = sumo::TrafficLight::getRedYellowGreenState(c.tls_id);
+      for (std::size_t i = 0; i < c.links.size() && i < state.size(); ++i)
+        if (c.links[i] != '-') state[i] = c.links[i];
+      sumo::TrafficLight::setRedYellowGreenState(c.tls_id, state);
+    });
+  }
+
   SumoBackendOptions options_;
   std::string log_file_;
   bool started_ = false;

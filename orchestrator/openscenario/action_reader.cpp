@@ -257,6 +257,8 @@ const std::vector<ActionEntry> kPrivateActions = {
      [](Element&, Element& e, Context&) -> PrivateAction { return read_distance(e); }},
     {"LateralAction", "LaneChangeAction",
      [](Element&, Element& e, Context& context) -> PrivateAction { return read_lane_change(e, context); }},
+    {"LateralAction", "LateralDistanceAction",
+     [](Element&, Element& e, Context&) -> PrivateAction { return read_lateral_distance(e); }},
     {"LateralAction", "LaneOffsetAction",
      [](Element&, Element& e, Context&) -> PrivateAction { return read_lane_offset(e); }},
     {"ControllerAction", "ActivateControllerAction",
@@ -294,6 +296,8 @@ const std::vector<ActionEntry> kGlobalActions = {
      [](Element& w, Element& e, Context&) -> PrivateAction { return read_parameter_modify(w, e); }},
     {"", "EnvironmentAction",
      [](Element&, Element& e, Context& c) -> PrivateAction { return read_environment_action(e, c); }},
+    {"InfrastructureAction", "TrafficSignalAction",
+     [](Element&, Element& e, Context& c) -> PrivateAction { return read_traffic_signal_action(e, c); }},
     {"VariableAction", "SetAction",
      [](Element& w, Element& e, Context& c) -> PrivateAction { return read_variable_set(w, e, c); }},
     {"VariableAction", "ModifyAction",
@@ -336,6 +340,38 @@ PrivateAction read_private_action(Element& private_action, Context& context) {
 
 PrivateAction read_global_action(Element& global_action, Context& context) {
   return read_from_table(global_action, kGlobalActions, context);
+}
+
+LateralDistanceAction read_lateral_distance(Element& e) {
+  LateralDistanceAction a;
+  a.entity = e.text("entityRef");
+  a.distance = e.optional_number("distance");
+  if (a.distance && *a.distance < 0) e.fail_attribute("distance", "a distance cannot be negative");
+  a.freespace = e.boolean("freespace");
+  a.continuous = e.boolean("continuous");
+  a.coordinate_system = e.optional_choice<std::string>("coordinateSystem", {{"entity", "entity"},
+                                                                            {"lane", "lane"},
+                                                                            {"road", "road"},
+                                                                            {"trajectory", "trajectory"}})
+                            .value_or("entity");
+  if (a.coordinate_system == "trajectory")
+    e.fail_attribute("coordinateSystem", "a lateral distance along a trajectory is not supported");
+  a.displacement = e.optional_choice<std::string>("displacement", {{"any", "any"},
+                                                                   {"leftToReferencedEntity", "leftToReferencedEntity"},
+                                                                   {"rightToReferencedEntity", "rightToReferencedEntity"}})
+                       .value_or("any");
+  if (auto constraints = e.optional_child("DynamicConstraints")) {
+    a.max_acceleration = constraints->optional_number("maxAcceleration");
+    a.max_deceleration = constraints->optional_number("maxDeceleration");
+    a.max_speed = constraints->optional_number("maxSpeed");
+    for (const char* name : {"maxAcceleration", "maxDeceleration", "maxSpeed"})
+      if (constraints->has(name) && !(*constraints->optional_number(name) > 0))
+        constraints->fail_attribute(name, "must be positive");
+    constraints->ignore_attributes({"maxAccelerationRate", "maxDecelerationRate"});
+    constraints->finish();
+  }
+  e.finish();
+  return a;
 }
 
 }  // namespace orch::openscenario::reading

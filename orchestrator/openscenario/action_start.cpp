@@ -11,6 +11,7 @@
 #include "openscenario/distance_keeping.hpp"
 #include "openscenario/expression.hpp"
 #include "openscenario/lane_offset.hpp"
+#include "openscenario/lateral_distance.hpp"
 #include "openscenario/nurbs.hpp"
 #include "openscenario/route_plan.hpp"
 #include "openscenario/synchronize_motion.hpp"
@@ -249,7 +250,7 @@ std::vector<std::string> start_action(const PrivateAction& action, const std::st
         ++it;
       }
     }
-    if (takes_time || continuous) running.push_back({action_name, entity, domain, continuous, &action, std::nullopt, std::nullopt});
+    if (takes_time || continuous) running.push_back({action_name, entity, domain, continuous, &action, std::nullopt, std::nullopt, std::nullopt});
   };
   std::visit(
       [&](const auto& a) {
@@ -394,6 +395,17 @@ std::vector<std::string> start_action(const PrivateAction& action, const std::st
           state.speed_profile.reset();
           take_over(MotionDomain::Longitudinal, true, false);
           running.back().synchronize = std::move(run);
+        } else if constexpr (std::is_same_v<T, LateralDistanceAction>) {
+          // Kept by the storyboard's motion (lateral_distance.hpp), also for an entity SUMO does not drive.
+          std::optional<double> kept;
+          const bool reached = keep_lateral_distance(a, state, ctx, entity, kept, true);
+          take_over(MotionDomain::Lateral, !reached, a.continuous);
+          if (!running.empty() && running.back().entity == entity && running.back().spec == &action)
+            running.back().lateral_distance = kept;
+        } else if constexpr (std::is_same_v<T, TrafficSignalStateAction>) {
+          ctx.signals->set_state(a.signal, a.state);
+        } else if constexpr (std::is_same_v<T, TrafficSignalControllerAction>) {
+          ctx.signals->set_phase(a.controller, a.phase, ctx.t);
         } else if constexpr (std::is_same_v<T, AppearanceAction> || std::is_same_v<T, EnvironmentAction>) {
           // No effect on motion: SUMO has no lights or weather here (model.hpp).
         } else {
@@ -429,6 +441,8 @@ std::vector<std::string> update_running_actions(ActionContext& ctx, std::vector<
     } else if (it->domain == MotionDomain::Route) {
       count_passed_waypoints(state, ctx.roads);
       done = !state.placed || state.route_passed >= state.route.size();
+    } else if (const auto* lateral = std::get_if<LateralDistanceAction>(it->spec)) {
+      done = keep_lateral_distance(*lateral, state, ctx, it->entity, it->lateral_distance) && !it->continuous;
     } else if (std::holds_alternative<FollowTrajectoryAction>(*it->spec)) {
       if (!state.path || state.path->done(ctx.t)) {  // continues along its lane from where the path ended
         state.path.reset();

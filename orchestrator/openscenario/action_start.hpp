@@ -11,6 +11,7 @@
 #include "openscenario/speed_profile_motion.hpp"
 #include "openscenario/synchronize.hpp"
 #include "openscenario/trailer_motion.hpp"
+#include "openscenario/traffic_signals.hpp"
 
 namespace orch::openscenario {
 
@@ -30,6 +31,7 @@ struct ActionContext {
   TrailerLinks& trailers;                        // which trailer each tractor tows now
   double t;
   double dt = 0;  // the step that led to t (0 at the start)
+  TrafficSignals* signals = nullptr;  // the signals' states and controllers' phases
 };
 
 // Route: an AcquirePositionAction waiting for its entity to reach the position.
@@ -44,6 +46,7 @@ struct RunningAction {
   const PrivateAction* spec = nullptr;
   std::optional<SynchronizeRun> synchronize;  // a SynchronizeAction's targets and phase
   std::optional<SpeedProfileRun> speed_profile;  // a SpeedProfileAction's segments and progress
+  std::optional<double> lateral_distance;        // a LateralDistanceAction's distance kept
 };
 
 // Starts `action` for `entity` ("" for global actions): immediate actions take effect now; actions that take time

@@ -76,6 +76,12 @@ const std::vector<std::pair<std::string, ValueReader>> kValueConditions = {
        if (!problem.empty()) e.fail_attribute("value", fmt::format("{} ({} variable {})", problem, type, name));
        return v;
      }},
+    {"TrafficSignalCondition",
+     [](Element& e, const Context&) -> decltype(Condition::kind) { return read_traffic_signal_condition(e); }},
+    {"TrafficSignalControllerCondition",
+     [](Element& e, const Context& context) -> decltype(Condition::kind) {
+       return read_traffic_signal_controller_condition(e, context);
+     }},
 };
 
 using EntityCondition = decltype(ByEntityCondition::condition);

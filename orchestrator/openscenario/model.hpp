@@ -249,6 +249,22 @@ struct SynchronizeAction {
   std::optional<double> tolerance_master, tolerance;
   std::optional<SynchronizeFinalSpeed> final_speed;
 };
+// Traffic signals (openscenario/traffic_signals.hpp): a signal's state is its lamps as the
+// file writes them ("on;off;off"); a controller cycles through its phases.
+struct TrafficSignalStateAction { std::string signal; std::string state; };  // name, state
+struct TrafficSignalControllerAction { std::string controller; std::string phase; };
+// LateralDistanceAction: keep `distance` (absent: the current one) sideways to `entity`,
+// measured in the road's t (coordinateSystem road / lane) or the entity's frame; with
+// freespace between the bounding boxes. Limits as DynamicConstraints (absent: at once).
+struct LateralDistanceAction {
+  std::string entity;
+  std::optional<double> distance;
+  bool freespace = false;
+  bool continuous = false;
+  std::string coordinate_system = "entity";
+  std::string displacement = "any";  // any, leftToReferencedEntity, rightToReferencedEntity
+  std::optional<double> max_acceleration, max_deceleration, max_speed;
+};
 struct ConnectTrailerAction { std::string entity; };  // the trailer (checked like every `entity`)
 struct DisconnectTrailerAction {};
 using PrivateAction = std::variant<TeleportAction, SpeedAction, SpeedProfileAction, LaneChangeAction, LaneOffsetAction,
@@ -256,14 +272,16 @@ using PrivateAction = std::variant<TeleportAction, SpeedAction, SpeedProfileActi
                                    VisibilityAction, FollowTrajectoryAction, AssignRouteAction, AcquirePositionAction,
                                    AddEntityAction, DeleteEntityAction, ParameterSetAction, ParameterModifyAction,
                                    VariableSetAction, VariableModifyAction, ConnectTrailerAction,
-                                   DisconnectTrailerAction, AppearanceAction, EnvironmentAction, SynchronizeAction>;
+                                   DisconnectTrailerAction, AppearanceAction, EnvironmentAction, SynchronizeAction,
+                                   TrafficSignalStateAction, TrafficSignalControllerAction, LateralDistanceAction>;
 // Which alternatives are global actions (they take no actors).
 template <class T>
 inline constexpr bool kIsGlobalAction =
     std::is_same_v<T, AddEntityAction> || std::is_same_v<T, DeleteEntityAction> ||
     std::is_same_v<T, ParameterSetAction> || std::is_same_v<T, ParameterModifyAction> ||
     std::is_same_v<T, VariableSetAction> || std::is_same_v<T, VariableModifyAction> ||
-    std::is_same_v<T, EnvironmentAction>;
+    std::is_same_v<T, EnvironmentAction> || std::is_same_v<T, TrafficSignalStateAction> ||
+    std::is_same_v<T, TrafficSignalControllerAction>;
 
 // ---- Conditions and triggers --------------------------------------------------------
 enum class Rule { EqualTo, GreaterThan, LessThan, GreaterOrEqual, LessOrEqual, NotEqualTo };
@@ -277,6 +295,9 @@ struct StoryboardElementStateCondition {
 };
 struct ParameterCondition { std::string parameter; Rule rule = Rule::EqualTo; std::string value; };
 struct VariableCondition { std::string variable; Rule rule = Rule::EqualTo; std::string value; };
+// A signal's state / a controller's phase now equal the condition's (traffic_signals.hpp).
+struct TrafficSignalCondition { std::string signal; std::string state; };
+struct TrafficSignalControllerCondition { std::string controller; std::string phase; };
 struct SpeedCondition { Rule rule = Rule::GreaterThan; double value = 0; };
 struct RelativeDistanceCondition {
   std::string entity;
@@ -354,13 +375,30 @@ struct Condition {
   double delay = 0;
   Edge edge = Edge::None;
   std::variant<SimulationTimeCondition, StoryboardElementStateCondition, ParameterCondition, VariableCondition,
-               ByEntityCondition>
+               ByEntityCondition, TrafficSignalCondition, TrafficSignalControllerCondition>
       kind;
   Place place;
 };
 // OR over groups, AND within a group; an absent trigger is nullopt.
 struct Trigger {
   std::vector<std::vector<Condition>> groups;
+};
+
+// ---- Traffic signal controllers (RoadNetwork/TrafficSignals) ------------------------
+// A phase sets the states of its signals (by OpenDRIVE signal id) for `duration` seconds;
+// the controller cycles through its phases, the first starting at `delay` after the start of
+// the `reference` controller's first phase (after the simulation's start without one).
+struct TrafficSignalPhaseState { std::string signal; std::string state; };
+struct TrafficSignalPhase {
+  std::string name;
+  double duration = 0;
+  std::vector<TrafficSignalPhaseState> states;
+};
+struct TrafficSignalController {
+  std::string name;
+  double delay = 0;
+  std::string reference;  // "" none
+  std::vector<TrafficSignalPhase> phases;
 };
 
 // ---- Storyboard ---------------------------------------------------------------------
@@ -427,6 +465,7 @@ struct Scenario {
   std::vector<Parameter> local_parameters;
   std::vector<Parameter> variables;  // VariableDeclarations (1.2); `type` as for parameters
   std::string road_file;  // absolute path of the .xodr ("" when none)
+  std::vector<TrafficSignalController> signal_controllers;  // RoadNetwork/TrafficSignals
   std::vector<Entity> entities;
   Storyboard storyboard;
   Diagnostics warnings;  // what the reader accepted but the user may want to know (missing catalog folders)

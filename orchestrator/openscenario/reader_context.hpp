@@ -28,6 +28,7 @@ class Context {
   // Parameters of Stories and Maneuvers, named by their runtime key ("<owner>/<name>").
   std::vector<Parameter> local_parameters;
   std::vector<Parameter> variables;  // VariableDeclarations (1.2)
+  std::vector<TrafficSignalController> signal_controllers;  // RoadNetwork/TrafficSignals, read first
   // Catalog kinds whose Directory does not exist: kind -> directory (a reference into it is
   // the error, the missing directory only a warning).
   std::map<std::string, std::string> missing_catalog_directories;
@@ -94,6 +95,15 @@ VariableSetAction read_variable_set(Element& variable_action, Element& set, cons
 VariableModifyAction read_variable_modify(Element& variable_action, Element& modify, const Context& context);
 // The declared variable `variableRef` names, with its type (VariableAction, VariableCondition).
 std::pair<std::string, std::string> declared_variable(Element& at, const Context& context);
+
+// Traffic signals (traffic_signal_reader.cpp): RoadNetwork/TrafficSignals, the
+// InfrastructureAction's TrafficSignalAction, the two conditions; controller and phase
+// names checked against context.signal_controllers.
+std::vector<TrafficSignalController> read_traffic_signals(Element& traffic_signals);
+PrivateAction read_traffic_signal_action(Element& traffic_signal_action, const Context& context);
+TrafficSignalCondition read_traffic_signal_condition(Element& e);
+TrafficSignalControllerCondition read_traffic_signal_controller_condition(Element& e, const Context& context);
+LateralDistanceAction read_lateral_distance(Element& e);
 
 // Closed sets shared by several readers.
 Rule read_rule(Element& e);

@@ -55,6 +55,11 @@ bool StoryboardRuntime::Impl::value_of(const Condition& c, ConditionMemory& m) {
           return compare(variables.at(kind.variable), kind.rule, kind.value);
         } else if constexpr (std::is_same_v<T, ByEntityCondition>) {
           return by_entity(kind, m);
+        } else if constexpr (std::is_same_v<T, TrafficSignalCondition>) {
+          const auto state = signals.state(kind.signal);  // a signal with no state yet: false
+          return state && normalized_signal_state(*state) == normalized_signal_state(kind.state);
+        } else if constexpr (std::is_same_v<T, TrafficSignalControllerCondition>) {
+          return signals.phase(kind.controller) == kind.phase;
         } else {
           static_assert(kUnhandled<T>, "an OpenSCENARIO condition the reader makes needs its evaluation here");
         }

@@ -10,7 +10,7 @@
 namespace orch::openscenario {
 
 StoryboardRuntime::Impl::Impl(const Scenario& s, const opendrive::RoadNetwork& r)
-    : scenario(s), roads(r), resolver(r), trailers(initial_trailer_links(s)) {
+    : scenario(s), roads(r), resolver(r), trailers(initial_trailer_links(s)), signals(s.signal_controllers) {
   for (const Parameter& p : s.parameters) parameters[p.name] = p;
   for (const Parameter& p : s.local_parameters) parameters[p.name] = p;  // "<owner>/<name>"
   for (const Parameter& v : s.variables) variables[v.name] = v;
@@ -33,7 +33,7 @@ StoryboardRuntime::Impl::Impl(const Scenario& s, const opendrive::RoadNetwork& r
 }
 
 ActionContext StoryboardRuntime::Impl::context() {
-  return ActionContext{scenario, roads, resolver, entities, parameters, variables, trailers, t, last_dt};
+  return ActionContext{scenario, roads, resolver, entities, parameters, variables, trailers, t, last_dt, &signals};
 }
 
 void StoryboardRuntime::Impl::transition(const std::string& type, const std::string& key,
@@ -247,6 +247,7 @@ void StoryboardRuntime::Impl::step(double dt) {
   for (const std::string& ended : update_running_actions(ctx, running))
     if (!ended.empty()) transition("action", ended, "endTransition", ElementState::Complete);
   settle();
+  signals.advance(t);  // the phases due now, before the conditions read them
   evaluate_storyboard();
 }
 
@@ -257,6 +258,7 @@ StoryboardRuntime::StoryboardRuntime(const Scenario& scenario, const opendrive::
     EntityState& state = impl_->entities[e.name];
     if (e.controller) state.controller = e.controller->name;
   }
+  impl_->signals.advance(0);
   impl_->run_init();
   impl_->evaluate_storyboard();
 }
@@ -277,6 +279,10 @@ void StoryboardRuntime::observe(const std::string& name, const opendrive::Pose2&
 const std::map<std::string, Parameter>& StoryboardRuntime::parameters() const { return impl_->parameters; }
 const std::map<std::string, Parameter>& StoryboardRuntime::variables() const { return impl_->variables; }
 const std::map<std::string, std::string>& StoryboardRuntime::trailers() const { return impl_->trailers; }
+const std::map<std::string, std::string>& StoryboardRuntime::signal_states() const { return impl_->signals.states(); }
+std::string StoryboardRuntime::signal_phase(const std::string& controller) const {
+  return impl_->signals.phase(controller);
+}
 
 double StoryboardRuntime::time() const { return impl_->t; }
 bool StoryboardRuntime::finished() const { return impl_->finished; }

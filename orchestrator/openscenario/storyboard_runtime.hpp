@@ -58,6 +58,10 @@ class StoryboardRuntime {
   [[nodiscard]] const std::map<std::string, Parameter>& variables() const;
   // Which trailer each tractor tows now (tractor -> trailer).
   [[nodiscard]] const std::map<std::string, std::string>& trailers() const;
+  // Each traffic signal's state now (OpenDRIVE signal id -> the file's state text).
+  [[nodiscard]] const std::map<std::string, std::string>& signal_states() const;
+  // A traffic signal controller's phase now ("" before its first).
+  [[nodiscard]] std::string signal_phase(const std::string& controller) const;
 
  private:
   struct Impl;

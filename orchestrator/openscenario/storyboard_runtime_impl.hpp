@@ -60,6 +60,7 @@ struct StoryboardRuntime::Impl {
   std::map<std::string, Parameter> parameters;  // values as the parameter actions set them (by key)
   std::map<std::string, Parameter> variables;   // values as the variable actions set them
   TrailerLinks trailers;                        // tractor -> trailer towed now
+  TrafficSignals signals;                       // signal states, controller phases
 
   Impl(const Scenario& s, const opendrive::RoadNetwork& r);
 

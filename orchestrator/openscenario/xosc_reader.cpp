@@ -217,6 +217,10 @@ Scenario load_scenario(const std::string& path, const LoadOptions& options) {
     scenario.road_file = fs::absolute(resolved).lexically_normal().string();
     logic->finish();
   }
+  if (auto signals = network.optional_child("TrafficSignals")) {
+    scenario.signal_controllers = reading::read_traffic_signals(*signals);
+    context.signal_controllers = scenario.signal_controllers;
+  }
   network.ignore_children({"SceneGraphFile", "UsedArea"});
   network.finish();
   Element entities = root.child("Entities");

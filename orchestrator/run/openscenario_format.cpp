@@ -11,6 +11,7 @@
 #include "map/lane_map.hpp"
 #include "opendrive/sumo_lanes.hpp"
 #include "opendrive/sumo_net.hpp"
+#include "opendrive/sumo_signals.hpp"
 #include "opendrive/xodr_reader.hpp"
 #include "openscenario/storyboard_runtime.hpp"
 #include "openscenario/xosc_reader.hpp"
@@ -19,6 +20,7 @@
 #include "run/entity_trace.hpp"
 #include "run/openscenario_ego_choice.hpp"
 #include "run/openscenario_observed.hpp"
+#include "run/openscenario_signals.hpp"
 #include "run/openscenario_world.hpp"
 #include "run/reference_ego_setup.hpp"
 #include "run/roadless_net.hpp"
@@ -145,8 +147,9 @@ class OpenScenarioFormat : public RunFormat {
   [[nodiscard]] const LaneMap& measured_lanes() const override { return *sumo_lanes_; }
   [[nodiscard]] const ObservedRun& observed() const override { return *observed_; }
 
-  std::vector<sim::Command> start(RunResult& /*result*/, RunLog& /*log*/) override {
+  std::vector<sim::Command> start(RunResult& /*result*/, RunLog& log) override {
     auto commands = actors_->place(runtime_->entities());
+    add_signal_commands(commands, log);
     watch_ego(nullptr);
     return commands;
   }
@@ -169,9 +172,10 @@ class OpenScenarioFormat : public RunFormat {
     return fmt::format("--max-time {} s reached before the Storyboard's StopTrigger", max_time);
   }
   // The storyboard advances a step; the poses of its time t reach SUMO in the next step.
-  std::vector<sim::Command> commands(const sim::WorldSnapshot& snap, RunLog& /*log*/) override {
+  std::vector<sim::Command> commands(const sim::WorldSnapshot& snap, RunLog& log) override {
     runtime_->step(req_.step);
     auto commands = actors_->place(runtime_->entities());
+    add_signal_commands(commands, log);
     watch_ego(&snap);
     return commands;
   }
@@ -211,6 +215,16 @@ class OpenScenarioFormat : public RunFormat {
     if (ego_watch_ && snap) ego_watch_->step(*snap, actors_->tracked());
   }
 
+  // The traffic signals' states on SUMO's traffic lights (openscenario_signals.hpp); a
+  // signal netconvert made no traffic light of is said once in run.log.
+  void add_signal_commands(std::vector<sim::Command>& commands, RunLog& log) {
+    if (!signals_) return;
+    for (auto& c : signals_->update(runtime_->signal_states())) commands.push_back(std::move(c));
+    for (const std::string& id : signals_->take_unlinked())
+      log.at(runtime_->time(), fmt::format("traffic signal {} has a state but no SUMO traffic light (netconvert made "
+                                           "none of it): only the storyboard's conditions see it", id));
+  }
+
   // An ego that followed the storyboard is handed to SUMO's driver when its (not system under
   // test) controller is activated, like any entity (openscenario_world.hpp): run.log and the
   // report say so, once.
@@ -232,6 +246,7 @@ class OpenScenarioFormat : public RunFormat {
   std::optional<opendrive::SumoLaneIndex> lanes_;
   std::optional<openscenario::StoryboardRuntime> runtime_;
   std::optional<OpenScenarioActors> actors_;
+  std::optional<OpenScenarioSignals> signals_;  // the storyboard's signals on SUMO's lights (a road only)
   std::optional<LaneMap> sumo_lanes_;        // the converted net's lanes, for lane keeping
   std::optional<OpenScenarioRun> observed_;  // the run as metrics and criteria see it
   std::optional<std::string> collision_;     // the ego's first collision, as the verdict says it
@@ -280,6 +295,7 @@ void OpenScenarioFormat::open(RunResult& result, RunLog& log, SimulatorConfig& c
                          net.from_cache ? "cached" : "converted now"));
   }
   lanes_.emplace(roadless ? *parking_roads_ : *roads_, net.net_file.string());
+  if (!roadless) signals_.emplace(opendrive::read_sumo_signal_links(net.net_file.string()));
   const EgoChoice chosen = choose_ego(*scenario_, req_.ego_entity);
   ego_ = chosen.entity;
   check_external_ego(*scenario_, ego_, req_.ego_link != nullptr);

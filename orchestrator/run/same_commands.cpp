@@ -39,6 +39,7 @@ auto fields(const sim::SetParameter& c) { return std::make_tuple(c.sumo_id, c.ke
 auto fields(const sim::RemoveActor& c) { return std::make_tuple(c.sumo_id, c.kind); }
 auto fields(const sim::ReleaseActor& c) { return std::make_tuple(c.sumo_id, bits(c.max_speed)); }
 auto fields(const sim::SetRoute& c) { return std::make_tuple(c.sumo_id, c.edges); }
+auto fields(const sim::SetTrafficLight& c) { return std::make_tuple(c.tls_id, c.links); }
 auto fields(const sim::DriveSpeed& c) { return std::make_tuple(c.sumo_id, bits(c.speed)); }
 
 bool same(const sim::Command& a, const sim::Command& b) {

@@ -160,7 +160,15 @@ struct DriveSpeed {
   double speed = 0;
 };
 
+// A traffic light's links from now on (OpenSCENARIO traffic signals): `links` has one SUMO
+// signal colour per link index ('r', 'y', 'G', ...) or '-' where the light keeps its state;
+// the light leaves its own program and holds these states until told otherwise.
+struct SetTrafficLight {
+  std::string tls_id;
+  std::string links;
+};
+
 using Command = std::variant<SpawnVehicle, SpawnPerson, SetPose, SetSignals, SetMaxSpeed, SetStop, SetParameter,
-                             RemoveActor, ReleaseActor, DriveSpeed, SetRoute>;
+                             RemoveActor, ReleaseActor, DriveSpeed, SetRoute, SetTrafficLight>;
 
 }  // namespace orch::sim

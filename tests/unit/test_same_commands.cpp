@@ -86,6 +86,8 @@ TEST(SameCommands, KindOrderAndCountCount) {
   EXPECT_FALSE(same_commands({sim::SetParameter{"v", "k", "1"}}, {sim::SetParameter{"v", "k", "2"}}));
   EXPECT_FALSE(same_commands({sim::RemoveActor{"v", ActorKind::Vehicle}}, {sim::RemoveActor{"v", ActorKind::Pedestrian}}));
   EXPECT_FALSE(same_commands({sim::ReleaseActor{"v", 10}}, {sim::ReleaseActor{"v", 11}}));
+  EXPECT_FALSE(same_commands({sim::SetTrafficLight{"4", "-rG"}}, {sim::SetTrafficLight{"4", "-GG"}}));
+  EXPECT_TRUE(same_commands({sim::SetTrafficLight{"4", "-rG"}}, {sim::SetTrafficLight{"4", "-rG"}}));
 }
 
 TEST(SameCommands, TrackedActorsCompareEveryField) {

@@ -1,0 +1,99 @@
+#include "openscenario/lateral_distance.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "core/errors.hpp"
+
+namespace orch::openscenario {
+
+namespace {
+
+constexpr double kOnTarget = 0.01;  // m
+
+double half_width(const Scenario& scenario, const std::string& name) {
+  const Entity* e = scenario.entity(name);
+  return e ? e->box.width / 2 : 0.0;
+}
+
+}  // namespace
+
+double lateral_speed_step(double error, double speed, double dt, std::optional<double> max_speed,
+                          std::optional<double> max_acceleration, std::optional<double> max_deceleration) {
+  if (dt <= 0) return 0;
+  // The speed that reaches the target in this step, within maxSpeed and, to stop on the
+  // target, within what maxDeceleration can still brake to rest over the distance left.
+  double wanted = error / dt;
+  if (max_speed) wanted = std::clamp(wanted, -*max_speed, *max_speed);
+  if (max_deceleration) {
+    const double stoppable = std::sqrt(2 * *max_deceleration * std::abs(error));
+    wanted = std::clamp(wanted, -stoppable, stoppable);
+  }
+  const double change = wanted - speed;
+  // Away from rest (same sign, larger) is an acceleration; towards rest a deceleration.
+  const bool speeding_up = std::abs(wanted) > std::abs(speed) && wanted * speed >= 0;
+  const std::optional<double> limit = speeding_up ? max_acceleration : max_deceleration;
+  if (!limit) return wanted;
+  return speed + std::clamp(change, -*limit * dt, *limit * dt);
+}
+
+bool keep_lateral_distance(const LateralDistanceAction& a, EntityState& state, ActionContext& ctx,
+                           const std::string& entity, std::optional<double>& kept, bool starts) {
+  const auto other_it = ctx.entities.find(a.entity);
+  if (!state.placed || state.road_id.empty() || other_it == ctx.entities.end() || !other_it->second.placed)
+    throw MapError(fmt::format("LateralDistanceAction of \"{}\": both it and \"{}\" need a place on a road", entity,
+                               a.entity));
+  const EntityState& other = other_it->second;
+  const opendrive::Road& road = ctx.roads.road(state.road_id);
+  const double s = std::clamp(state.s, 0.0, road.length);
+  // The lateral axis: the road's normal at the entity (t), or the entity's own left.
+  const bool road_frame = a.coordinate_system != "entity";
+  const double axis_heading = road_frame ? road.plan_view.pose(s).heading : state.pose.heading;
+  const double nx = -std::sin(axis_heading), ny = std::cos(axis_heading);
+  const double self = road_frame ? state.t : 0.0;
+  const double others = road_frame && other.road_id == state.road_id
+                            ? other.t
+                            : self + (other.pose.x - state.pose.x) * nx + (other.pose.y - state.pose.y) * ny;
+  // "Left" of the other in its direction of travel: +t along s, -t against it.
+  const int other_direction = other.road_id == state.road_id ? travel_direction(other, road) : travel_direction(state, road);
+  const double left = road_frame ? other_direction : 1.0;
+  const double freespace = a.freespace ? half_width(ctx.scenario, entity) + half_width(ctx.scenario, a.entity) : 0.0;
+  if (!kept) kept = a.distance ? *a.distance : std::max(std::abs(self - others) - freespace, 0.0);
+  double side = a.displacement == "leftToReferencedEntity"    ? left
+                : a.displacement == "rightToReferencedEntity" ? -left
+                : (self - others) * left >= 0                 ? left
+                                                              : -left;
+  const double target = others + side * (*kept + freespace);
+  const double error = target - self;
+  const double rate = lateral_speed_step(error, state.lateral_rate, ctx.dt, a.max_speed, a.max_acceleration,
+                                         a.max_deceleration);
+  const bool at_once = ctx.dt <= 0 || (!a.max_speed && !a.max_acceleration && !a.max_deceleration);
+  if (starts && !at_once) return false;
+  const double move = at_once ? error : rate * ctx.dt;
+  // Along the axis; in the road frame that is the entity's t.
+  state.lateral_profile.reset();
+  state.path.reset();
+  if (road_frame) {
+    state.offset += move;
+    state.lateral_rate = at_once ? 0.0 : rate;
+    update_pose(state, ctx.roads);
+  } else {
+    state.pose.x += move * nx;
+    state.pose.y += move * ny;
+    state.lateral_rate = 0;
+    relocate(state, ctx.roads);
+    update_pose(state, ctx.roads);
+  }
+  // Beyond its lane: on the lane it is now in (the offset measured from that lane).
+  if (const auto lane = road.lane_at(std::clamp(state.s, 0.0, road.length), state.t); lane && *lane != 0 && *lane != state.lane) {
+    state.offset = state.t - road.lane_center_t(*lane, std::clamp(state.s, 0.0, road.length));
+    state.lane = *lane;
+  }
+  const bool reached = std::abs(error - move) < kOnTarget && (at_once || std::abs(state.lateral_rate) < 0.05);
+  if (reached) state.lateral_rate = 0;
+  return reached;
+}
+
+}  // namespace orch::openscenario
