@@ -1,5 +1,7 @@
 #pragma once
-// Which keepRoute a scripted vehicle's moveToXY gets (lane_fit.hpp says why it matters).
+// Placing scripted vehicles in SUMO: moveToXY made safe (move_to_xy), the accelerations of
+// placed vehicles (Placements::placed_accelerations), and
+// which keepRoute a scripted vehicle's moveToXY gets (lane_fit.hpp says why it matters).
 // keepRoute 2 (free placement) is what every pose had; it makes SUMO weigh every lane near the
 // point, whole shapes, every step. keepRoute 3 (along the route, may leave the net) looks at the
 // lanes of the vehicle's route only and takes the hinted lane when the point lies on it; it is
@@ -17,12 +19,14 @@
 //
 // Included by sumo_simulator.cpp only (compiled once per SUMO client library).
 #include <algorithm>
+#include <cstring>
 #include <optional>
 #include <string>
 #include <unordered_map>
 #include <vector>
 
 #include "lane_fit.hpp"
+#include "sim/world.hpp"
 #include "sumo_api.hpp"
 
 namespace orch::sumo_placing {
@@ -30,8 +34,47 @@ namespace {  // compiled once per client library, like sumo_reader.hpp
 
 namespace sumo = orch_sumo;
 
+#ifndef LIBTRACI
+// Not instrumented: under AddressSanitizer the buffer must be on the real stack too.
+[[gnu::noinline]] __attribute__((no_sanitize("address"))) inline void clear_stack_below() {
+  char pad[16384];
+  std::memset(pad, 0, sizeof pad);
+  asm volatile("" : : "r"(pad) : "memory");  // the stores must happen
+}
+#endif
+
+// SUMO 1.15's Vehicle::moveToXY leaves its local `lanePos` unset when the point matches no
+// lane (beyond a dead end, far off the road: a placement off the network, which a scripted
+// entity may need) and then asserts that it is not NaN; Debian's build keeps assertions, so
+// whether such a run aborted depended on what earlier calls had left on the stack (it did in
+// the CI's unity build). In-process that local lies in the stack just below this frame:
+// zeroing that stack first makes the read a 0, every time. On the traci backend the read
+// happens in the sumo process, on a stack of its own that this build does not change.
+inline void move_to_xy(const std::string& id, const std::string& edge, int lane, const Vec2& front, double angle,
+                       int keep_route) {
+#ifndef LIBTRACI
+  clear_stack_below();
+#endif
+  sumo::Vehicle::moveToXY(id, edge, lane, front.x(), front.y(), angle, keep_route);
+}
+
 class Placements {
  public:
+  // A vehicle the orchestrator places has the speeds it is given, one per step; SUMO's own
+  // acceleration of it is the change from the speed SUMO had at the start of the step, which
+  // SUMO itself may have changed in between (an emergency stop at a dead end it was placed
+  // beyond reads as 200 m/s^2 the next step). Its acceleration is the change of the speeds
+  // read, computed as SUMO computes it (the same double wherever SUMO did not interfere).
+  void placed_accelerations(const std::vector<sim::TrackedActor>& actors, sim::WorldSnapshot& snap, double step) {
+    for (std::size_t i = 0; i < actors.size() && i < snap.actors.size(); ++i) {
+      sim::ActorState& a = snap.actors[i];
+      const auto it = vehicles_.find(actors[i].sumo_id);
+      if (!a.present || actors[i].kind == ActorKind::Pedestrian || it == vehicles_.end()) continue;
+      if (it->second.speed_read) a.accel = (a.speed - *it->second.speed_read) / step;
+      it->second.speed_read = a.speed;
+    }
+  }
+
   // A scripted vehicle departs: on a route of one edge it may take the fast placement.
   void spawned(const std::string& id, const std::vector<std::string>& route, const std::string& vclass) {
     Vehicle& v = vehicles_[id];
@@ -41,8 +84,6 @@ class Placements {
     v.vclass = vclass;
   }
   void forget(const std::string& id) { vehicles_.erase(id); }
-  // Whether the orchestrator places vehicle `id` (a scripted vehicle, spawned and not released).
-  [[nodiscard]] bool placed(const std::string& id) const { return vehicles_.count(id) > 0; }
 
   // keepRoute for the pose of vehicle `id` with front `front` on hinted lane (edge, lane).
   int keep_route(const std::string& id, const std::string& edge, int lane, const Vec2& front, double heading) {
@@ -92,6 +133,7 @@ class Placements {
     int wait = 0;  // poses before the route may be read again
     std::optional<std::string> route_edge;  // the route's only edge
     std::string vclass;
+    std::optional<double> speed_read;  // the last speed read (placed_accelerations)
     // The hinted lane of the last pose and how many lanes of its edge the vehicle's class may
     // use (only those are candidates of the free match): looked up when the hint changes,
     // not every step.

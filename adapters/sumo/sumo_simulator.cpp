@@ -10,7 +10,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <cstring>
 #include <numbers>
 #include <optional>
 #include <string_view>
@@ -94,7 +93,7 @@ class SumoSimulator final : public Simulator {
       snap = reader_.read(actors);
       if (step_ <= 0) step_ = sumo::Simulation::getDeltaT();
     });
-    placed_accelerations(actors, snap);
+    placements_.placed_accelerations(actors, snap, step_);
     return snap;
   }
 
@@ -350,45 +349,6 @@ class SumoSimulator final : public Simulator {
     });
   }
 
-  // SUMO 1.15's Vehicle::moveToXY leaves its local `lanePos` unset when the point matches no
-  // lane (beyond a dead end, far off the road: a placement off the network, which a scripted
-  // entity may need) and then asserts that it is not NaN; Debian's build keeps assertions, so
-  // whether such a run aborted depended on what earlier calls had left on the stack (it did in
-  // the CI's unity build). In-process that local lies in the stack just below this frame:
-  // zeroing that stack first makes the read a 0, every time. On the traci backend the read
-  // happens in the sumo process, on a stack of its own that this build does not change.
-  void move_to_xy(const std::string& id, const std::string& edge, int lane, const Vec2& front, double angle,
-                  int keep_route) {
-#ifndef LIBTRACI
-    clear_stack_below();
-#endif
-    sumo::Vehicle::moveToXY(id, edge, lane, front.x(), front.y(), angle, keep_route);
-  }
-#ifndef LIBTRACI
-  // Not instrumented: under AddressSanitizer the buffer must be on the real stack too.
-  [[gnu::noinline]] __attribute__((no_sanitize("address"))) static void clear_stack_below() {
-    char pad[16384];
-    std::memset(pad, 0, sizeof pad);
-    asm volatile("" : : "r"(pad) : "memory");  // the stores must happen
-  }
-#endif
-
-  // A vehicle the orchestrator places has the speeds it is given, one per step; SUMO's own
-  // acceleration of it is the change from the speed SUMO had at the start of the step, which
-  // SUMO itself may have changed in between (an emergency stop at a dead end it was placed
-  // beyond reads as 200 m/s^2 the next step). Its acceleration is the change of the speeds
-  // read, computed as SUMO computes it (the same double wherever SUMO did not interfere).
-  void placed_accelerations(const std::vector<TrackedActor>& actors, sim::WorldSnapshot& snap) {
-    for (std::size_t i = 0; i < actors.size() && i < snap.actors.size(); ++i) {
-      sim::ActorState& a = snap.actors[i];
-      const std::string& id = actors[i].sumo_id;
-      if (!a.present || actors[i].kind == ActorKind::Pedestrian || !placements_.placed(id)) continue;
-      const auto [it, first] = placed_speed_.try_emplace(id, a.speed);
-      if (!first) a.accel = (a.speed - it->second) / step_;
-      it->second = a.speed;
-    }
-  }
-
   void execute(const sim::SetPose& c) {
     guard("placing an actor", [&] {
       const double angle = to_sumo_angle(c.heading);
@@ -399,12 +359,11 @@ class SumoSimulator final : public Simulator {
       const Vec2 front = c.position + (c.length / 2) * Vec2(std::cos(c.heading), std::sin(c.heading));
       if (!c.scripted) {
         placements_.forget(c.sumo_id);
-        placed_speed_.erase(c.sumo_id);
-        move_to_xy(c.sumo_id, c.edge, c.lane, front, angle, 2);
+        sumo_placing::move_to_xy(c.sumo_id, c.edge, c.lane, front, angle, 2);
         return;
       }
       // Free placement (2), or along the route when that gives the same (sumo_placement.hpp).
-      move_to_xy(c.sumo_id, c.edge, c.lane, front, angle,
+      sumo_placing::move_to_xy(c.sumo_id, c.edge, c.lane, front, angle,
                  placements_.keep_route(c.sumo_id, c.edge, c.lane, front, c.heading));
       // Without an explicit speed SUMO derives one from the lane positions, which jump when
       // the vehicle crosses into another lane of a curved edge: followers would see a
@@ -469,7 +428,6 @@ class SumoSimulator final : public Simulator {
       sent_.erase(c.sumo_id);
       pending_max_speed_.erase(c.sumo_id);
       placements_.forget(c.sumo_id);
-      placed_speed_.erase(c.sumo_id);
     });
   }
 
@@ -480,7 +438,6 @@ class SumoSimulator final : public Simulator {
       if (c.max_speed > 0) sumo::Vehicle::setMaxSpeed(c.sumo_id, c.max_speed);
       sent_.erase(c.sumo_id);
       placements_.forget(c.sumo_id);
-      placed_speed_.erase(c.sumo_id);
     });
   }
 
@@ -519,7 +476,6 @@ class SumoSimulator final : public Simulator {
     bool speed_mode_off = false;  // DriveSpeed switched SUMO's own speed checks off
   };
   std::unordered_map<std::string, Sent> sent_;
-  std::unordered_map<std::string, double> placed_speed_;  // the last speed read of each placed vehicle
   double step_ = 0;  // SUMO's step length (s), read once
   sumo_placing::Placements placements_;  // which scripted vehicles SUMO may match along their route
   // Driven vehicles added this step whose desired speed is below their departure speed: set
