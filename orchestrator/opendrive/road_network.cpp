@@ -90,22 +90,7 @@ double Road::lane_center_t(int lane_id, double s) const {
   return 0.5 * (inner + outer);
 }
 
-std::optional<int> Road::lane_at(double s, double t) const {
-  const LaneSection& section = section_at(s);
-  const double ds = s - section.s;
-  const double centre = lane_offset(s);
-  const bool left = t >= centre;
-  const auto& side = left ? section.left : section.right;
-  double inner = centre;
-  for (const Lane& lane : side) {
-    const double outer = inner + (left ? 1.0 : -1.0) * lane.width(ds);
-    if (left ? (t >= inner && t <= outer) : (t <= inner && t >= outer)) return lane.id;
-    inner = outer;
-  }
-  return std::nullopt;
-}
-
-double Road::lane_height(double s, double t) const {
+Road::LaneSpan Road::lane_span_at(double s, double t) const {
   const LaneSection& section = section_at(s);
   const double ds = s - section.s;
   const double centre = lane_offset(s);
@@ -115,17 +100,28 @@ double Road::lane_height(double s, double t) const {
   for (const Lane& lane : side) {
     const double width = lane.width(ds);
     const double outer = inner + (left ? width : -width);
-    if (left ? (t >= inner && t <= outer) : (t <= inner && t >= outer)) {
-      const auto past = std::partition_point(lane.heights.begin(), lane.heights.end(),
-                                             [&](const LaneHeight& h) { return h.s_offset <= ds + 1e-9; });
-      if (past == lane.heights.begin()) return 0.0;
-      const LaneHeight& h = *(past - 1);
-      const double across = width > 0.0 ? std::abs(t - inner) / width : 0.0;
-      return h.inner + (h.outer - h.inner) * across;
-    }
+    if (left ? (t >= inner && t <= outer) : (t <= inner && t >= outer)) return {&lane, ds, inner, width};
     inner = outer;
   }
-  return 0.0;
+  return {};
+}
+
+std::optional<int> Road::lane_at(double s, double t) const {
+  const LaneSpan span = lane_span_at(s, t);
+  if (span.lane == nullptr) return std::nullopt;
+  return span.lane->id;
+}
+
+double Road::lane_height(double s, double t) const {
+  const LaneSpan span = lane_span_at(s, t);
+  if (span.lane == nullptr) return 0.0;
+  const auto& heights = span.lane->heights;
+  const auto past = std::partition_point(heights.begin(), heights.end(),
+                                         [&](const LaneHeight& h) { return h.s_offset <= span.ds + 1e-9; });
+  if (past == heights.begin()) return 0.0;
+  const LaneHeight& h = *(past - 1);
+  const double across = span.width > 0.0 ? std::abs(t - span.inner) / span.width : 0.0;
+  return h.inner + (h.outer - h.inner) * across;
 }
 
 Pose2 Road::world(double s, double t) const {

@@ -96,6 +96,15 @@ struct Road {
   // The lane height at (s, t): the <height> record in effect in the lane holding t, from its
   // inner value at the inner border to its outer value at the outer border (0 off the lanes).
   [[nodiscard]] double lane_height(double s, double t) const;
+
+ private:
+  // The lane at (s, t) (nullptr: none), with s within its section, its inner border's t and
+  // its width there.
+  struct LaneSpan {
+    const Lane* lane = nullptr;
+    double ds = 0, inner = 0, width = 0;
+  };
+  [[nodiscard]] LaneSpan lane_span_at(double s, double t) const;
 };
 
 // The attitude of a body standing on the surface at (s, t) facing `heading` (inertial):

@@ -60,6 +60,32 @@ SpeedAction read_speed(Element& e, Context& context) {
   return a;
 }
 
+// The coordinate system of a distance action (entity unless given).
+std::string coordinate_system(Element& e) {
+  return e.optional_choice<std::string>("coordinateSystem", {{"entity", "entity"},
+                                                             {"lane", "lane"},
+                                                             {"road", "road"},
+                                                             {"trajectory", "trajectory"}})
+      .value_or("entity");
+}
+
+// The limits of a distance action's DynamicConstraints; maxAccelerationRate and
+// maxDecelerationRate are read, not applied.
+template <typename DistanceAction>
+void read_dynamic_constraints(Element& e, DistanceAction& a, bool must_be_positive) {
+  auto constraints = e.optional_child("DynamicConstraints");
+  if (!constraints) return;
+  a.max_acceleration = constraints->optional_number("maxAcceleration");
+  a.max_deceleration = constraints->optional_number("maxDeceleration");
+  a.max_speed = constraints->optional_number("maxSpeed");
+  if (must_be_positive)
+    for (const char* name : {"maxAcceleration", "maxDeceleration", "maxSpeed"})
+      if (constraints->has(name) && !(*constraints->optional_number(name) > 0))
+        constraints->fail_attribute(name, "must be positive");
+  constraints->ignore_attributes({"maxAccelerationRate", "maxDecelerationRate"});
+  constraints->finish();
+}
+
 LongitudinalDistanceAction read_distance(Element& e) {
   LongitudinalDistanceAction a;
   a.entity = e.text("entityRef");
@@ -68,22 +94,12 @@ LongitudinalDistanceAction read_distance(Element& e) {
   if (a.distance.has_value() == a.time_gap.has_value()) e.fail("give exactly one of distance and timeGap");
   a.freespace = e.boolean("freespace");
   a.continuous = e.boolean("continuous");
-  a.coordinate_system = e.optional_choice<std::string>("coordinateSystem", {{"entity", "entity"},
-                                                                            {"lane", "lane"},
-                                                                            {"road", "road"},
-                                                                            {"trajectory", "trajectory"}})
-                            .value_or("entity");
+  a.coordinate_system = coordinate_system(e);
   a.displacement = e.optional_choice<std::string>("displacement", {{"any", "any"},
                                                                    {"leadingReferencedEntity", "leadingReferencedEntity"},
                                                                    {"trailingReferencedEntity", "trailingReferencedEntity"}})
                        .value_or("trailingReferencedEntity");
-  if (auto constraints = e.optional_child("DynamicConstraints")) {
-    a.max_acceleration = constraints->optional_number("maxAcceleration");
-    a.max_deceleration = constraints->optional_number("maxDeceleration");
-    a.max_speed = constraints->optional_number("maxSpeed");
-    constraints->ignore_attributes({"maxAccelerationRate", "maxDecelerationRate"});
-    constraints->finish();
-  }
+  read_dynamic_constraints(e, a, false);
   e.finish();
   return a;
 }
@@ -349,27 +365,14 @@ LateralDistanceAction read_lateral_distance(Element& e) {
   if (a.distance && *a.distance < 0) e.fail_attribute("distance", "a distance cannot be negative");
   a.freespace = e.boolean("freespace");
   a.continuous = e.boolean("continuous");
-  a.coordinate_system = e.optional_choice<std::string>("coordinateSystem", {{"entity", "entity"},
-                                                                            {"lane", "lane"},
-                                                                            {"road", "road"},
-                                                                            {"trajectory", "trajectory"}})
-                            .value_or("entity");
+  a.coordinate_system = coordinate_system(e);
   if (a.coordinate_system == "trajectory")
     e.fail_attribute("coordinateSystem", "a lateral distance along a trajectory is not supported");
   a.displacement = e.optional_choice<std::string>("displacement", {{"any", "any"},
                                                                    {"leftToReferencedEntity", "leftToReferencedEntity"},
                                                                    {"rightToReferencedEntity", "rightToReferencedEntity"}})
                        .value_or("any");
-  if (auto constraints = e.optional_child("DynamicConstraints")) {
-    a.max_acceleration = constraints->optional_number("maxAcceleration");
-    a.max_deceleration = constraints->optional_number("maxDeceleration");
-    a.max_speed = constraints->optional_number("maxSpeed");
-    for (const char* name : {"maxAcceleration", "maxDeceleration", "maxSpeed"})
-      if (constraints->has(name) && !(*constraints->optional_number(name) > 0))
-        constraints->fail_attribute(name, "must be positive");
-    constraints->ignore_attributes({"maxAccelerationRate", "maxDecelerationRate"});
-    constraints->finish();
-  }
+  read_dynamic_constraints(e, a, true);
   e.finish();
   return a;
 }

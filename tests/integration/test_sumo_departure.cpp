@@ -126,17 +126,30 @@ void expect_off_network_at(const std::string& id, const Vec2& front) {
   EXPECT_NEAR(at.y, front.y(), 0.01);
 }
 
+// Lane 0 of the route's last edge: it ends at `end` (a dead end), heading `along`.
+const std::string kLast = kNorth + "7";
+const Vec2 kEnd(185.9958, 1015.4363);
+const Vec2 kAlong = (kEnd - Vec2(135.3365, 772.9482)).normalized();
+
+// A scripted vehicle on the last edge, inserted by its first pose, `before` m before the end.
+sim::SetPose insert_before_the_end(Simulator& sim, const std::string& id, double before, double speed) {
+  sim::SpawnVehicle car = vehicle(id, 0, 0, 10, true);
+  car.route = {kLast};
+  car.edge = kLast;
+  car.lane_pos = 240 - before;
+  sim::SetPose pose = standing_pose(id, kLast, kEnd - before * kAlong, kAlong);
+  pose.speed = speed;
+  sim.apply({car, pose});
+  sim.advance();
+  return pose;
+}
+
 TEST_F(SumoDeparture, AVehiclePlacedBeyondADeadEndOrFarFromEveryRoadLeavesTheNetworkThere) {
-  const std::string last = kNorth + "7";
-  const Vec2 end(185.9958, 1015.4363);  // lane 0 of the route's last edge ends here (a dead end)
-  const Vec2 along = (end - Vec2(135.3365, 772.9482)).normalized();
-  sim::SpawnVehicle car = vehicle("deadend", 0, 0, 10, true);
-  car.route = {last};
-  car.edge = last;
-  car.lane_pos = 200;
-  sim::SetPose pose = standing_pose("deadend", last, end - 40.0 * along, along);
-  ASSERT_NO_THROW(sim->apply({car, pose}));  // the first pose inserts it, on the lane
-  ASSERT_NO_THROW(sim->advance());
+  const std::string& last = kLast;
+  const Vec2& end = kEnd;
+  const Vec2& along = kAlong;
+  sim::SetPose pose;
+  ASSERT_NO_THROW(pose = insert_before_the_end(*sim, "deadend", 40, 0));
   ASSERT_EQ(libsumo::Vehicle::getLaneID("deadend"), last + "_0");
   for (const double beyond : {2.0, 2000.0}) {  // 2 m beyond the end; no road within 100 m
     pose.position = end + (beyond - 2.25) * along;
@@ -151,23 +164,17 @@ TEST_F(SumoDeparture, AVehiclePlacedBeyondADeadEndOrFarFromEveryRoadLeavesTheNet
 // SUMO's acceleration of it reads +200 m/s^2 that step. The snapshot's acceleration of a placed
 // vehicle is that of the speeds it was given: 0 throughout.
 TEST_F(SumoDeparture, APlacedVehicleDrivingOffADeadEndKeepsTheAccelerationOfItsSpeeds) {
-  const std::string last = kNorth + "7";
-  const Vec2 end(185.9958, 1015.4363);
-  const Vec2 along = (end - Vec2(135.3365, 772.9482)).normalized();
-  sim::SpawnVehicle car = vehicle("offend", 0, 0, 10, true);
-  car.route = {last};
-  car.edge = last;
-  car.lane_pos = 220;
-  sim::SetPose pose = standing_pose("offend", last, end - 25.0 * along, along);
-  pose.speed = 10;
-  ASSERT_NO_THROW(sim->apply({car, pose}));
-  ASSERT_NO_THROW(sim->advance());
+  const Vec2& end = kEnd;
+  const Vec2& along = kAlong;
+  sim::SetPose pose;
+  ASSERT_NO_THROW(pose = insert_before_the_end(*sim, "offend", 25, 10));
+  const sim::TrackedActor actor = vehicle("offend", 0, 0, 10, true).actor;
   int off_network = 0;
   for (int step = 1; step <= 60; ++step) {  // 30 m: from 25 m before the end to 5 m beyond it
     pose.position = end + (-25.0 + 0.5 * step) * along;
     ASSERT_NO_THROW(sim->apply({pose}));
     ASSERT_NO_THROW(sim->advance());
-    const auto snap = sim->read({car.actor});
+    const auto snap = sim->read({actor});
     ASSERT_TRUE(snap.actors.at(0).present) << step;
     EXPECT_NEAR(snap.actors.at(0).speed, 10.0, 1e-9) << step;
     EXPECT_NEAR(snap.actors.at(0).accel, 0.0, 1e-9) << "step " << step;
