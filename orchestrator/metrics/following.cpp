@@ -36,15 +36,19 @@ OnRoute place(const Polyline::Projection& p, const Polyline& route, const Body& 
 Neighbours find_neighbours(const Polyline& route, const Body& self, const std::vector<Body>& others) {
   Neighbours n;
   if (route.empty()) return n;
+  // Along the road is never shorter than straight: farther bodies cannot count.
+  const auto candidate = [&](const Body& o) {
+    return o.id != self.id && (o.centre - self.centre).squaredNorm() < kFollowingRange * kFollowingRange;
+  };
+  // Nobody near (an ego alone on its road): no need to place the actor on its route.
+  if (std::none_of(others.begin(), others.end(), candidate)) return n;
   const Polyline::Projection own = route.project(self.centre);
   // Along the route as drawn, or against it (overtaking through the oncoming lane).
   const int direction = std::cos(self.heading - route.heading_at(own.s)) >= 0 ? 1 : -1;
   const OnRoute me = place(own, route, self, direction);
   double best_ahead = kFollowingRange, best_behind = kFollowingRange;
   for (const Body& o : others) {
-    if (o.id == self.id) continue;
-    // Along the road is never shorter than straight: farther bodies cannot count.
-    if ((o.centre - self.centre).squaredNorm() >= kFollowingRange * kFollowingRange) continue;
+    if (!candidate(o)) continue;
     // On the path means within the two half-widths of the actor's own offset from the route.
     const auto projected = route.project_within(o.centre, std::abs(own.lateral) + (self.width + o.width) / 2);
     if (!projected) continue;

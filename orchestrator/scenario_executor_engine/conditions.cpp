@@ -59,9 +59,10 @@ ConditionOutcome outcome(const PositionCondition& c, const ConditionContext& ctx
   const ActorState* before = ctx.before ? present(*ctx.before, c.actor) : nullptr;
   const Vec2 from = before ? before->position : now->position;
   const double d = point_segment_distance(target, from, now->position);
-  return {d <= c.tolerance + kTolerance,
-          fmt::format("actor {} reached {}[{}] ({:.2f} m <= {} m)", c.actor, c.waypoint.wp_id,
-                      c.waypoint.wp_idx, d, c.tolerance)};
+  const bool holds = d <= c.tolerance + kTolerance;
+  if (!holds) return {false, {}};
+  return {true, fmt::format("actor {} reached {}[{}] ({:.2f} m <= {} m)", c.actor, c.waypoint.wp_id,
+                            c.waypoint.wp_idx, d, c.tolerance)};
 }
 
 double speed_measure(const SpeedCondition& c, const WorldSnapshot& snap, bool* ok) {
@@ -80,8 +81,9 @@ ConditionOutcome outcome(const SpeedCondition& c, const ConditionContext& ctx) {
   bool ok_before = ctx.before != nullptr;
   const double vb = ok_before ? speed_measure(c, *ctx.before, &ok_before) : 0.0;
   const bool holds = compare_measure(v, ok_before ? &vb : nullptr, c.comparison, c.value);
+  if (!holds) return {false, {}};
   const char* what = c.type == SpeedType::Absolute ? "speed" : "relative speed";
-  return {holds, fmt::format("{} of actor {} {:.2f} km/h {} {:.2f}", what, c.actor, v * 3.6,
+  return {true, fmt::format("{} of actor {} {:.2f} km/h {} {:.2f}", what, c.actor, v * 3.6,
                              to_string(c.comparison), c.value * 3.6)};
 }
 
@@ -116,7 +118,8 @@ ConditionOutcome outcome(const DistanceCondition& c, const ConditionContext& ctx
   if (!gap) return {false, {}};
   const auto before = ctx.before ? distance_measure(c, *ctx.before, ctx) : std::nullopt;
   const bool holds = compare_signed_gap(*gap, before ? &*before : nullptr, c.comparison, c.value);
-  return {holds, fmt::format("{} distance actor {} -> {} {:.2f} m {} {}",
+  if (!holds) return {false, {}};
+  return {true, fmt::format("{} distance actor {} -> {} {:.2f} m {} {}",
                              c.type == DistanceType::Straight ? "straight" : "traveled", c.actor, c.target, *gap,
                              to_string(c.comparison), c.value)};
 }
@@ -141,23 +144,27 @@ ConditionOutcome outcome(const TimeHeadwayCondition& c, const ConditionContext& 
   const auto hb = ctx.before ? headway(c, *ctx.before, ctx) : std::nullopt;
   const bool usable_before = hb && std::isfinite(*hb) && std::isfinite(*h);
   const bool holds = compare_measure(*h, usable_before ? &*hb : nullptr, c.comparison, c.value);
-  return {holds, fmt::format("time headway of actor {} to {}[{}] {:.2f} s {} {}", c.actor, c.waypoint.wp_id,
+  if (!holds) return {false, {}};
+  return {true, fmt::format("time headway of actor {} to {}[{}] {:.2f} s {} {}", c.actor, c.waypoint.wp_id,
                              c.waypoint.wp_idx, *h, to_string(c.comparison), c.value)};
 }
 
 ConditionOutcome outcome(const CollisionCondition& c, const ConditionContext& ctx) {
   if (c.target) {
     const bool hit = ctx.collided_with && ctx.collided_with(c.actor, *c.target);
-    return {hit, fmt::format("actor {} collided with actor {}", c.actor, *c.target)};
+    if (!hit) return {false, {}};
+    return {true, fmt::format("actor {} collided with actor {}", c.actor, *c.target)};
   }
   const bool hit = ctx.collided && ctx.collided(c.actor);
-  return {hit, fmt::format("actor {} collided", c.actor)};
+  if (!hit) return {false, {}};
+  return {true, fmt::format("actor {} collided", c.actor)};
 }
 
 ConditionOutcome outcome(const SimulationTimeCondition& c, const ConditionContext& ctx) {
   const double before = ctx.before ? ctx.before->time : 0.0;
   const bool holds = compare_measure(ctx.now.time, ctx.before ? &before : nullptr, c.comparison, c.value);
-  return {holds, fmt::format("simulation time {:.2f} s {} {}", ctx.now.time, to_string(c.comparison), c.value)};
+  if (!holds) return {false, {}};
+  return {true, fmt::format("simulation time {:.2f} s {} {}", ctx.now.time, to_string(c.comparison), c.value)};
 }
 
 }  // namespace

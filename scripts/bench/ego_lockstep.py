@@ -4,7 +4,11 @@
 The same loop -- simulationStep, read one subscription, send one command -- runs with SUMO's
 Python client against `orchestrator run --ego-port` and against a plain `sumo --remote-port`
 on the same net with the same step and SUMO options. Prints steps per second of both and
-their ratio (orchestrator / plain SUMO): the figure docs/ego-plugin.md quotes.
+their ratio (orchestrator / plain SUMO): the figure docs/ego-plugin.md quotes. The plain loop
+runs twice: as written (SUMO's default lane-change mode, 1621) and with the lane-change mode
+the orchestrator gives an ego its plug-in drives (1536: no lane changes of SUMO's own; SUMO's
+sublane model then costs ~20,000 more instructions per step for the one vehicle), so the
+same simulation is compared too.
 
   ego_lockstep.py --orchestrator build/bin/orchestrator [--steps 2000]
   ego_lockstep.py --instructions     # both servers under valgrind's callgrind: instructions per step
@@ -83,13 +87,15 @@ def bench_orchestrator(binary, steps, tmp, wrap=()):
     return drive(proc, port, steps, warm_up=False)
 
 
-def drive(proc, port, steps, warm_up):
+def drive(proc, port, steps, warm_up, lane_change_mode=None):
     """Connects to the server proc listens on, runs the loop, and never leaves proc behind.
     warm_up: one step first (a plain SUMO departs the ego in its first step)."""
     try:
         conn = traci.connect(port, numRetries=60)
         if warm_up:
             conn.simulationStep()
+        if lane_change_mode is not None:
+            conn.vehicle.setLaneChangeMode("ego", lane_change_mode)
         result = loop(conn, steps, proc.pid)
         conn.close()
         proc.wait(timeout=60)
@@ -99,7 +105,11 @@ def drive(proc, port, steps, warm_up):
             proc.kill()
 
 
-def bench_plain_sumo(steps, tmp, wrap=()):
+# orchestrator/run/ego_link.hpp: kPluginEgoLaneChangeMode
+PLUGIN_EGO_LANE_CHANGE_MODE = 1621 & ~0xFF
+
+
+def bench_plain_sumo(steps, tmp, wrap=(), lane_change_mode=None):
     # The road's edges in order (the map may split it where lanes start or end); SUMO routes
     # the trip from the first to the last.
     with open(NET) as f:
@@ -113,10 +123,11 @@ def bench_plain_sumo(steps, tmp, wrap=()):
     # The orchestrator's SUMO options (orchestrator/run/simulator.cpp), so both simulate alike.
     proc = subprocess.Popen(list(wrap) + ["sumo", "-n", NET, "-r", routes, "--remote-port", str(port), "--step-length", "0.05",
                              "--seed", "42", "--lateral-resolution", "0.8", "--collision.action", "warn",
-                             "--collision.check-junctions", "true", "--time-to-teleport", "-1", "--no-step-log",
+                             "--collision.check-junctions", "true", "--collision.mingap-factor", "0",
+                             "--time-to-teleport", "-1", "--ignore-junction-blocker", "20", "--no-step-log",
                              "true", "--duration-log.disable", "true"],
                             stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-    return drive(proc, port, steps, warm_up=True)
+    return drive(proc, port, steps, warm_up=True, lane_change_mode=lane_change_mode)
 
 
 def instructions_per_step(bench, tmp, name):
@@ -142,13 +153,15 @@ def main():
         with tempfile.TemporaryDirectory() as tmp:
             orch = instructions_per_step(lambda n, t, w: bench_orchestrator(a.orchestrator, n, t, w), tmp, "orch")
             plain = instructions_per_step(bench_plain_sumo, tmp, "sumo")
+            plain_lc = instructions_per_step(
+                lambda n, t, w: bench_plain_sumo(n, t, w, PLUGIN_EGO_LANE_CHANGE_MODE), tmp, "sumo_lc")
         print("lockstep server instructions per step (callgrind, 1000 steps):")
-        print("  orchestrator --ego-port : %8.0f" % orch)
-        print("  plain sumo --remote-port: %8.0f" % plain)
-        print("  ratio                   : %8.2f" % (orch / plain))
+        print("  orchestrator --ego-port               : %8.0f" % orch)
+        print("  plain sumo --remote-port              : %8.0f  ratio %.2f" % (plain, orch / plain))
+        print("  plain sumo, the plug-in ego's LC mode : %8.0f  ratio %.2f" % (plain_lc, orch / plain_lc))
         return 0
     # Interleaved pairs: a slow spell of the shared machine hits both sides of a pair.
-    orch, plain, orch_cpu, plain_cpu = [], [], [], []
+    orch, plain, orch_cpu, plain_cpu, lc, lc_cpu = [], [], [], [], [], []
     with tempfile.TemporaryDirectory() as tmp:
         for _ in range(a.repeat):
             rate, cpu = bench_orchestrator(a.orchestrator, a.steps, tmp)
@@ -157,13 +170,20 @@ def main():
             rate, cpu = bench_plain_sumo(a.steps, tmp)
             plain.append(rate)
             plain_cpu.append(cpu)
+            rate, cpu = bench_plain_sumo(a.steps, tmp, lane_change_mode=PLUGIN_EGO_LANE_CHANGE_MODE)
+            lc.append(rate)
+            lc_cpu.append(cpu)
     pairs = sorted(o / p for o, p in zip(orch, plain))
+    lc_pairs = sorted(o / p for o, p in zip(orch, lc))
     print("lockstep, %d steps, Python traci, 1 subscription + 1 command per step (%d interleaved pairs; "
           "load average %.1f)" % (a.steps, a.repeat, os.getloadavg()[0]))
     print("  orchestrator --ego-port : %8.0f steps/s (best)" % max(orch))
     print("  plain sumo --remote-port: %8.0f steps/s (best)" % max(plain))
     print("  ratio                   : %8.2f (median of the pairs; %.2f-%.2f)" % (
         pairs[len(pairs) // 2], pairs[0], pairs[-1]))
+    print("  plain sumo, LC mode %d : %8.0f steps/s (best); ratio %.2f (%.2f-%.2f); server CPU %.0f us" % (
+        PLUGIN_EGO_LANE_CHANGE_MODE, max(lc), lc_pairs[len(lc_pairs) // 2], lc_pairs[0], lc_pairs[-1],
+        sorted(lc_cpu)[len(lc_cpu) // 2]))
     cpu_pairs = sorted(o / p for o, p in zip(orch_cpu, plain_cpu))
     print("  server CPU per step     : orchestrator %.0f us, plain sumo %.0f us (medians); ratio %.2f (%.2f-%.2f)" % (
         sorted(orch_cpu)[len(orch_cpu) // 2], sorted(plain_cpu)[len(plain_cpu) // 2],

@@ -100,6 +100,20 @@ TEST_F(Conditions, SimulationTimeEveryComparison) {
   EXPECT_TRUE(eval(SimulationTimeCondition{Comparison::Equal, 5.0}, now).holds);
 }
 
+TEST_F(Conditions, OnlyAConditionThatHoldsDescribesWhatWasMeasured) {
+  // The run log names the conditions that fired; the others are not formatted every step.
+  const auto now = snap(5.0, {car(0, 0, -8, 20)});
+  const auto fired = eval(SimulationTimeCondition{Comparison::GreaterEqual, 5.0}, now);
+  EXPECT_EQ(fired.detail, "simulation time 5.00 s >= 5");
+  EXPECT_EQ(eval(SimulationTimeCondition{Comparison::Greater, 5.0}, now).detail, "");
+  const auto fast = eval(SpeedCondition{0, SpeedType::Absolute, {}, Comparison::GreaterEqual, 10}, now);
+  EXPECT_TRUE(fast.holds);
+  EXPECT_EQ(fast.detail, "speed of actor 0 72.00 km/h >= 36.00");
+  const auto slow = eval(SpeedCondition{0, SpeedType::Absolute, {}, Comparison::Less, 10}, now);
+  EXPECT_FALSE(slow.holds);
+  EXPECT_EQ(slow.detail, "");
+}
+
 TEST_F(Conditions, TraveledDistanceSignAndSurface) {
   // Target 30 m ahead, lengths 4.51 (prius) and 4.18 (tt): surface gap 30 - 4.345.
   const auto now = snap(1, {car(0, 10, -8, 0), car(1, 40, -8, 0)});
