@@ -68,6 +68,7 @@ class Session {
     std::uint8_t context_domain_cmd = 0;  // CMD_GET_*_VARIABLE of the objects around
     Domain context_domain = Domain::Vehicle;
     double range = 0;
+    bool ended = false;  // expired, or its object left: dropped after this step's results
   };
 
   Next run_commands();

@@ -160,19 +160,19 @@ void Session::append_step_results() {
   const double now = std::get<double>(world_.read(Domain::Simulation, tc::VAR_TIME, "", std::nullopt));
   std::string results;
   std::int32_t n = 0;
-  std::vector<Subscription> kept;
-  for (const auto& s : subscriptions_) {
-    if (s.end != tc::INVALID_DOUBLE_VALUE && now > s.end + kSubscriptionTimeEps) continue;  // expired
-    if (!active(s, now)) {
-      kept.push_back(s);
-      continue;
+  // Ended subscriptions are dropped in place once every result is written (no copy of every
+  // subscription every step; a throw leaves the list as it was).
+  bool any_ended = false;
+  for (auto& s : subscriptions_) {
+    if (s.end != tc::INVALID_DOUBLE_VALUE && now > s.end + kSubscriptionTimeEps) {
+      s.ended = any_ended = true;  // expired
+    } else if (active(s, now)) {
+      // An object that left the simulation ends its subscription, as in SUMO.
+      if (append_result(results, s)) ++n;
+      else s.ended = any_ended = true;
     }
-    // An object that left the simulation ends its subscription, as in SUMO.
-    if (!append_result(results, s)) continue;
-    kept.push_back(s);
-    ++n;
   }
-  subscriptions_ = std::move(kept);
+  if (any_ended) std::erase_if(subscriptions_, [](const Subscription& s) { return s.ended; });
   Writer w;
   w.int32(n);
   reply_ += w.bytes();
