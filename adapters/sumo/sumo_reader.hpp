@@ -83,8 +83,16 @@ class WorldReader {
   // Once, after SUMO started and before the first step.
   void start() {
     contexts::shared_contexts().reset();
+#ifdef LIBTRACI
     const std::vector<int> vars = {tc::VAR_TIME, tc::VAR_DEPARTED_VEHICLES_IDS, tc::VAR_ARRIVED_VEHICLES_NUMBER,
                                    tc::VAR_COLLIDING_VEHICLES_NUMBER};
+#else
+    // The arrivals by id: scenario vehicles are read directly, not through a subscription
+    // that SUMO would empty when they leave (read_vehicle).
+    const std::vector<int> vars = {tc::VAR_TIME, tc::VAR_DEPARTED_VEHICLES_IDS, tc::VAR_ARRIVED_VEHICLES_IDS,
+                                   tc::VAR_COLLIDING_VEHICLES_NUMBER};
+#endif
+    gone_.clear();
     sumo::Simulation::subscribe(vars);
     edges_.clear();
     for (const auto& e : sumo::Edge::getIDList())
@@ -106,10 +114,20 @@ class WorldReader {
     const sumo::TraCIResults simulation = sumo::Simulation::getSubscriptionResults();
     time_ = number(simulation, tc::VAR_TIME);
     const auto departed = strings(simulation, tc::VAR_DEPARTED_VEHICLES_IDS);
+#ifdef LIBTRACI
     running_ += static_cast<long long>(departed.size()) - integer(simulation, tc::VAR_ARRIVED_VEHICLES_NUMBER);
+#else
+    const auto arrived = strings(simulation, tc::VAR_ARRIVED_VEHICLES_IDS);
+    running_ += static_cast<long long>(departed.size()) - static_cast<long long>(arrived.size());
+#endif
     colliding_ = integer(simulation, tc::VAR_COLLIDING_VEHICLES_NUMBER);
     for (const auto& id : departed)
       if (actor_kind_.count(id)) follow(id, false);
+#ifndef LIBTRACI
+    // A followed vehicle that left SUMO reads as absent, as its emptied subscription did.
+    for (const auto& id : arrived)
+      if (const auto it = followed_.find(id); it != followed_.end() && !it->second) gone_.insert(id);
+#endif
     // libsumo (1.15) leaves VAR_DEPARTED_PERSONS_IDS out of its simulation subscription
     // results, so scenario pedestrians are looked for by id: they depart in the step after
     // they were added, and there are only a few of them.
@@ -134,7 +152,7 @@ class WorldReader {
     const auto it = followed_.find(id);
     if (it != followed_.end()) {
       if (it->second) sumo::Person::unsubscribe(id);
-      else sumo::Vehicle::unsubscribe(id);
+      else if (kVehicleSubscriptions) sumo::Vehicle::unsubscribe(id);
       contexts::shared_contexts().forget(id);
       followed_.erase(it);
     }
@@ -192,8 +210,10 @@ class WorldReader {
                                                    tc::VAR_ACCELERATION, tc::VAR_SIGNALS};
     if (person)
       sumo::Person::subscribe(id, person_vars);
-    else
+    else if (kVehicleSubscriptions)
       sumo::Vehicle::subscribe(id, off_road_.count(id) ? off_road_vars : vehicle_vars);
+    else
+      gone_.erase(id);
     if (!contexts_off_)
       contexts::shared_contexts().subscribe(id, person, tc::CMD_GET_VEHICLE_VARIABLE, kNearbyRange, kNeighbourVars);
     followed_[id] = person;
@@ -216,6 +236,7 @@ class WorldReader {
     const auto it = followed_.find(a.sumo_id);
     if (it == followed_.end()) return s;  // not inserted yet
     const bool person = it->second;
+    if (!person && !kVehicleSubscriptions) return read_vehicle(a, s);
     const sumo::TraCIResults r =
         person ? sumo::Person::getSubscriptionResults(a.sumo_id) : sumo::Vehicle::getSubscriptionResults(a.sumo_id);
     if (r.empty()) return s;  // gone: SUMO drops the subscription of a vehicle that left
@@ -244,6 +265,42 @@ class WorldReader {
           s.lat_offset = number(r, tc::VAR_LANEPOSITION_LAT);
         }
       }
+    }
+    s.present = true;
+    return s;
+  }
+
+  // On libsumo a scenario vehicle is read by its getters, the same calls SUMO's subscription
+  // would make right after the step (nothing changes the vehicle between the step and this
+  // read), without building a result object and a map entry per value (about 10,000
+  // instructions per vehicle and step: docs/performance.md). Over TraCI each getter would be
+  // a round trip, so libtraci keeps the subscription.
+  sim::ActorState read_vehicle(const sim::TrackedActor& a, sim::ActorState s) {
+    const std::string& id = a.sumo_id;
+    if (gone_.count(id)) return s;
+    try {
+      s.heading = from_sumo_angle(sumo::Vehicle::getAngle(id));
+      s.speed = sumo::Vehicle::getSpeed(id);
+      const bool off_road = off_road_.count(id) > 0;
+      if (!off_road) s.edge = sumo::Vehicle::getRoadID(id);
+      const sumo::TraCIPosition front = sumo::Vehicle::getPosition(id);
+      s.position = centre_of(Vec2(front.x, front.y), s.heading, a.length);
+      s.accel = sumo::Vehicle::getAcceleration(id);
+      s.signals = sumo::Vehicle::getSignals(id);
+      if (!off_road) {
+        s.lane = sumo::Vehicle::getLaneIndex(id);
+        if (s.lane == tc::INVALID_INT_VALUE) {  // placed off every lane later (see read_actor)
+          s.edge.clear();
+          s.lane = -1;
+        } else {
+          s.lane_pos = sumo::Vehicle::getLanePosition(id) - a.length / 2;
+          s.lat_offset = sumo::Vehicle::getLateralLanePosition(id);
+        }
+      }
+    } catch (const sumo::TraCIException&) {
+      sim::ActorState absent;  // not in SUMO (any more)
+      absent.id = a.id;
+      return absent;
     }
     s.present = true;
     return s;
@@ -302,11 +359,17 @@ class WorldReader {
     return contexts::shared_contexts().within(id, person, tc::CMD_GET_VEHICLE_VARIABLE, kNearbyRange, kNeighbourVars);
   }
   inline static const std::vector<int> kNeighbourVars = {tc::VAR_POSITION, tc::VAR_ANGLE, tc::VAR_SPEED};
+#ifdef LIBTRACI
+  static constexpr bool kVehicleSubscriptions = true;
+#else
+  static constexpr bool kVehicleSubscriptions = false;  // read_vehicle
+#endif
   static constexpr long long kSizeSweepEvery = 2000;  // reads
 
   std::unordered_map<std::string, ActorKind> actor_kind_;  // scenario actors by SUMO id
   std::unordered_map<std::string, bool> followed_;         // subscribed actors: true = person
   std::unordered_set<std::string> off_road_;               // actors moved off every lane (no road asked)
+  std::unordered_set<std::string> gone_;                   // followed vehicles that arrived (libsumo)
   std::vector<std::string> pending_persons_;               // scenario pedestrians not yet departed
   long long running_ = 0;                                  // SUMO vehicles on the road
   std::vector<std::string> edges_;                         // normal edges of the net
