@@ -4,7 +4,9 @@
 //   - the simulation: time, the vehicles and persons that departed, how many arrived and
 //     whether any collided (the running count is kept from departures and arrivals:
 //     Vehicle::getIDCount builds the list of every vehicle id, O(n) each step);
-//   - each scenario actor, once SUMO has inserted it: its pose and lane;
+//   - each scenario actor, once SUMO has inserted it: its pose and lane (on libsumo a
+//     vehicle's by its getters right after the step, read_vehicle; a person's and every
+//     actor's over TraCI by a subscription);
 //   - around each actor, a context subscription: the vehicles within kNearbyRange of it
 //     (SUMO finds them through its lane tree, looking only at lanes near the actor; the
 //     subscription is shared with an ego plug-in's, sumo_contexts.hpp).
