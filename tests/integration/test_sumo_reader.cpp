@@ -9,6 +9,7 @@
 #include <fstream>
 #include <set>
 #include <string>
+#include <vector>
 
 #include "sim/world.hpp"
 #include "sumo/sumo_process.hpp"
@@ -76,6 +77,63 @@ TEST(SumoReader, CountsAndNearbyVehiclesMatchLibsumosExhaustiveAnswers) {
   }
   EXPECT_GT(checked_nearby, 20);  // the comparison saw real neighbours
   sim->close();
+}
+
+// On libsumo a scenario vehicle is read by its getters after the step, over TraCI through a
+// subscription (sumo_reader.hpp, read_vehicle): the same snapshots step by step, also when
+// the vehicle reaches its route's end and leaves SUMO (absent from then on on both).
+std::vector<sim::ActorState> drive_to_the_route_end(const std::string& backend, const std::string& dir) {
+  const std::string maps = std::string(ORCH_SOURCE_DIR) + "/sumo_nets/highway/";
+  SimulatorConfig config;
+  config.net_file = maps + "highway.net.xml";
+  config.log_file = dir + "/sumo_" + backend + ".log";
+  auto sim = make_sumo_simulator(backend);
+  sim->start(config);
+  auto spawn = ego_command();
+  spawn.route = {kNorth + "6", kNorth + "7"};
+  spawn.edge = kNorth + "6";
+  const std::vector<sim::TrackedActor> tracked{spawn.actor};
+  sim->apply({spawn});
+  std::vector<sim::ActorState> states;
+  for (int step = 1; step <= 600; ++step) {  // 30 s: ~450 m at 20-25 m/s, then gone
+    sim->advance();
+    states.push_back(sim->read(tracked).actors.at(0));
+  }
+  sim->close();
+  return states;
+}
+
+TEST(SumoReader, BothBackendsReadAVehicleAlikeUntilAndAfterItLeaves) {
+  test::TempDir dir("sumo_reader_leaving");
+  const auto direct = drive_to_the_route_end("libsumo", dir.path().string());
+  const auto subscribed = drive_to_the_route_end("traci", dir.path().string());
+  ASSERT_EQ(direct.size(), subscribed.size());
+  int present = 0;
+  for (std::size_t i = 0; i < direct.size(); ++i) {
+    SCOPED_TRACE(i + 1);
+    const auto& a = direct[i];
+    const auto& b = subscribed[i];
+    ASSERT_EQ(a.present, b.present);
+    if (!a.present) continue;
+    ++present;
+    EXPECT_NEAR(a.position.x(), b.position.x(), 1e-9);
+    EXPECT_NEAR(a.position.y(), b.position.y(), 1e-9);
+    EXPECT_NEAR(a.heading, b.heading, 1e-12);
+    EXPECT_NEAR(a.speed, b.speed, 1e-9);
+    EXPECT_NEAR(a.accel, b.accel, 1e-9);
+    EXPECT_EQ(a.edge, b.edge);
+    EXPECT_EQ(a.lane, b.lane);
+    EXPECT_NEAR(a.lane_pos, b.lane_pos, 1e-9);
+    ASSERT_EQ(a.lat_offset.has_value(), b.lat_offset.has_value());
+    if (a.lat_offset) {
+      EXPECT_NEAR(*a.lat_offset, *b.lat_offset, 1e-9);
+    }
+    EXPECT_EQ(a.signals, b.signals);
+  }
+  // It drove, then left: present first, absent at the end.
+  EXPECT_GT(present, 100);
+  EXPECT_TRUE(direct.front().present);
+  EXPECT_FALSE(direct.back().present);
 }
 
 TEST(SumoErrors, SumosErrorLinesWithTheirContinuationsBecomeOneLine) {
