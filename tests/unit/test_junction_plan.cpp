@@ -212,7 +212,7 @@ TEST(JunctionPlan, TwoTurnsOfDifferentRadiiBetweenTheSameLanesEachGetAPathOfThei
   ASSERT_NE(detour, nullptr);
   EXPECT_LE(detour->shape.length(), kDetourLength / 2 + 0.01);  // cut in the middle by a node of its own
   EXPECT_EQ(plan.junctions, 1);
-  EXPECT_EQ(plan.connections.size(), 3u);  // tight's, into the detour, out of it (+ none between its halves)
+  EXPECT_EQ(plan.connections.size(), 4u);  // tight's, into the detour, between its halves, out of it
   EXPECT_LE(max_distance_to_plan(plan, wf.routes[0]), 0.05);
   EXPECT_LE(max_distance_to_plan(plan, wf.routes[1]), 0.05);  // the wide turn lay up to 2.9 m off tight's
   for (const auto& n : plan.notes) EXPECT_EQ(n.find("along different paths"), std::string::npos) << n;
