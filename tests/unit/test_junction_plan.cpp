@@ -224,3 +224,31 @@ TEST(JunctionPlan, TwoTurnsOfDifferentRadiiBetweenTheSameLanesEachGetAPathOfThei
   EXPECT_NE(lane_of_routes(plan3, {"wide", "wide_too"}), nullptr);
   EXPECT_LE(max_distance_to_plan(plan3, wf3.routes[2]), 0.05);
 }
+
+TEST(JunctionPlan, ARouteLeaningOffASharedLaneAndBackGetsADetourLane) {
+  // The generator's shallow-angle touch (scripts/city_waypoints.py, bulge): two routes drawn
+  // along one lane, the second leaning 2.6 m over 40 m towards the neighbouring lane (3.5 m to
+  // the left) and back. It comes within a metre of that lane, so branch, touch and merge are
+  // one junction between the shared lane before and the shared lane after; the leaning route
+  // gets a detour lane of its own there (it drove the straight route's connection, 2.6 m off).
+  std::vector<Vec2> straight;
+  std::vector<Vec2> leaning;
+  std::vector<Vec2> neighbour;
+  for (double x = 0; x <= 200 + 1e-9; x += 1.0) {
+    straight.emplace_back(x, 0);
+    neighbour.emplace_back(x, 3.5);
+    const double u = (x - 100) / 20;
+    leaning.emplace_back(x, std::abs(u) < 1 ? 2.6 * (0.5 + 0.5 * std::cos(M_PI * u)) : 0.0);
+  }
+  std::vector<test::SyntheticRoute> routes = {{"straight", straight}, {"leaning", leaning}, {"neighbour", neighbour}};
+  test::TempDir dir("junction_leaning");
+  const WaypointFile wf = load_waypoint_file(test::write_waypoint_file(dir.path(), "leaning", routes).string());
+  const NetPlan plan = plan_net(wf, NetPlanSettings{});
+  EXPECT_EQ(plan.junctions, 1);
+  EXPECT_NE(lane_of_routes(plan, {"straight", "leaning"}), nullptr);  // the shared lane before and after
+  const PlannedLane* detour = lane_of_routes(plan, {"leaning"});
+  ASSERT_NE(detour, nullptr);
+  EXPECT_NEAR(detour->shape.point(0).y(), 2.6, 0.1);  // at the far side of the lean
+  for (const WaypointRoute& r : wf.routes) EXPECT_LE(max_distance_to_plan(plan, r), 0.10) << r.id;  // `map check`'s tolerance
+  for (const auto& n : plan.notes) EXPECT_EQ(n.find("along different paths"), std::string::npos) << n;
+}
