@@ -7,6 +7,7 @@
 #include <map>
 
 #include "core/checked_numeric.hpp"
+#include "map/junction_detours.hpp"
 
 namespace orch {
 
@@ -21,6 +22,8 @@ constexpr double kContainCos = 0.94;     // cos 20 deg
 constexpr double kMaxEndGap = 3.0;
 // m: the shortest dead-end lane (and connection) made for a route ending inside a junction.
 constexpr double kMinLooseLane = 1.0;
+
+}  // namespace
 
 // The points of `route` between arc lengths a < b (b may exceed the length of a closed
 // route: the stretch then runs across its closing point), cut exactly at both ends.
@@ -52,6 +55,8 @@ WaypointRoute make_line(std::string id, std::vector<WaypointPoint> pts) {
   r.line = Polyline(std::move(xy));
   return r;
 }
+
+namespace {
 
 // Whether piece `inner` lies along piece `outer` over its whole length, same direction.
 bool lies_along(const RoutePiece& inner, const RoutePiece& outer) {
@@ -319,6 +324,7 @@ JunctionPieces cut_into_pieces(const WaypointFile& wf, const JunctionZones& zone
   out.pieces = std::move(kept);
   attach_loose_ends(wf, out);
   end_lanes_in_junctions(wf, out);
+  add_detour_lanes(wf, out);
   return out;
 }
 

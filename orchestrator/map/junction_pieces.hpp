@@ -20,6 +20,7 @@ struct RoutePiece {
   int from_zone = -1;               // the junction the lane starts at (-1: the route's own start)
   int to_zone = -1;                 // ... ends at (-1: the route's own end)
   bool loose_end = false;           // a dead-end lane for a route starting or ending inside a junction
+  bool detour = false;              // a detour lane inside a junction (junction_detours.hpp)
 };
 
 // One passage of a route through a junction, between the pieces before and after it.
@@ -37,6 +38,12 @@ struct JunctionPieces {
   std::vector<JunctionPassage> passages;   // route by route, in driving order
   int merged = 0;                          // pieces folded into another (one lane, several routes)
 };
+
+// The points of `route` between arc lengths a < b (b may exceed the length of a closed
+// route: the stretch then runs across its closing point), cut exactly at both ends.
+std::vector<WaypointPoint> stretch(const WaypointRoute& route, double a, double b);
+// A lane piece's line from its points.
+WaypointRoute make_line(std::string id, std::vector<WaypointPoint> pts);
 
 JunctionPieces cut_into_pieces(const WaypointFile& waypoints, const JunctionZones& zones);
 

@@ -9,6 +9,7 @@
 #include <map>
 
 #include "core/errors.hpp"
+#include "map/junction_detours.hpp"
 #include "map/junction_pieces.hpp"
 #include "map/junction_shape.hpp"
 #include "map/junction_zones.hpp"
@@ -20,9 +21,6 @@ namespace {
 constexpr double kConnectionSimplify = 0.02;  // m, as the lane shapes
 constexpr int kOverridePriority = 100;
 constexpr double kParallelCos = 0.9848;  // cos 10 deg
-// m: a second route through a junction between the same lanes lying farther than this from
-// the first one's path is noted (drawing noise; `map check` holds every waypoint to 0.10 m).
-constexpr double kMaxSharedPathMiss = 0.25;
 
 std::string junction_id(int zone) { return fmt::format("J{}", zone); }
 
@@ -136,9 +134,10 @@ class JunctionPlanner {
   // SUMO has one connection per pair of lanes: a second route between the same lanes drives
   // the first one's path through the junction. Where it was drawn along another path (a
   // route leaning off its lane and back, a turn clipped by a short first leg, a shallow
-  // 5-way junction) the net still carries it, connected, and `map build` notes how far its
-  // waypoints lie from that path (`map check` measures them): refusing the map would leave a
-  // user with no net for a drawing RoadEditor accepts.
+  // 5-way junction) it has a detour lane of its own (junction_detours.hpp) unless its passage
+  // is too short for one; then the net still carries it, connected, and `map build` notes how
+  // far its waypoints lie from that path (`map check` measures them): refusing the map would
+  // leave a user with no net for a drawing RoadEditor accepts.
   // `ends`: the lanes before and after, which a passage's first and last waypoints may lie on.
   void check_same_path(const PlannedConnection& c, const WaypointRoute& first, const WaypointRoute& route,
                        const JunctionPassage& p, const std::array<const Polyline*, 2>& ends,
@@ -340,7 +339,7 @@ NetPlan plan_net(const WaypointFile& waypoints, const NetPlanSettings& settings,
                     p.to_zone >= 0 ? junction_id(p.to_zone) : "",
                     p.from_zone >= 0 ? -1.0 : free_extension(waypoints, p, true, settings.lane_extension),
                     p.to_zone >= 0 ? -1.0 : free_extension(waypoints, p, false, settings.lane_extension),
-                    p.loose_end});
+                    p.loose_end || p.detour});
   }
   plan_corridors(lines, &info, settings, plan);
   JunctionPlanner(waypoints, pieces, zones.count, junctions).plan(plan);

@@ -10,6 +10,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
+#include <vector>
 
 #include "core/errors.hpp"
 #include "map/lane_map.hpp"
@@ -22,6 +24,10 @@ constexpr double kLookahead = 6.0;     // m of route that decides between succes
 constexpr double kMaxMiss = 1.0;       // m: farther from every successor, the path is broken
 constexpr int kMaxChain = 4;           // lanes followed ahead when scoring a successor
 constexpr double kStartTie = 0.10;     // m: lanes this much farther from the first waypoint may start it
+// m: successors scoring this close are told apart over a longer stretch of the route (two
+// paths through a junction that part only after the first kLookahead metres: a detour lane)
+constexpr double kScoreTie = 0.05;
+constexpr int kMaxLookaheadDoublings = 3;
 
 bool drives(const LaneInfo& lane, const std::string& route) {
   return std::find(lane.routes.begin(), lane.routes.end(), route) != lane.routes.end();
@@ -46,12 +52,12 @@ RouteLanes LaneMap::walk(const WaypointRoute& route, const std::string& net_file
   };
   // Mean distance of the route's next kLookahead metres from waypoint i to the chain
   // starting at lane `l` (each point on the first lane of the chain it does not lie beyond).
-  const auto score = [&](int l, std::size_t i) {
+  const auto score = [&](int l, std::size_t i, double lookahead = kLookahead) {
     const double s0 = route.line.s_at_index(i);
     double sum = 0;
     int n = 0;
     int lane = l;
-    for (std::size_t j = i; j < route.points.size() && route.line.s_at_index(j) <= s0 + kLookahead; ++j) {
+    for (std::size_t j = i; j < route.points.size() && route.line.s_at_index(j) <= s0 + lookahead; ++j) {
       const Vec2& p = route.line.point(j);
       for (int depth = 0; depth < kMaxChain && beyond_end(lane, p); ++depth) {
         const auto& next = lanes_[static_cast<std::size_t>(lane)].next;
@@ -93,14 +99,38 @@ RouteLanes LaneMap::walk(const WaypointRoute& route, const std::string& net_file
     while (beyond_end(lane, p) && !lanes_[static_cast<std::size_t>(lane)].next.empty()) {
       int best = -1;
       double best_score = std::numeric_limits<double>::infinity();
+      std::vector<std::pair<int, double>> scored;
       for (const int next : lanes_[static_cast<std::size_t>(lane)].next) {
         if (!leads_to_route(next)) continue;
         const double sc = score(next, i);
+        scored.emplace_back(next, sc);
         if (sc < best_score) {
           best_score = sc;
           best = next;
         }
       }
+      // Tied successors (their paths coincide over the lookahead): a longer stretch of the
+      // route decides, when it tells them apart by more than kScoreTie.
+      double lookahead = kLookahead;
+      for (int round = 0; round < kMaxLookaheadDoublings; ++round) {
+        std::vector<int> tied;
+        for (const auto& [next, sc] : scored)
+          if (sc <= best_score + kScoreTie) tied.push_back(next);
+        if (tied.size() < 2) break;
+        lookahead *= 2;
+        scored.clear();
+        for (const int next : tied) scored.emplace_back(next, score(next, i, lookahead));
+        const auto current = std::find_if(scored.begin(), scored.end(), [&](const auto& x) { return x.first == best; });
+        const auto least = std::min_element(scored.begin(), scored.end(),
+                                            [](const auto& a, const auto& b) { return a.second < b.second; });
+        if (least->second < current->second - kScoreTie) {
+          best = least->first;
+          best_score = least->second;
+        } else {
+          best_score = current->second;
+        }
+      }
+      if (best >= 0) best_score = score(best, i);
       if (best < 0 || best_score > kMaxMiss) {
         if (i + 1 == route.points.size()) break;  // the last waypoint may lie past the last lane
         throw MapError(fmt::format(
