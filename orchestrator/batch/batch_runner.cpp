@@ -13,6 +13,7 @@
 #include "batch/attempt.hpp"
 #include "batch/batch_report.hpp"
 #include "batch/execution_trace.hpp"
+#include "batch/fork_event_check.hpp"
 #include "batch/fork_groups.hpp"
 #include "batch/identifiers.hpp"
 #include "batch/manifest.hpp"
@@ -327,6 +328,7 @@ int run_batch(const BatchOptions& given) {
   // Inputs are checked before the folder is touched: a batch that cannot start leaves none.
   BatchPlan plan = plan_batch(o.inputs, o.shard);
   if (o.fork) use_one_seed_per_logical(plan);
+  if (o.fork_at) check_fork_event(plan, *o.fork_at);
   for (const auto& run : plan.runs) pass_through_flags(run.set.sumo_config, o.run_flags);
   fs::create_directories(out / "runs");
   fs::create_directories(out / "executions");

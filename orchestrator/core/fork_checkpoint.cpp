@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "core/errors.hpp"
+#include "core/suggest.hpp"
 
 namespace orch {
 
@@ -36,6 +37,18 @@ ForkCheckpoint parse_fork_checkpoint(const std::string& text) {
     c.event = "scene:" + std::to_string(std::stoll(id));  // scene:01 is scene:1
   }
   return c;
+}
+
+std::string unknown_event_message(const ForkCheckpoint& checkpoint, const std::string& file, bool openscenario,
+                                  const std::vector<std::string>& events) {
+  const std::string what = openscenario            ? "storyboard element named " + checkpoint.event
+                           : checkpoint.is_scene() ? "scene " + checkpoint.event.substr(6)
+                                                   : "event " + checkpoint.event + " (its events are its scenes, scene:N)";
+  // Scene ids: the list says it; a "did you mean" between numbers says nothing.
+  return fmt::format("--fork-at {}: {} has no {}; {}: {}{}", checkpoint.event, file, what,
+                     openscenario ? "its storyboard elements (Story, Act, ManeuverGroup, Maneuver, Event, Action)"
+                                  : "its scenes",
+                     fmt::join(events, ", "), openscenario ? did_you_mean(checkpoint.event, events) : std::string());
 }
 
 }  // namespace orch

@@ -6,6 +6,7 @@
 // Action) that starts. Here only the words; run/fork_checkpoint.hpp knows the scenarios.
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace orch {
 
@@ -21,5 +22,10 @@ struct ForkCheckpoint {
 // Throws OrchError for an empty text, a negative or non-finite time, or `scene:` without a
 // scene id (a whole number >= 0).
 ForkCheckpoint parse_fork_checkpoint(const std::string& text);
+
+// The error for an event `file` does not have: what it has (`events`: scene:N, or storyboard
+// element names when `openscenario`), with a "did you mean" for element names.
+std::string unknown_event_message(const ForkCheckpoint& checkpoint, const std::string& file, bool openscenario,
+                                  const std::vector<std::string>& events);
 
 }  // namespace orch

@@ -209,6 +209,29 @@ TEST(RunForkAtEvent, AnUnknownEventIsNamedBeforeAnyRun) {
   EXPECT_FALSE(fs::exists(dir / "b" / "result.json"));
 }
 
+// batch --fork-at EVENT: checked against each logical scenario's first set before the batch
+// starts (a template's bound scenes, a variation's storyboard): no folder, no run.
+TEST(BatchForkAtEvent, AnUnknownEventIsNamedBeforeTheBatchStarts) {
+  TempDir dir;
+  const fs::path variation = small_variation(dir.path());
+  auto r = run_cli({"batch", variation.string(), "--fork-at", "LeadBrakeEvnt", "--out", (dir / "osc").string()});
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("--fork-at LeadBrakeEvnt: " + kLeadBrakeXosc + " has no storyboard element named LeadBrakeEvnt"),
+            std::string::npos)
+      << r.output;
+  EXPECT_NE(r.output.find("(did you mean \"LeadBrakeEvent\"?)"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(dir / "osc"));
+  const fs::path logical = nightly_copy(dir.path(), kCutIn, "libsumo");
+  ASSERT_EQ(run_cli({"sample", logical.string(), "--count", "2", "--seed", "1"}).exit_code, 0);
+  r = run_cli({"batch", logical.string(), "--fork-at", "scene:9", "--out", (dir / "json").string()});
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("--fork-at scene:9: " + (dir / "cut_in.template.json").string() +
+                          " has no scene 9; its scenes: scene:0, scene:1, scene:2, scene:3"),
+            std::string::npos)
+      << r.output;
+  EXPECT_FALSE(fs::exists(dir / "json"));
+}
+
 // The runs end (--max-time 2) before the lead brakes (5 s): no checkpoint. The runs are whole
 // and exact; the request was not met, so the command says so and exits with 2.
 TEST(RunForkAtEvent, AnEventNoVariantReachesIsAnError) {
