@@ -13,6 +13,7 @@
 #include "batch/attempt.hpp"
 #include "batch/batch_report.hpp"
 #include "batch/execution_trace.hpp"
+#include "batch/fork_event_check.hpp"
 #include "batch/fork_groups.hpp"
 #include "batch/identifiers.hpp"
 #include "batch/manifest.hpp"
@@ -64,7 +65,9 @@ void apply_manifest_defaults(BatchOptions& o, const Manifest& m) {
   if (!o.ssm && opt.contains("ssm") && opt["ssm"].is_boolean()) o.ssm = opt["ssm"].get<bool>();
   if (!o.fork && opt.contains("fork") && opt["fork"].is_boolean()) o.fork = opt["fork"].get<bool>();
   if (!o.no_fork && opt.contains("no_fork") && opt["no_fork"].is_boolean()) o.no_fork = opt["no_fork"].get<bool>();
-  if (!o.fork_at && opt.contains("fork_at") && opt["fork_at"].is_number()) o.fork_at = opt["fork_at"].get<double>();
+  if (!o.fork_at && opt.contains("fork_at") && opt["fork_at"].is_number()) o.fork_at = ForkCheckpoint{opt["fork_at"].get<double>(), ""};
+  if (!o.fork_at && opt.contains("fork_at") && opt["fork_at"].is_string())
+    o.fork_at = parse_fork_checkpoint(opt["fork_at"].get<std::string>());
   // --ego-model and --reference-run: every run of the batch drives its ego the same way.
   if (o.run_args.empty() && opt.contains("run_args") && opt["run_args"].is_array())
     for (const auto& a : opt["run_args"])
@@ -75,7 +78,9 @@ ordered_json options_json(const BatchOptions& o) {
   return {{"jobs", *o.jobs}, {"timeout_s", *o.timeout_s}, {"retries", *o.retries}, {"maps", o.map_dirs},
           {"catalog", o.catalog}, {"wrapper", o.wrapper}, {"ssm", o.ssm}, {"run_args", o.run_args},
           {"fork", o.fork}, {"no_fork", o.no_fork},
-          {"fork_at", o.fork_at ? ordered_json(*o.fork_at) : ordered_json(nullptr)}};
+          {"fork_at", !o.fork_at         ? ordered_json(nullptr)
+                      : o.fork_at->time_s ? ordered_json(*o.fork_at->time_s)
+                                          : ordered_json(o.fork_at->event)}};
 }
 
 void verify_unchanged(const Manifest& m, const BatchPlan& plan) {
@@ -226,10 +231,12 @@ QueueOutcome execute_planned_runs(const BatchOptions& o, const BatchPlan& plan, 
     for (std::size_t k = 1; k < runs.size(); ++k) {
       const Launch other = prepare_run(runs[k], attempt);
       const auto& a = other.argv;
-      // run FILE --out DIR ...: the other's file and folder.
+      // run FILE --out DIR ...: the other's file and folder, and (a variation) its --param values.
       launch.argv.insert(launch.argv.end(), {"--fork-with", a[2], "--fork-out", a[4]});
+      for (std::size_t w = 5; w + 1 < a.size(); ++w)
+        if (a[w] == "--param") launch.argv.insert(launch.argv.end(), {"--fork-param", fmt::format("{}:{}", k, a[++w])});
     }
-    if (o.fork_at && runs.size() > 1) launch.argv.insert(launch.argv.end(), {"--fork-at", fmt::format("{}", *o.fork_at)});
+    if (o.fork_at && runs.size() > 1) launch.argv.insert(launch.argv.end(), {"--fork-at", o.fork_at->text()});
     if (!o.wrapper.empty()) launch.argv.insert(launch.argv.begin(), o.wrapper);
     for (const auto r : runs) records[r].command = launch.argv;
     return launch;
@@ -321,6 +328,7 @@ int run_batch(const BatchOptions& given) {
   // Inputs are checked before the folder is touched: a batch that cannot start leaves none.
   BatchPlan plan = plan_batch(o.inputs, o.shard);
   if (o.fork) use_one_seed_per_logical(plan);
+  if (o.fork_at) check_fork_event(plan, *o.fork_at);
   for (const auto& run : plan.runs) pass_through_flags(run.set.sumo_config, o.run_flags);
   fs::create_directories(out / "runs");
   fs::create_directories(out / "executions");

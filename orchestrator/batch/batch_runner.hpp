@@ -21,6 +21,7 @@
 
 #include "batch/batch_plan.hpp"
 #include "batch/run_queue.hpp"
+#include "core/fork_checkpoint.hpp"
 
 namespace orch::batch {
 
@@ -39,7 +40,7 @@ struct BatchOptions {
   // (docs/forking.md); sets that share a seed and settings share it anyway (--no-fork: never).
   bool fork = false;
   bool no_fork = false;
-  std::optional<double> fork_at;  // --fork-at: passed to every group's process
+  std::optional<ForkCheckpoint> fork_at;  // --fork-at: passed to every group's process
   std::string wrapper;                // program each run is started through (nice, a test double)
   std::filesystem::path orchestrator; // the binary to run children with
   // Flags `orchestrator run` offers; a sumo_config value (traffic, backend) is passed only

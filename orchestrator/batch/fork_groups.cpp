@@ -11,10 +11,6 @@ namespace orch::batch {
 
 namespace {
 
-bool forkable(const BatchPlan& plan, const PlannedRun& run) {
-  return !plan.logicals[run.logical_index].variation;
-}
-
 // Runs share when their logical scenario, seed and run settings are the same.
 std::string share_key(const PlannedRun& run) {
   const SumoConfig& c = run.set.sumo_config;
@@ -28,7 +24,6 @@ std::string share_key(const PlannedRun& run) {
 void use_one_seed_per_logical(BatchPlan& plan) {
   std::map<std::size_t, std::optional<long long>> first_seed;
   for (auto& run : plan.runs) {
-    if (!forkable(plan, run)) continue;
     const auto [it, added] = first_seed.emplace(run.logical_index, run.set.seed);
     if (!added) run.set.seed = it->second;
   }
@@ -40,7 +35,7 @@ std::vector<std::vector<std::size_t>> fork_groups(const BatchPlan& plan, const s
   std::map<std::string, std::size_t> group_of;
   for (const auto i : pending) {
     const PlannedRun& run = plan.runs[i];
-    if (!enabled || !forkable(plan, run)) {
+    if (!enabled) {
       groups.push_back({i});
       continue;
     }

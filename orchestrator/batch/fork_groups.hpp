@@ -1,9 +1,9 @@
 #pragma once
 // Which runs of a batch share their common prefix (docs/forking.md): the parameter sets of
-// one logical scenario (a template, not an OpenSCENARIO variation: its sets differ in
-// --param values, not in files) that run with the same seed and the same sumo_config. They
-// run as one child `orchestrator run FIRST --fork-with OTHER --fork-out DIR ...`, which
-// shares one libsumo simulation between them while their commands are equal.
+// one logical scenario (a template, or an OpenSCENARIO variation: its sets differ in --param
+// values of one file) that run with the same seed and the same sumo_config. They run as one
+// child `orchestrator run FIRST --fork-with OTHER --fork-out DIR [--fork-param K:NAME=VALUE]
+// ...`, which shares one libsumo simulation between them while their commands are equal.
 #include <cstddef>
 #include <optional>
 #include <vector>
@@ -12,9 +12,10 @@
 
 namespace orch::batch {
 
-// `batch --fork`: every set of a template logical scenario runs with the seed of its first
-// set (recorded as the set's seed in its execution trace), so that they can share. Without
-// it only sets that already share a seed do.
+// `batch --fork`: every set of a logical scenario (a variation too: its sets' values are in
+// the set, the seed is SUMO's only) runs with the seed of its first set (recorded as the
+// set's seed in its execution trace), so that they can share. Without it only sets that
+// already share a seed do.
 void use_one_seed_per_logical(BatchPlan& plan);
 
 // The runs (indices into plan.runs) grouped as above, in plan order; a run that shares with

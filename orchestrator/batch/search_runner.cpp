@@ -81,7 +81,7 @@ ordered_json recorded_options(const State& s) {
 
 ordered_json batch_options_json(const BatchOptions& o) {
   return {{"jobs", *o.jobs}, {"timeout_s", *o.timeout_s}, {"retries", *o.retries}, {"maps", o.map_dirs},
-          {"catalog", o.catalog}, {"wrapper", o.wrapper}, {"ssm", o.ssm}, {"run_args", o.run_args}};
+          {"catalog", o.catalog}, {"wrapper", o.wrapper}, {"ssm", o.ssm}, {"run_args", o.run_args}, {"no_fork", o.no_fork}};
 }
 
 void plan_input(State& s) {
@@ -117,6 +117,9 @@ ParameterSet make_set(const State& s, const SearchRun& r) {
   set.sampled_values = sampled_values_of(s.space, r.values, s.variation);
   set.sumo_config.step = pl.logical.sumo_config.step.value_or(0.05);
   set.sumo_config.max_time = s.o.max_time ? s.o.max_time : pl.logical.sumo_config.max_time;
+  // The logical scenario's traffic and backend, as `sample` gives its sets (batch/sampling.cpp).
+  set.sumo_config.traffic = pl.logical.sumo_config.traffic;
+  set.sumo_config.backend = pl.logical.sumo_config.backend;
   if (s.variation) set.sumo_config.map = fs::path(pl.variation->variation.road_file).stem().string();
   set.output = nlohmann::json(output_block(pl.logical.uuid, set.uuid));
   set.where = SourceLocation{pl.logical.file.string(), "", 0};

@@ -50,7 +50,7 @@ struct BatchCliOptions {
   bool ssm = false;    // --ssm: passed to every run
   bool fork = false;     // --fork: one seed per logical scenario, its sets share their prefix
   bool no_fork = false;  // --no-fork: every run from t = 0 in a process of its own
-  std::optional<double> fork_at;  // --fork-at SECONDS: --fork with a checkpoint there
+  std::optional<std::string> fork_at;  // --fork-at SECONDS|EVENT: --fork with a checkpoint there
   std::string ego_model;       // --ego-model: passed to every run
   bool reference_run = false;  // --reference-run: passed to every run
   CommonOptions common;
@@ -134,7 +134,7 @@ int batch_command(const BatchCliOptions& o, const CLI::App& app) {
   b.ssm = o.ssm;
   b.fork = o.fork || o.fork_at.has_value();
   b.no_fork = o.no_fork;
-  b.fork_at = o.fork_at;
+  if (o.fork_at) b.fork_at = parse_fork_checkpoint(*o.fork_at);
   if (b.fork && o.no_fork) throw OrchError(fmt::format("{} and --no-fork contradict each other: give one", o.fork_at ? "--fork-at" : "--fork"));
   if (o.video) {
     if (const auto missing = video::missing_video_tools(); !missing.empty()) throw OrchError("batch " + missing);
@@ -243,9 +243,9 @@ Handler setup_batch(CLI::App& cmd) {
                "prefix once (docs/forking.md)");
   cmd.add_flag("--no-fork", o->no_fork, "Run every set from t = 0 in a process of its own, even sets that share a seed");
   cmd.add_option("--fork-at", o->fork_at,
-                 "--fork, and every set continues in a process of its own from this SUMO time (s) on; sets whose "
-                 "commands part earlier still part there, with a warning in fork.json (docs/forking.md)")
-      ->check(CLI::Range(0.0, 1e7));
+                 "--fork, and every set continues in a process of its own from this SUMO time (s) on, or from the "
+                 "step an event happens (scene:N entered, a storyboard element of that name started); sets whose "
+                 "commands part earlier still part there, with a warning in fork.json (docs/forking.md)");
   cmd.add_option("--ego-model", o->ego_model, "What drives the ego in every run: sumo, r157 or cruise (run --ego-model)")
       ->check(CLI::IsMember(ego_model_names()));
   cmd.add_flag("--reference-run", o->reference_run,
@@ -285,6 +285,9 @@ Handler setup_search(CLI::App& cmd) {
       ->check(CLI::ExistingDirectory);
   cmd.add_option("--timeout", o->timeout, "Wall-clock limit per run, s (default 1800)")->check(CLI::Range(1e-3, 1e7));
   cmd.add_option("--wrapper", s.batch.wrapper, "Start each run through this program (e.g. nice)");
+  cmd.add_flag("--no-fork", s.batch.no_fork,
+               "Run every point from t = 0 in a process of its own (by default the points of an iteration share "
+               "their common prefix: docs/forking.md)");
   cmd.add_option("--maps", o->common.map_dirs, "Folder holding map folders (repeatable), passed to every run")
       ->allow_extra_args(false);
   cmd.add_option("--catalog", o->common.catalog, "Model catalog JSON, passed to every run");

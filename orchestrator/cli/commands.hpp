@@ -78,7 +78,9 @@ struct RunOptions {
   // run with the same options, sharing SUMO while they give the same commands (docs/forking.md).
   std::vector<std::string> fork_with;
   std::vector<std::string> fork_out;
-  std::optional<double> fork_at;  // --fork-at SECONDS: a requested checkpoint (run/fork_group.hpp)
+  std::optional<std::string> fork_at;  // --fork-at SECONDS|EVENT: a requested checkpoint (core/fork_checkpoint.hpp)
+  // --fork-param K:NAME=VALUE: the K-th --fork-with variant's own --param (OpenSCENARIO)
+  std::vector<std::string> fork_params;
 };
 int run_command(const RunOptions& o);
 }  // namespace orch::cli

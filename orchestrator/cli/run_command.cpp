@@ -125,6 +125,8 @@ int run_command(const RunOptions& o) {
   sumo_options.reply_timeout = o.sumo_timeout;
   if (o.fork_at && o.fork_with.empty())
     throw OrchError("--fork-at: a checkpoint for variants: give them with --fork-with FILE --fork-out DIR");
+  if (!o.fork_params.empty() && o.fork_with.empty())
+    throw OrchError("--fork-param: the parameters of a variant: give the variants with --fork-with FILE --fork-out DIR");
   if (!o.fork_with.empty()) return run_forked(o, req, backend, sumo_options);
   const auto sumo = make_sumo_simulator(backend, sumo_options);
   std::optional<PacedSimulator> paced;

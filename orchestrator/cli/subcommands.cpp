@@ -95,9 +95,13 @@ Handler setup_run(CLI::App& cmd) {
   r->add_option("--fork-out", run->fork_out, "Output folder of the --fork-with variant in the same place")
       ->allow_extra_args(false);
   r->add_option("--fork-at", run->fork_at,
-                "With --fork-with: every variant continues in a process of its own from this SUMO time (s) on; "
-                "variants that part earlier still part where they part, with a warning in fork.json")
-      ->check(CLI::Range(0.0, 1e7));
+                "With --fork-with: every variant continues in a process of its own from this SUMO time (s) on, or "
+                "from the step an event happens (scene:N entered, a storyboard element of that name started); "
+                "variants that part earlier still part where they part, with a warning in fork.json");
+  r->add_option("--fork-param", run->fork_params,
+                "K:NAME=VALUE: the K-th --fork-with variant (1-based) runs with --param NAME=VALUE instead of the "
+                "first run's value (OpenSCENARIO; repeatable)")
+      ->allow_extra_args(false);
   add_common(r, run->common);
   return [run, r] {
     for (const char* name : {"--step", "--seed", "--max-time", "--traffic", "--backend", "--ego-model", "--reference-run"})

@@ -42,8 +42,8 @@ struct Sharing {
 
 class Group {
  public:
-  Group(const std::vector<RunRequest>& requests, Simulator& sim, std::optional<double> fork_at_s)
-      : reqs_(requests), sim_(sim), fork_at_s_(fork_at_s) {
+  Group(const std::vector<RunRequest>& requests, Simulator& sim, std::optional<ForkCheckpoint> fork_at)
+      : reqs_(requests), sim_(sim), fork_at_(std::move(fork_at)) {
     for (const auto& r : requests) runs_.push_back(std::make_unique<RunSession>(r, sim));
     sharing_.resize(requests.size());
   }
@@ -89,11 +89,20 @@ class Group {
     }
   }
 
-  // --fork-at: at the first step at or after the requested time, one process per variant.
+  // --fork-at: at the first step at or after the requested time, or at the first step after
+  // which a run of the class has had the requested event (its commands for the next step
+  // given), one process per variant.
   std::vector<std::size_t> checkpoint(const std::vector<std::size_t>& live, double time, long long steps) {
-    if (!fork_at_s_ || checkpoint_done_ || time < *fork_at_s_ - 1e-9) return live;
-    checkpoint_done_ = true;
+    if (!fork_at_ || checkpoint_s_ || before_checkpoint(live, time)) return live;
+    checkpoint_s_ = time;
     return split(live, [](std::size_t i) { return std::to_string(i); }, time, steps);
+  }
+
+  // The class has not come to the requested checkpoint yet (and it was requested).
+  bool before_checkpoint(const std::vector<std::size_t>& live, double time) const {
+    if (!fork_at_ || checkpoint_s_) return false;
+    if (fork_at_->time_s) return time < *fork_at_->time_s - 1e-9;
+    return std::none_of(live.begin(), live.end(), [&](std::size_t i) { return runs_[i] && runs_[i]->reached(fork_at_->event); });
   }
 
   // Applies the class's commands, advances SUMO one step and reads it (every run of the
@@ -132,15 +141,16 @@ class Group {
       if (!found) leaders.push_back(i);
       leader_of[i] = found.value_or(i);
     }
-    if (leaders.size() > 1 && fork_at_s_ && time < *fork_at_s_ - 1e-9)
+    if (leaders.size() > 1 && before_checkpoint(live, time))
       for (auto i : live)
         if (sharing_[i].warning.empty())
           sharing_[i].warning = fmt::format(
-              "--fork-at {:g} s: its commands differed from those of {} at t = {:g} s, before the requested time (the "
+              "--fork-at {}: its commands differed from those of {} at t = {:g} s, before the requested {} (the "
               "parameters act earlier): the variants parted there, so that its outputs stay exactly those of its run "
               "from t = 0",
-              *fork_at_s_, reqs_[leaders.front() == leader_of[i] ? leaders[1] : leaders.front()].out_dir.string(),
-              time);
+              fork_at_->time_s ? fork_at_->text() + " s" : fork_at_->event,
+              reqs_[leaders.front() == leader_of[i] ? leaders[1] : leaders.front()].out_dir.string(), time,
+              fork_at_->time_s ? "time" : "event");
     return split(live, [&](std::size_t i) { return std::to_string(leader_of[i]); }, time, steps);
   }
 
@@ -220,7 +230,13 @@ class Group {
     j["simulated_s"] = sim_time;
     j["saved_s"] = s.own_from_s;
     j["process"] = static_cast<long long>(::getpid());
-    if (fork_at_s_) j["fork_at_s"] = *fork_at_s_;
+    if (fork_at_ && fork_at_->time_s) j["fork_at_s"] = *fork_at_->time_s;
+    if (fork_at_ && !fork_at_->time_s) j["fork_at_event"] = fork_at_->event;
+    // Where this run's process took the checkpoint (null: its runs ended before it).
+    if (fork_at_) j["checkpoint_s"] = checkpoint_s_ ? nlohmann::ordered_json(*checkpoint_s_) : nlohmann::ordered_json(nullptr);
+    if (s.warning.empty() && fork_at_ && !fork_at_->time_s && !checkpoint_s_)
+      j["warning"] = fmt::format("--fork-at {}: the event did not happen in the runs of its process before it ended: "
+                                 "no checkpoint (its outputs are those of its run from t = 0)", fork_at_->event);
     if (!s.warning.empty()) j["warning"] = s.warning;
     write_file_atomically(reqs_[i].out_dir / "fork.json", j.dump(2) + "\n");
   }
@@ -245,8 +261,8 @@ class Group {
   std::map<std::size_t, RunResult> results_;
   sim::WorldSnapshot snapshot_;
   bool child_ = false;
-  std::optional<double> fork_at_s_;
-  bool checkpoint_done_ = false;
+  std::optional<ForkCheckpoint> fork_at_;
+  std::optional<double> checkpoint_s_;  // SUMO time at which this process took the checkpoint
 
  public:
   [[nodiscard]] const std::map<std::size_t, RunResult>& results() const { return results_; }
@@ -292,8 +308,8 @@ void write_unforked(const RunRequest& request, const std::string& why) {
 }
 
 std::vector<RunResult> run_fork_group(const std::vector<RunRequest>& requests, Simulator& simulator,
-                                      std::optional<double> fork_at_s) {
-  Group group(requests, simulator, fork_at_s);
+                                      const std::optional<ForkCheckpoint>& fork_at) {
+  Group group(requests, simulator, fork_at);
   group.run();
   std::vector<RunResult> out(requests.size());
   for (std::size_t i = 0; i < requests.size(); ++i) {

@@ -23,6 +23,7 @@
 #include <string>
 #include <vector>
 
+#include "core/fork_checkpoint.hpp"
 #include "run/run_result.hpp"
 #include "run/runner.hpp"
 #include "run/simulator.hpp"
@@ -36,13 +37,16 @@ std::string fork_refusal(const std::vector<RunRequest>& requests, const std::str
 // Runs every request, sharing `simulator` (libsumo) as described above, and returns once
 // every run has finished (the forked processes too, one at a time: a group uses one core).
 // Returns the results of the runs in their order as their result.json says them.
-// `fork_at_s` (--fork-at): a checkpoint requested by the user: at the first step at or after
-// that SUMO time every variant continues in a process of its own, even variants whose
-// commands are still the same. Exactness comes first: variants whose commands part before it
-// still part where they part (nothing can make them share a world they do not share), and
-// their fork.json says so in `warning`.
+// `fork_at` (--fork-at): a checkpoint requested by the user: at the first step at or after
+// that SUMO time, or at the first step after which a variant (of the ones still sharing) has
+// had the event (a scene entered, a storyboard element started: the commands that follow
+// from it given, not yet simulated), every variant continues in a process of its own, even
+// variants whose commands are still the same. Exactness comes first: variants whose commands
+// part before it still part where they part (nothing can make them share a world they do
+// not share), and their fork.json says so in `warning`. The event is checked against the
+// scenario beforehand (run/fork_checkpoint.hpp), not here.
 std::vector<RunResult> run_fork_group(const std::vector<RunRequest>& requests, Simulator& simulator,
-                                      std::optional<double> fork_at_s = std::nullopt);
+                                      const std::optional<ForkCheckpoint>& fork_at = std::nullopt);
 
 // fork.json of a run that was to share and ran from t = 0 instead, and why.
 void write_unforked(const RunRequest& request, const std::string& why);

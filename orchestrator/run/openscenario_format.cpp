@@ -179,6 +179,11 @@ class OpenScenarioFormat : public RunFormat {
     watch_ego(&snap);
     return commands;
   }
+  [[nodiscard]] bool reached(const std::string& event) const override {
+    if (!runtime_) return false;
+    const auto& l = runtime_->log();
+    return std::any_of(l.begin(), l.end(), [&](const auto& e) { return e.name == event && e.transition == "startTransition"; });
+  }
   void conclude(RunResult& result, RunLog& log) override {
     if (runtime_->finished()) {
       result.verdict = Verdict::Success;

@@ -72,6 +72,9 @@ class RunFormat {
   [[nodiscard]] virtual std::string max_time_reason(double max_time) const = 0;
   // The commands for the next step (the reference driver's are added by the loop).
   virtual std::vector<sim::Command> commands(const sim::WorldSnapshot& snapshot, RunLog& log) = 0;
+  // --fork-at EVENT (run/fork_checkpoint.hpp): whether the event has happened by now, as of
+  // the commands just given: "scene:N" entered, a storyboard element of that name started.
+  [[nodiscard]] virtual bool reached(const std::string& /*event*/) const { return false; }
   // The step loop has ended without an error: the verdict of the language's own end.
   virtual void conclude(RunResult& result, RunLog& log) = 0;
 

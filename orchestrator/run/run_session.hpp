@@ -44,6 +44,8 @@ class RunSession {
   void add_plugin_time(double seconds) { result_.timing.plugin_s += seconds; }
   [[nodiscard]] const std::vector<sim::TrackedActor>& tracked() const { return format_->tracked(); }
   [[nodiscard]] bool done() const { return done_; }
+  // --fork-at EVENT: the run's scenario has had the event (RunFormat::reached).
+  [[nodiscard]] bool reached(const std::string& event) const { return format_->reached(event); }
   [[nodiscard]] const RunRequest& request() const { return req_; }
   [[nodiscard]] RunLog& log() { return *log_; }
   // Whatever ended the run: its result fields, the observers' files, result.json. Closes the

@@ -178,6 +178,12 @@ class ScenarioExecutorFormat : public RunFormat {
   std::vector<sim::Command> commands(const sim::WorldSnapshot& /*snap*/, RunLog& /*log*/) override {
     return std::move(out_.commands);
   }
+  [[nodiscard]] bool reached(const std::string& event) const override {
+    if (!engine_ || event.rfind("scene:", 0) != 0) return false;
+    for (const auto& v : engine_->visits())
+      if (event == fmt::format("scene:{}", v.id)) return true;
+    return false;
+  }
   void conclude(RunResult& result, RunLog& /*log*/) override {
     switch (engine_->state()) {
       case engine::RunState::EndingReached:

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Forking (docs/forking.md) on the nightly examples: the same batch of every logical scenario
-# in scenarios/nightly/ (COUNT sets each, default 20) with --no-fork (every run from t = 0) and
+# in scenarios/nightly/ (COUNT sets each, default 20) and of every OpenSCENARIO variation in
+# scenarios/openscenario/nightly/ (all its runs) with --no-fork (every run from t = 0) and
 # with --fork (one seed per logical scenario, the common prefix run once); the simulated
 # seconds SUMO stepped and the wall time of each, and their ratios. The figures per logical
 # scenario show where sharing pays (parameters that act late) and where it cannot (parameters
@@ -24,7 +25,11 @@ done
 for logical in "$work"/logical_*.json; do
   "$bin" sample "$logical" --count "$count" --seed 1 >/dev/null
 done
-logicals=("$work"/logical_*${ONLY:-}*[0-9a-f].json)  # ONLY=UUID: one logical scenario
+logicals=("$work"/logical_*${ONLY:-}*[0-9a-f].json)  # ONLY=UUID: one logical scenario (or variation)
+for v in "$root"/scenarios/openscenario/nightly/*${ONLY:-}*_variation.xosc; do
+  [ -e "$v" ] && logicals+=("$v")
+done
+[ -e "${logicals[0]}" ] || logicals=("${logicals[@]:1}")
 
 echo "machine: $(nproc) cores, load average before: $(cut -d' ' -f1-3 /proc/loadavg)"
 for mode in no-fork fork; do

@@ -4,91 +4,20 @@
 // so and runs every set from t = 0).
 #include <gtest/gtest.h>
 
-#include <regex>
-#include <sstream>
-
+#include "e2e/fork_compare.hpp"
 #include "e2e/test_batch_support.hpp"
 
 using namespace orch::test;
+using orch::test::forking::rerun_alone;
 namespace fs = std::filesystem;
 
 namespace {
-
-// Files that say how the run was made, not what happened in it.
-bool compared(const std::string& name) {
-  return name != "fork.json" && name != "sumo.log" && name != "child.log" && name.rfind("attempt", 0) != 0 &&
-         name != "scenario.json";
-}
-
-std::string normalised(const fs::path& file) {
-  const std::string name = file.filename().string();
-  if (name == "result.json") {
-    auto j = read_json(file);
-    j.erase("wall_time_s");
-    j.erase("timing");
-    return j.dump();
-  }
-  const std::string text = slurp(file);
-  const std::regex wall(", [0-9.]+ s wall\\)");
-  if (name == "run.log") return std::regex_replace(text, wall, ")");
-  if (name == "report.html") {  // it embeds result.json and run.log
-    const std::regex timing(R"("(wall_time_s":[-0-9.eE+]+|timing":\{[^{}]*(\{[^{}]*\}[^{}]*)*\}),?)");
-    return std::regex_replace(std::regex_replace(text, timing, ""), std::regex(", [0-9.]+ s wall\\)"), ")");
-  }
-  return text;
-}
-
-// Every compared file of `a` and `b`, byte for byte after normalising; returns the differences.
-std::vector<std::string> differences(const fs::path& a, const fs::path& b) {
-  std::vector<std::string> out;
-  std::set<std::string> names;
-  for (const auto& d : {a, b})
-    for (const auto& e : fs::directory_iterator(d))
-      if (compared(e.path().filename().string())) names.insert(e.path().filename().string());
-  for (const auto& n : names) {
-    if (!fs::exists(a / n) || !fs::exists(b / n)) {
-      out.push_back(n + " only in one");
-      continue;
-    }
-    if (normalised(a / n) != normalised(b / n)) out.push_back(n);
-  }
-  return out;
-}
 
 const std::vector<std::string> kNightly{"344b1b1a-8831-46a0-a4e1-e7104d3ce4b5", "4aae47a9-c775-4dd8-9373-02c03b91dd6b",
                                         "9202dd94-2666-4583-a45c-f8396b848ae9", "8fcbbaab-a3d0-472b-b3d5-1046910ecff3"};
 const std::string kLateBrake = "8fcbbaab-a3d0-472b-b3d5-1046910ecff3";
 
 class BatchFork : public ::testing::TestWithParam<std::string> {};
-
-// Runs the run of `trace` (an execution trace of the batch in `out`) again alone from t = 0,
-// into its own folder (paths in the outputs stay the same), the forked outputs kept aside in
-// `forked`, and returns the files that differ.
-std::vector<std::string> rerun_alone(const fs::path& out, const nlohmann::json& trace, const fs::path& forked) {
-  std::vector<std::string> command;  // the child's command line, as one string
-  std::istringstream words(trace["trace"]["implementation"]["command"].get<std::string>());
-  for (std::string w; words >> w;) command.push_back(w);
-  const fs::path run_dir = out / trace["outputs"]["run_dir"].get<std::string>();
-  fs::copy(run_dir, forked);
-  for (const auto& f : fs::directory_iterator(run_dir))
-    if (f.path().filename() != "scenario.json") fs::remove_all(f.path());
-  std::vector<std::string> alone;
-  for (std::size_t i = 1; i < command.size(); ++i) {
-    const std::string& a = command[i];
-    if (a == "--fork-with" || a == "--fork-out" || a == "--fork-at") {
-      ++i;
-      continue;
-    }
-    alone.push_back(a);
-  }
-  // The group's command names its first run: this run's file and folder instead.
-  alone[1] = (run_dir / "scenario.json").string();
-  alone[3] = run_dir.string();
-  const auto r = run_cli(alone);
-  EXPECT_LE(r.exit_code, 1) << r.output;
-  EXPECT_TRUE(fs::exists(forked / "trace.csv")) << forked;
-  return differences(run_dir, forked);
-}
 
 }  // namespace
 

@@ -1,5 +1,5 @@
 // Which runs of a batch share their prefix (batch/fork_groups.hpp): same logical scenario,
-// seed and settings; never an OpenSCENARIO variation's; halved while cores would idle.
+// seed and settings (an OpenSCENARIO variation's too); halved while cores would idle.
 #include <gtest/gtest.h>
 
 #include "batch/fork_groups.hpp"
@@ -39,11 +39,19 @@ TEST(ForkGroups, RunsShareOnlyWithTheirLogicalSeedAndSettings) {
   EXPECT_EQ(fork_groups(plan, {1, 4}, true, 1), (Groups{{1}, {4}}));  // only the pending runs
 }
 
-TEST(ForkGroups, DisabledOrAVariationRunsEveryRunAlone) {
+TEST(ForkGroups, DisabledRunsEveryRunAlone) {
   BatchPlan plan = plan_of({{0, 1}, {0, 1}, {1, 1}, {1, 1}});
   EXPECT_EQ(fork_groups(plan, all(plan), false, 1), (Groups{{0}, {1}, {2}, {3}}));
+}
+
+// A variation's sets differ in --param values of one file: they share like a template's.
+TEST(ForkGroups, AVariationsSetsShareLikeATemplates) {
+  BatchPlan plan = plan_of({{0, 1}, {0, 1}, {1, 3}, {1, 4}, {1, 3}});
   plan.logicals[1].variation = std::make_shared<VariationLogical>();
-  EXPECT_EQ(fork_groups(plan, all(plan), true, 1), (Groups{{0, 1}, {2}, {3}}));
+  EXPECT_EQ(fork_groups(plan, all(plan), true, 1), (Groups{{0, 1}, {2, 4}, {3}}));
+  use_one_seed_per_logical(plan);  // batch --fork: the variation's first seed for all its sets
+  EXPECT_EQ(plan.runs[3].set.seed, 3);
+  EXPECT_EQ(fork_groups(plan, all(plan), true, 1), (Groups{{0, 1}, {2, 3, 4}}));
 }
 
 TEST(ForkGroups, OneSeedPerLogicalScenarioMakesThemShare) {
