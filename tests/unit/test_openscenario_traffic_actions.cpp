@@ -28,6 +28,21 @@ std::string stop_event(const std::string& name, double at) {
          std::to_string(at) + R"(" rule="greaterOrEqual"/></ByValueCondition></Condition></ConditionGroup></StartTrigger></Event>)";
 }
 
+// An event no test reaches (a Maneuver needs one).
+const std::string kLaterEvent = R"(<Event name="Later" priority="parallel"><Action name="LaterAction"><PrivateAction>
+<LongitudinalAction><SpeedAction><SpeedActionDynamics dynamicsShape="step" dynamicsDimension="time" value="0"/>
+<SpeedActionTarget><AbsoluteTargetSpeed value="5"/></SpeedActionTarget></SpeedAction></LongitudinalAction></PrivateAction></Action>
+<StartTrigger><ConditionGroup><Condition name="c" delay="0" conditionEdge="none"><ByValueCondition>
+<SimulationTimeCondition value="1000" rule="greaterOrEqual"/></ByValueCondition></Condition></ConditionGroup></StartTrigger></Event>)";
+
+// The first Init action of type T (nullptr: none).
+template <class T>
+const T* init_action(const Scenario& s) {
+  for (const InitAction& a : s.storyboard.init)
+    if (const auto* found = std::get_if<T>(&a.action)) return found;
+  return nullptr;
+}
+
 class TrafficActions : public ::testing::Test {
  protected:
   // A on road 0 (test::kStraightTwoLaneRoad) at s = 1000, lane -1, 10 m/s; `global` in Init's
@@ -41,7 +56,7 @@ class TrafficActions : public ::testing::Test {
            test::place("A", 1000, -1, 10) + R"(</Actions></Init>
 <Story name="S"><Act name="Act"><ManeuverGroup name="G" maximumExecutionCount="1">
 <Actors selectTriggeringEntities="false"><EntityRef entityRef="A"/></Actors><Maneuver name="M">)" +
-           events + R"(</Maneuver></ManeuverGroup></Act></Story>
+           (events.empty() ? kLaterEvent : events) + R"(</Maneuver></ManeuverGroup></Act></Story>
 <StopTrigger><ConditionGroup><Condition name="end" delay="0" conditionEdge="none"><ByValueCondition>
 <SimulationTimeCondition value="100" rule="greaterOrEqual"/></ByValueCondition></Condition></ConditionGroup></StopTrigger>
 </Storyboard></OpenSCENARIO>)";
@@ -63,7 +78,7 @@ class TrafficActions : public ::testing::Test {
 
 TEST_F(TrafficActions, ASwarmIsReadWithItsCentreAndShape) {
   const Scenario s = load(kSwarm);
-  const auto* swarm = std::get_if<TrafficSwarmAction>(&s.storyboard.init.front().action);
+  const auto* swarm = init_action<TrafficSwarmAction>(s);
   ASSERT_NE(swarm, nullptr);
   EXPECT_EQ(swarm->name, "Crowd");
   EXPECT_EQ(swarm->entity, "A");
@@ -83,14 +98,14 @@ TEST_F(TrafficActions, SourcesAndSinksAreReadWithTheirDefinition) {
 </TrafficDefinition><InitialSpeedRange lowerLimit="15" upperLimit="25"/></TrafficSourceAction></TrafficAction></GlobalAction>
 <GlobalAction><TrafficAction><TrafficSinkAction radius="20"><Position><LanePosition roadId="0" laneId="-2" s="900" offset="0"/></Position>
 </TrafficSinkAction></TrafficAction>)");
-  const auto* source = std::get_if<TrafficSourceAction>(&s.storyboard.init[0].action);
+  const auto* source = init_action<TrafficSourceAction>(s);
   ASSERT_NE(source, nullptr);
   EXPECT_EQ(source->rate, 0.5);
   ASSERT_EQ(source->categories.size(), 2u);
   EXPECT_EQ(source->categories[1].category, "truck");
   ASSERT_TRUE(source->speed_range);
   EXPECT_EQ(source->speed_range->second, 25.0);
-  const auto* sink = std::get_if<TrafficSinkAction>(&s.storyboard.init[1].action);
+  const auto* sink = init_action<TrafficSinkAction>(s);
   ASSERT_NE(sink, nullptr);
   EXPECT_EQ(sink->name, "");
   EXPECT_FALSE(sink->rate);  // every vehicle in the radius at once
