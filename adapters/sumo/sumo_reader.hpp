@@ -123,8 +123,10 @@ class WorldReader {
     running_ += static_cast<long long>(departed.size()) - static_cast<long long>(arrived.size());
 #endif
     colliding_ = integer(simulation, tc::VAR_COLLIDING_VEHICLES_NUMBER);
-    for (const auto& id : departed)
+    for (const auto& id : departed) {
       if (actor_kind_.count(id)) follow(id, false);
+      else if (traffic_.count(id)) follow_traffic(id);
+    }
 #ifndef LIBTRACI
     // A followed vehicle that left SUMO reads as absent, as its emptied subscription did.
     for (const auto& id : arrived)
@@ -149,8 +151,17 @@ class WorldReader {
     if (actor.kind == ActorKind::Pedestrian) pending_persons_.push_back(actor.sumo_id);
   }
 
+  // A traffic vehicle SUMO is about to insert (SpawnVehicle::traffic): read into
+  // WorldSnapshot::traffic once it departs, until it leaves.
+  void expect_traffic(const std::string& id, double length, double width) { traffic_[id] = {length, width, false}; }
+
   // A scenario actor about to be removed from SUMO: no longer followed, subscriptions ended.
   void forget(const std::string& id) {
+    if (const auto t = traffic_.find(id); t != traffic_.end()) {
+      if (t->second.followed) sumo::Vehicle::unsubscribe(id);
+      traffic_.erase(t);
+      return;
+    }
     const auto it = followed_.find(id);
     if (it != followed_.end()) {
       if (it->second) sumo::Person::unsubscribe(id);
@@ -177,6 +188,7 @@ class WorldReader {
     }
     snap.long_waiting = long_waiting_;
     read_nearby(actors, snap);
+    read_traffic(snap);
     if (colliding_ > 0)
       for (const auto& c : sumo::Simulation::getCollisions())
         snap.collisions.push_back({c.collider, c.victim, c.type, c.lane, c.pos});
@@ -308,6 +320,36 @@ class WorldReader {
     return s;
   }
 
+  // A traffic vehicle that departed: its pose each step (a few variables; as many vehicles
+  // as the scenario's traffic actions keep, tens, not the whole background).
+  void follow_traffic(const std::string& id) {
+    sumo::Vehicle::subscribe(id, {tc::VAR_POSITION, tc::VAR_ANGLE, tc::VAR_SPEED});
+    traffic_[id].followed = true;
+  }
+
+  void read_traffic(sim::WorldSnapshot& snap) {
+    for (auto it = traffic_.begin(); it != traffic_.end();) {
+      if (!it->second.followed) {
+        ++it;
+        continue;
+      }
+      const sumo::TraCIResults r = sumo::Vehicle::getSubscriptionResults(it->first);
+      if (r.empty()) {  // it left SUMO (its route ended)
+        it = traffic_.erase(it);
+        continue;
+      }
+      sim::NearbyVehicle v;
+      v.sumo_id = it->first;
+      v.heading = from_sumo_angle(number(r, tc::VAR_ANGLE));
+      v.length = it->second.length;
+      v.width = it->second.width;
+      v.position = centre_of(position(r), v.heading, v.length);
+      v.speed = number(r, tc::VAR_SPEED);
+      snap.traffic.push_back(std::move(v));
+      ++it;
+    }
+  }
+
   // Background vehicles around any actor, once each, in id order (the same bytes on every
   // backend).
   void read_nearby(const std::vector<sim::TrackedActor>& actors, sim::WorldSnapshot& snap) {
@@ -368,6 +410,11 @@ class WorldReader {
 #endif
   static constexpr long long kSizeSweepEvery = 2000;  // reads
 
+  struct Traffic {
+    double length = 0, width = 0;
+    bool followed = false;  // departed and subscribed
+  };
+  std::map<std::string, Traffic> traffic_;                 // traffic vehicles by SUMO id (id order)
   std::unordered_map<std::string, ActorKind> actor_kind_;  // scenario actors by SUMO id
   std::unordered_map<std::string, bool> followed_;         // subscribed actors: true = person
   std::unordered_set<std::string> off_road_;               // actors moved off every lane (no road asked)

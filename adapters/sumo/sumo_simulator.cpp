@@ -279,7 +279,8 @@ class SumoSimulator final : public Simulator {
   }
 
   void execute(const sim::SpawnVehicle& c) {
-    reader_.expect(c.actor);
+    if (c.traffic) reader_.expect_traffic(c.actor.sumo_id, c.model.length, c.model.width);
+    else reader_.expect(c.actor);
     guard("inserting a vehicle", [&] {
       const std::string type = make_type("DEFAULT_VEHTYPE", c.actor.sumo_id, c.model, c.color);
       sumo::VehicleType::setVehicleClass(type, c.model.vclass);
@@ -314,8 +315,9 @@ class SumoSimulator final : public Simulator {
         sumo::Vehicle::setSpeedMode(c.actor.sumo_id, 0);
         sumo::Vehicle::setLaneChangeMode(c.actor.sumo_id, 0);
       } else {
-        // The built-in ego keeps the lane of its route and drives at the route's speed.
-        sumo::Vehicle::setLaneChangeMode(c.actor.sumo_id, 0);
+        // The built-in ego keeps the lane of its route and drives at the route's speed;
+        // traffic changes lanes as SUMO's background does.
+        if (!c.traffic) sumo::Vehicle::setLaneChangeMode(c.actor.sumo_id, 0);
         // SUMO checks the departure speed against the vehicle's maximum speed again when it
         // inserts it (the next step): a desired speed below the departure speed waits for that.
         if (c.max_speed > 0 && c.max_speed < depart_speed) pending_max_speed_[c.actor.sumo_id] = c.max_speed;

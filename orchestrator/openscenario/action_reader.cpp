@@ -316,6 +316,10 @@ const std::vector<ActionEntry> kGlobalActions = {
      [](Element&, Element& e, Context& c) -> PrivateAction { return read_traffic_signal_action(e, c); }},
     {"VariableAction", "SetAction",
      [](Element& w, Element& e, Context& c) -> PrivateAction { return read_variable_set(w, e, c); }},
+    {"TrafficAction", "TrafficSwarmAction", read_traffic_action},
+    {"TrafficAction", "TrafficSourceAction", read_traffic_action},
+    {"TrafficAction", "TrafficSinkAction", read_traffic_action},
+    {"TrafficAction", "TrafficStopAction", read_traffic_action},
     {"VariableAction", "ModifyAction",
      [](Element& w, Element& e, Context& c) -> PrivateAction { return read_variable_modify(w, e, c); }},
 };

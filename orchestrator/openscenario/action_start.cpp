@@ -211,6 +211,7 @@ PathMotion trajectory_path(const FollowTrajectoryAction& a, ActionContext& ctx, 
       }
     }
   }
+  if (a.trajectory.closed) close_path(points);
   try {
     PathMotion path = make_path(std::move(points), a.timing.has_value());
     path.distance = std::min(a.initial_distance_offset, path.length());
@@ -406,6 +407,12 @@ std::vector<std::string> start_action(const PrivateAction& action, const std::st
           ctx.signals->set_state(a.signal, a.state);
         } else if constexpr (std::is_same_v<T, TrafficSignalControllerAction>) {
           ctx.signals->set_phase(a.controller, a.phase, ctx.t);
+        } else if constexpr (std::is_same_v<T, TrafficSwarmAction>) {
+          ctx.traffic->start(Traffic{0, a.name, a, std::nullopt, 0, std::nullopt}, ctx.t);
+        } else if constexpr (std::is_same_v<T, TrafficSourceAction> || std::is_same_v<T, TrafficSinkAction>) {
+          ctx.traffic->start(Traffic{0, a.name, a, ctx.resolver.resolve(a.position, poses(ctx)), 0, std::nullopt}, ctx.t);
+        } else if constexpr (std::is_same_v<T, TrafficStopAction>) {
+          ctx.traffic->stop(a.name, ctx.t);  // none running yet (its action not started): nothing to stop
         } else if constexpr (std::is_same_v<T, AppearanceAction> || std::is_same_v<T, EnvironmentAction>) {
           // No effect on motion: SUMO has no lights or weather here (model.hpp).
         } else {

@@ -11,6 +11,7 @@
 #include "openscenario/speed_profile_motion.hpp"
 #include "openscenario/synchronize.hpp"
 #include "openscenario/trailer_motion.hpp"
+#include "openscenario/traffic_book.hpp"
 #include "openscenario/traffic_signals.hpp"
 
 namespace orch::openscenario {
@@ -32,6 +33,7 @@ struct ActionContext {
   double t;
   double dt = 0;  // the step that led to t (0 at the start)
   TrafficSignals* signals = nullptr;  // the signals' states and controllers' phases
+  TrafficBook* traffic = nullptr;     // the traffic TrafficActions started (traffic_book.hpp)
 };
 
 // Route: an AcquirePositionAction waiting for its entity to reach the position.

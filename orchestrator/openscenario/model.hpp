@@ -6,6 +6,7 @@
 #include <optional>
 #include <string>
 #include <type_traits>
+#include <utility>
 #include <variant>
 #include <vector>
 
@@ -265,6 +266,41 @@ struct LateralDistanceAction {
   std::string displacement = "any";  // any, leftToReferencedEntity, rightToReferencedEntity
   std::optional<double> max_acceleration, max_deceleration, max_speed;
 };
+// Traffic actions (GlobalAction/TrafficAction): vehicles SUMO's driver drives, spawned and
+// removed around an entity or a position (openscenario/traffic_book.hpp keeps which run; on
+// SUMO run/openscenario_traffic.hpp). `name` is the TrafficAction's trafficName ("" when the
+// file gives none: no TrafficStopAction can name it). Categories: the TrafficDefinition's
+// VehicleCategoryDistribution (empty: cars).
+struct TrafficCategoryShare {
+  std::string category;  // car, van, truck, bus, motorbike, bicycle, ...
+  double weight = 1;
+};
+struct TrafficSwarmAction {
+  std::string name;
+  std::string entity;  // CentralObject: the swarm's centre
+  double inner_radius = 0, semi_major = 0, semi_minor = 0;
+  double offset = 0;  // the ellipse's centre, ahead of the central entity along its heading
+  int vehicles = 0;   // numberOfVehicles: at most this many at a time
+  std::optional<double> speed;                               // velocity (deprecated in 1.2)
+  std::optional<std::pair<double, double>> speed_range;      // InitialSpeedRange (1.2)
+  std::optional<std::pair<double, double>> direction_weights;  // DirectionOfTravelDistribution: same, opposite
+  std::vector<TrafficCategoryShare> categories;
+};
+struct TrafficSourceAction {
+  std::string name;
+  Position position;
+  double radius = 0, rate = 0;  // m; vehicles per second
+  std::optional<double> speed;  // velocity (deprecated in 1.2)
+  std::optional<std::pair<double, double>> speed_range;
+  std::vector<TrafficCategoryShare> categories;
+};
+struct TrafficSinkAction {
+  std::string name;
+  Position position;
+  double radius = 0;
+  std::optional<double> rate;  // vehicles per second; absent: every vehicle in the radius at once
+};
+struct TrafficStopAction { std::string name; };  // ends the traffic of that trafficName
 struct ConnectTrailerAction { std::string entity; };  // the trailer (checked like every `entity`)
 struct DisconnectTrailerAction {};
 using PrivateAction = std::variant<TeleportAction, SpeedAction, SpeedProfileAction, LaneChangeAction, LaneOffsetAction,
@@ -273,7 +309,8 @@ using PrivateAction = std::variant<TeleportAction, SpeedAction, SpeedProfileActi
                                    AddEntityAction, DeleteEntityAction, ParameterSetAction, ParameterModifyAction,
                                    VariableSetAction, VariableModifyAction, ConnectTrailerAction,
                                    DisconnectTrailerAction, AppearanceAction, EnvironmentAction, SynchronizeAction,
-                                   TrafficSignalStateAction, TrafficSignalControllerAction, LateralDistanceAction>;
+                                   TrafficSignalStateAction, TrafficSignalControllerAction, LateralDistanceAction,
+                                   TrafficSwarmAction, TrafficSourceAction, TrafficSinkAction, TrafficStopAction>;
 // Which alternatives are global actions (they take no actors).
 template <class T>
 inline constexpr bool kIsGlobalAction =
@@ -281,7 +318,8 @@ inline constexpr bool kIsGlobalAction =
     std::is_same_v<T, ParameterSetAction> || std::is_same_v<T, ParameterModifyAction> ||
     std::is_same_v<T, VariableSetAction> || std::is_same_v<T, VariableModifyAction> ||
     std::is_same_v<T, EnvironmentAction> || std::is_same_v<T, TrafficSignalStateAction> ||
-    std::is_same_v<T, TrafficSignalControllerAction>;
+    std::is_same_v<T, TrafficSignalControllerAction> || std::is_same_v<T, TrafficSwarmAction> ||
+    std::is_same_v<T, TrafficSourceAction> || std::is_same_v<T, TrafficSinkAction> || std::is_same_v<T, TrafficStopAction>;
 
 // ---- Conditions and triggers --------------------------------------------------------
 enum class Rule { EqualTo, GreaterThan, LessThan, GreaterOrEqual, LessOrEqual, NotEqualTo };

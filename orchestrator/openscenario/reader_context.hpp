@@ -33,6 +33,10 @@ class Context {
   // the error, the missing directory only a warning).
   std::map<std::string, std::string> missing_catalog_directories;
   Diagnostics warnings;
+  // TrafficActions: the trafficNames they define, and each TrafficStopAction's name with its
+  // TrafficAction (checked against them once the storyboard is read).
+  std::vector<std::string> traffic_names;
+  std::vector<std::pair<std::string, Element>> traffic_stops;
 
   // The catalog entry a CatalogReference names, as an Element whose scope holds the
   // entry's parameters with the reference's assignments. `kind` is the element expected
@@ -104,6 +108,10 @@ PrivateAction read_traffic_signal_action(Element& traffic_signal_action, const C
 TrafficSignalCondition read_traffic_signal_condition(Element& e);
 TrafficSignalControllerCondition read_traffic_signal_controller_condition(Element& e, const Context& context);
 LateralDistanceAction read_lateral_distance(Element& e);
+// GlobalAction/TrafficAction (traffic_action_reader.cpp); check_traffic_stops fails on a
+// TrafficStopAction whose trafficName no TrafficAction of the file defines.
+PrivateAction read_traffic_action(Element& traffic_action, Element& action, Context& context);
+void check_traffic_stops(const Context& context);
 
 // Closed sets shared by several readers.
 Rule read_rule(Element& e);

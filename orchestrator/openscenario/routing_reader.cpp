@@ -140,8 +140,7 @@ NurbsShape read_nurbs(Element& nurbs) {
 Trajectory read_trajectory(Element& e) {
   Trajectory t;
   t.name = e.text("name");
-  t.closed = e.boolean("closed");
-  if (t.closed) e.fail_attribute("closed", "closed trajectories are not supported");
+  t.closed = e.boolean("closed");  // the path returns to its start (close_path, trajectory_motion.hpp)
   e.ignore_children({"ParameterDeclarations"});  // read by Context::resolve or open_scope
   Element holder = e.child("Shape");
   Element shape = holder.one_of({"Polyline", "Clothoid", "ClothoidSpline", "Nurbs"});

@@ -4,6 +4,7 @@
 
 #include "core/errors.hpp"
 #include "opendrive/xodr_reader.hpp"
+#include "openscenario/synchronize_targets.hpp"
 
 namespace orch::openscenario {
 namespace {
@@ -48,10 +49,11 @@ void check_position(const Position& position, const opendrive::RoadNetwork& road
 Diagnostics check_scenario_file(const std::string& path, const LoadOptions& options) {
   Diagnostics diags;
   try {
-    const Scenario scenario = load_scenario(path, options);
+    Scenario scenario = load_scenario(path, options);
     diags.append(scenario.warnings);
     if (scenario.road_file.empty()) return diags;
     const opendrive::RoadNetwork roads = opendrive::read_xodr_file(scenario.road_file);
+    diags.append(truncate_synchronize_targets(scenario, roads));
     std::vector<std::pair<const Position*, Place>> positions;
     for (const InitAction& a : scenario.storyboard.init) collect(a.action, a.place, positions);
     for (const Story& story : scenario.storyboard.stories)

@@ -52,7 +52,7 @@ constexpr std::array kStandardElements = std::to_array<std::string_view>({
     "StoryboardElementStateCondition", "Sun", "SynchronizeAction", "TargetDistanceSteadyState",
     "TargetTimeSteadyState", "TeleportAction", "TimeHeadwayCondition", "TimeOfDay", "TimeOfDayCondition",
     "TimeReference", "TimeToCollisionCondition", "TimeToCollisionConditionTarget", "Timing", "TrafficAction",
-    "TrafficDefinition", "TrafficSignalAction", "TrafficSignalCondition", "TrafficSignalController",
+    "TrafficAreaAction", "TrafficDefinition", "TrafficSignalAction", "TrafficSignalCondition", "TrafficSignalController",
     "TrafficSignalControllerAction", "TrafficSignalControllerCondition", "TrafficSignalState",
     "TrafficSignalStateAction", "TrafficSinkAction", "TrafficSourceAction", "TrafficStopAction",
     "TrafficSwarmAction", "Trajectory", "TrajectoryCatalog", "TrajectoryFollowingMode", "TrajectoryPosition",

@@ -33,7 +33,7 @@ StoryboardRuntime::Impl::Impl(const Scenario& s, const opendrive::RoadNetwork& r
 }
 
 ActionContext StoryboardRuntime::Impl::context() {
-  return ActionContext{scenario, roads, resolver, entities, parameters, variables, trailers, t, last_dt, &signals};
+  return ActionContext{scenario, roads, resolver, entities, parameters, variables, trailers, t, last_dt, &signals, &traffic};
 }
 
 void StoryboardRuntime::Impl::transition(const std::string& type, const std::string& key,
@@ -280,6 +280,7 @@ const std::map<std::string, Parameter>& StoryboardRuntime::parameters() const { 
 const std::map<std::string, Parameter>& StoryboardRuntime::variables() const { return impl_->variables; }
 const std::map<std::string, std::string>& StoryboardRuntime::trailers() const { return impl_->trailers; }
 const std::map<std::string, std::string>& StoryboardRuntime::signal_states() const { return impl_->signals.states(); }
+const TrafficBook& StoryboardRuntime::traffic() const { return impl_->traffic; }
 std::string StoryboardRuntime::signal_phase(const std::string& controller) const {
   return impl_->signals.phase(controller);
 }

@@ -19,6 +19,7 @@
 #include "opendrive/road_network.hpp"
 #include "openscenario/entity_motion.hpp"
 #include "openscenario/model.hpp"
+#include "openscenario/traffic_book.hpp"
 
 namespace orch::openscenario {
 
@@ -60,6 +61,8 @@ class StoryboardRuntime {
   [[nodiscard]] const std::map<std::string, std::string>& trailers() const;
   // Each traffic signal's state now (OpenDRIVE signal id -> the file's state text).
   [[nodiscard]] const std::map<std::string, std::string>& signal_states() const;
+  // The traffic TrafficActions started (and which a TrafficStopAction stopped).
+  [[nodiscard]] const TrafficBook& traffic() const;
   // A traffic signal controller's phase now ("" before its first).
   [[nodiscard]] std::string signal_phase(const std::string& controller) const;
 

@@ -61,6 +61,7 @@ struct StoryboardRuntime::Impl {
   std::map<std::string, Parameter> variables;   // values as the variable actions set them
   TrailerLinks trailers;                        // tractor -> trailer towed now
   TrafficSignals signals;                       // signal states, controller phases
+  TrafficBook traffic;                          // traffic started by TrafficActions
 
   Impl(const Scenario& s, const opendrive::RoadNetwork& r);
 

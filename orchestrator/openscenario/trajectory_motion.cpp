@@ -49,6 +49,30 @@ std::vector<PathPoint> clothoid_spline_points(const ClothoidSplineShape& spline,
   return points;
 }
 
+void close_path(std::vector<PathPoint>& points) {
+  if (points.size() < 2) return;
+  const PathPoint first = points.front(), last = points.back();
+  const double gap = std::hypot(first.x - last.x, first.y - last.y);
+  if (gap < 1e-3) return;
+  PathPoint closing{first.x, first.y, 0.0, std::nullopt};
+  if (last.due) {
+    double speed = 0;
+    for (std::size_t i = points.size() - 1; i > 0 && speed <= 0; --i) {
+      const PathPoint &a = points[i - 1], &b = points[i];
+      const double length = std::hypot(b.x - a.x, b.y - a.y);
+      if (a.due && b.due && *b.due > *a.due && length > 1e-3) speed = length / (*b.due - *a.due);
+    }
+    if (speed <= 0 && first.due && *last.due > *first.due) {  // the mean speed
+      double length = 0;
+      for (std::size_t i = 1; i < points.size(); ++i)
+        length += std::hypot(points[i].x - points[i - 1].x, points[i].y - points[i - 1].y);
+      speed = length / (*last.due - *first.due);
+    }
+    closing.due = speed > 0 ? *last.due + gap / speed : *last.due;
+  }
+  points.push_back(closing);
+}
+
 PathMotion make_path(std::vector<PathPoint> points, bool timed) {
   PathMotion path;
   path.timed = timed;

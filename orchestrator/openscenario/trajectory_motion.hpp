@@ -58,6 +58,11 @@ std::vector<PathPoint> clothoid_points(const opendrive::Pose2& start, double k0,
 std::vector<PathPoint> clothoid_spline_points(const ClothoidSplineShape& spline,
                                               const std::vector<std::optional<opendrive::Pose2>>& starts,
                                               const opendrive::Pose2& entity);
+// A closed trajectory (Trajectory `closed`, "True if trajectory is closed": the standard says
+// no more) returns to where it began: a straight segment from its last point to its first is
+// added (none when they meet already). Timed: that segment is due at the speed of the path's
+// last timed piece (a piece with length and duration; none: the path's mean speed).
+void close_path(std::vector<PathPoint>& points);
 // Fills in distances; points closer than 1 mm to the one before are dropped.
 PathMotion make_path(std::vector<PathPoint> points, bool timed);
 

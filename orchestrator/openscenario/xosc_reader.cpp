@@ -237,6 +237,7 @@ Scenario load_scenario(const std::string& path, const LoadOptions& options) {
   check_trailers(scenario, trailer_places);
   Element storyboard = root.child("Storyboard");
   scenario.storyboard = reading::read_storyboard(storyboard, scenario, context);
+  reading::check_traffic_stops(context);
   check_controller_refs(scenario);
   root.finish();
   scenario.local_parameters = context.local_parameters;

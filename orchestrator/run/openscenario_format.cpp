@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <optional>
+#include <set>
 
 #include "core/errors.hpp"
 #include "core/files.hpp"
@@ -14,6 +15,7 @@
 #include "opendrive/sumo_signals.hpp"
 #include "opendrive/xodr_reader.hpp"
 #include "openscenario/storyboard_runtime.hpp"
+#include "openscenario/synchronize_targets.hpp"
 #include "openscenario/xosc_reader.hpp"
 #include "run/collision_fact.hpp"
 #include "run/ego_link.hpp"
@@ -21,6 +23,7 @@
 #include "run/openscenario_ego_choice.hpp"
 #include "run/openscenario_observed.hpp"
 #include "run/openscenario_signals.hpp"
+#include "run/openscenario_traffic.hpp"
 #include "run/openscenario_world.hpp"
 #include "run/reference_ego_setup.hpp"
 #include "run/roadless_net.hpp"
@@ -150,6 +153,7 @@ class OpenScenarioFormat : public RunFormat {
   std::vector<sim::Command> start(RunResult& /*result*/, RunLog& log) override {
     auto commands = actors_->place(runtime_->entities());
     add_signal_commands(commands, log);
+    add_traffic_commands(commands, {}, log);
     watch_ego(nullptr);
     return commands;
   }
@@ -176,6 +180,7 @@ class OpenScenarioFormat : public RunFormat {
     runtime_->step(req_.step);
     auto commands = actors_->place(runtime_->entities());
     add_signal_commands(commands, log);
+    add_traffic_commands(commands, snap.traffic, log);
     watch_ego(&snap);
     return commands;
   }
@@ -192,6 +197,9 @@ class OpenScenarioFormat : public RunFormat {
     }
     if (!result.traffic.empty() && result.traffic != "none")
       log.note(fmt::format("{} background vehicles in SUMO at the end", background_));
+    if (traffic_)
+      log.note(fmt::format("TrafficActions: {} vehicles spawned, {} removed (SUMO drives them; not in trace.csv)",
+                           traffic_->spawned_total(), traffic_->removed_total()));
   }
 
   void finish(RunResult& result) override {
@@ -230,6 +238,42 @@ class OpenScenarioFormat : public RunFormat {
                                            "none of it): only the storyboard's conditions see it", id));
   }
 
+  // The storyboard's TrafficActions on SUMO (openscenario_traffic.hpp), from the first one
+  // that starts; run.log names each traffic as it starts and stops.
+  void add_traffic_commands(std::vector<sim::Command>& commands, const std::vector<sim::NearbyVehicle>& seen,
+                            RunLog& log) {
+    const openscenario::TrafficBook& book = runtime_->traffic();
+    if (book.all().empty()) return;
+    if (!traffic_) {
+      if (!lanes_ || scenario_->road_file.empty())
+        throw MapError("TrafficActions need a road: the RoadNetwork has no LogicFile (SUMO's traffic drives on lanes)");
+      traffic_.emplace(*lanes_, req_.seed);
+    }
+    for (const openscenario::Traffic& t : book.all()) {
+      const std::string label = traffic_label(t);
+      if (logged_traffic_.insert({t.serial, false}).second) log.at(t.started, label + " starts");
+      if (t.stopped && logged_traffic_.insert({t.serial, true}).second) log.at(*t.stopped, label + " stopped");
+    }
+    for (auto& c : traffic_->update(book, runtime_->entities(), seen, runtime_->time(), req_.step))
+      commands.push_back(std::move(c));
+  }
+  static std::string traffic_label(const openscenario::Traffic& t) {
+    const std::string name = t.name.empty() ? fmt::format("traffic{}", t.serial) : fmt::format("traffic \"{}\"", t.name);
+    return std::visit(
+        [&](const auto& spec) {
+          using T = std::decay_t<decltype(spec)>;
+          if constexpr (std::is_same_v<T, openscenario::TrafficSwarmAction>)
+            return fmt::format("{}: TrafficSwarmAction around {}, up to {} vehicles (SUMO vehicles traffic{}.N)", name,
+                               spec.entity, spec.vehicles, t.serial);
+          else if constexpr (std::is_same_v<T, openscenario::TrafficSourceAction>)
+            return fmt::format("{}: TrafficSourceAction, {} vehicles/s within {} m (SUMO vehicles traffic{}.N)", name,
+                               spec.rate, spec.radius, t.serial);
+          else
+            return fmt::format("{}: TrafficSinkAction within {} m", name, spec.radius);
+        },
+        t.spec);
+  }
+
   // An ego that followed the storyboard is handed to SUMO's driver when its (not system under
   // test) controller is activated, like any entity (openscenario_world.hpp): run.log and the
   // report say so, once.
@@ -252,6 +296,8 @@ class OpenScenarioFormat : public RunFormat {
   std::optional<openscenario::StoryboardRuntime> runtime_;
   std::optional<OpenScenarioActors> actors_;
   std::optional<OpenScenarioSignals> signals_;  // the storyboard's signals on SUMO's lights (a road only)
+  std::optional<OpenScenarioTraffic> traffic_;  // TrafficActions' vehicles (from the first traffic started)
+  std::set<std::pair<int, bool>> logged_traffic_;  // (serial, stopped) already in run.log
   std::optional<LaneMap> sumo_lanes_;        // the converted net's lanes, for lane keeping
   std::optional<OpenScenarioRun> observed_;  // the run as metrics and criteria see it
   std::optional<std::string> collision_;     // the ego's first collision, as the verdict says it
@@ -298,6 +344,11 @@ void OpenScenarioFormat::open(RunResult& result, RunLog& log, SimulatorConfig& c
   } else {
     log.note(fmt::format("road {} -> SUMO net {} ({})", scenario_->road_file, net.net_file.string(),
                          net.from_cache ? "cached" : "converted now"));
+  }
+  const Diagnostics truncated = truncate_synchronize_targets(*scenario_, *roads_);  // as the peer does, said
+  for (const auto& d : truncated.items()) {
+    result.warnings.push_back(d.format());
+    log.note(d.format());
   }
   lanes_.emplace(roadless ? *parking_roads_ : *roads_, net.net_file.string());
   if (!roadless) signals_.emplace(opendrive::read_sumo_signal_links(net.net_file.string()));

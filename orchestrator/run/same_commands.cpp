@@ -23,7 +23,7 @@ auto fields(const ModelInfo& m) {
 }
 auto fields(const sim::SpawnVehicle& c) {
   return std::make_tuple(fields(c.actor), fields(c.model), c.color, c.scripted, c.route, c.edge, c.lane, bits(c.lane_pos),
-                         bits(c.speed), bits(c.max_speed), c.keep_lateral);
+                         bits(c.speed), bits(c.max_speed), c.keep_lateral, c.traffic);
 }
 auto fields(const sim::SpawnPerson& c) {
   return std::make_tuple(fields(c.actor), fields(c.model), c.color, c.edge, bits(c.lane_pos));

@@ -69,6 +69,9 @@ struct WorldSnapshot {
   std::vector<ActorState> actors;  // same order as the tracked actors
   std::vector<SimCollision> collisions;
   std::vector<NearbyVehicle> nearby;  // background vehicles close to any actor
+  // Vehicles spawned as traffic (SpawnVehicle::traffic), wherever they are, in id order;
+  // one that left SUMO (its route ended, removed) is no longer here.
+  std::vector<NearbyVehicle> traffic;
   int other_vehicles = 0;  // SUMO vehicles that are not scenario actors
   // Vehicles standing still for more than kLongWait seconds (a junction that does not
   // clear), counted once a simulated second; the last count in between.
@@ -94,6 +97,9 @@ struct SpawnVehicle {
   double speed = 0;                  // m/s at insertion
   double max_speed = 0;              // m/s, SUMO-driven vehicles only (0 = type default)
   bool keep_lateral = false;         // SUMO-driven: keep the lateral offset it is placed at
+  // Background traffic a scenario adds (OpenSCENARIO TrafficActions): SUMO drives it, it is
+  // no scenario actor (not in Simulator::read's list), and WorldSnapshot::traffic reports it.
+  bool traffic = false;
 };
 struct SpawnPerson {
   TrackedActor actor;

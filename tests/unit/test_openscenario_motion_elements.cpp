@@ -188,6 +188,41 @@ TEST_F(MotionElements, ClothoidSplineTrajectoryIsFollowedFromTheEntity) {
             std::string::npos);
 }
 
+TEST(ClosedTrajectory, ReturnsToItsStartAtItsLastPiecesSpeed) {
+  // Untimed: a segment back to the first point is added.
+  std::vector<PathPoint> square{{0, 0, 0, std::nullopt}, {10, 0, 0, std::nullopt}, {10, 10, 0, std::nullopt}};
+  close_path(square);
+  ASSERT_EQ(square.size(), 4u);
+  EXPECT_EQ(square.back().x, 0.0);
+  EXPECT_EQ(square.back().y, 0.0);
+  EXPECT_FALSE(square.back().due);
+  // Timed: the last piece runs at 10 m/s, so the 10 m back take 1 s.
+  std::vector<PathPoint> timed{{0, 0, 0, 2.0}, {10, 0, 0, 3.0}};
+  close_path(timed);
+  ASSERT_EQ(timed.size(), 3u);
+  EXPECT_DOUBLE_EQ(*timed.back().due, 4.0);
+  // Already closed: nothing added.
+  std::vector<PathPoint> loop{{0, 0, 0, std::nullopt}, {10, 0, 0, std::nullopt}, {0, 0, 0, std::nullopt}};
+  close_path(loop);
+  EXPECT_EQ(loop.size(), 3u);
+}
+
+TEST_F(MotionElements, AClosedTrajectoryIsFollowedBackToItsStart) {
+  // (100, -1.75) -> (120, -1.75) in 2 s -> (120, 8.25) in 1 s, then back to the start (22.36 m at
+  // the last piece's 10 m/s: due at 5.24 s).
+  load(scenario(R"(<RoutingAction><FollowTrajectoryAction><TrajectoryRef><Trajectory name="T" closed="true"><Shape><Polyline>
+<Vertex time="0"><Position><WorldPosition x="100" y="-1.75" h="0"/></Position></Vertex>
+<Vertex time="2"><Position><WorldPosition x="120" y="-1.75" h="0"/></Position></Vertex>
+<Vertex time="3"><Position><WorldPosition x="120" y="8.25" h="0"/></Position></Vertex>
+</Polyline></Shape></Trajectory></TrajectoryRef><TimeReference><Timing domainAbsoluteRelative="absolute" scale="1" offset="0"/></TimeReference>
+<TrajectoryFollowingMode followingMode="position"/></FollowTrajectoryAction></RoutingAction>)",
+                time_trigger(0), test::place("A", 100, -1, 10), test::place("B", 300, -2, 0)));
+  test::run_until(*runtime_, 5.0);  // 2 s of the 2.236 s back: 0.894 of the way
+  const double f = 2.0 / std::hypot(20.0, 10.0) * 10.0;
+  EXPECT_NEAR(entity("A").pose.x, 120.0 - 20.0 * f, 0.05);
+  EXPECT_NEAR(entity("A").pose.y, 8.25 - 10.0 * f, 0.05);
+}
+
 // A ManeuverCatalog entry whose second event waits for its first, by name alone.
 const char* kManeuverCatalog = R"(<?xml version="1.0"?><OpenSCENARIO>
 <FileHeader revMajor="1" revMinor="3" date="2024-01-01T00:00:00" author="t" description="c"/>

@@ -8,7 +8,9 @@
 
 #include "core/errors.hpp"
 #include "opendrive/xodr_reader.hpp"
+#include "openscenario/scenario_check.hpp"
 #include "openscenario/storyboard_runtime.hpp"
+#include "openscenario/synchronize_targets.hpp"
 #include "openscenario/xosc_reader.hpp"
 #include "support/cli_runner.hpp"
 #include "unit/openscenario_snippets.hpp"
@@ -108,6 +110,33 @@ TEST_F(Synchronize, BadContentNamesTheLine) {
 <TargetPosition><LanePosition roadId="0" laneId="-1" s="400" offset="0"/></TargetPosition></SynchronizeAction>)")
                 .find("\"C\""),
             std::string::npos);
+}
+
+TEST_F(Synchronize, ATargetPastTheRoadsEndIsTruncatedWithAWarningAsThePeerDoes) {
+  // Road 0 is 2000 m long; the target at s = 2500 (esmini's ltap-od-relative-speed.xosc has one).
+  const std::string action = R"(<SynchronizeAction masterEntityRef="B">
+<TargetPositionMaster><LanePosition roadId="0" laneId="-2" s="300" offset="0"/></TargetPositionMaster>
+<TargetPosition><LanePosition roadId="0" laneId="-1" s="2500" offset="0"/></TargetPosition></SynchronizeAction>)";
+  dir_.write("road.xodr", test::kStraightTwoLaneRoad);
+  scenario_ = load_scenario(dir_.write("s.xosc", scenario(action)).string());
+  roads_ = opendrive::read_xodr_file((dir_ / "road.xodr").string());
+  const Diagnostics warnings = truncate_synchronize_targets(scenario_, roads_);
+  ASSERT_EQ(warnings.warning_count(), 1) << warnings.format();
+  const std::string text = warnings.items().front().format();
+  EXPECT_NE(text.find("s.xosc:"), std::string::npos) << text;
+  EXPECT_NE(text.find("TargetPosition: s=2500 is beyond the end of road 0 (length 2000.00); truncated to 2000.00"),
+            std::string::npos)
+      << text;
+  const auto& sync = std::get<SynchronizeAction>(scenario_.storyboard.stories[0].acts[0].groups[0].maneuvers[0]
+                                                     .events[0].actions[0].action);
+  EXPECT_EQ(std::get<LanePosition>(sync.position).s, 2000.0);
+  EXPECT_EQ(std::get<LanePosition>(sync.master_position).s, 300.0);  // within its road: unchanged
+  runtime_ = std::make_unique<StoryboardRuntime>(scenario_, roads_);  // the action starts at 0 s: it runs
+  EXPECT_GT(run_to_end(), 0.0);
+  // `validate` says the same, as a warning: the file is valid.
+  const Diagnostics checked = check_scenario_file((dir_ / "s.xosc").string());
+  EXPECT_FALSE(checked.has_errors()) << checked.format();
+  EXPECT_EQ(checked.warning_count(), 1);
 }
 
 }  // namespace

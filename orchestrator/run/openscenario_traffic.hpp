@@ -1,0 +1,96 @@
+#pragma once
+// The storyboard's TrafficActions on SUMO (openscenario/traffic_book.hpp says which traffic
+// runs): vehicles SUMO's driver drives, spawned and removed through the simulator seam
+// (SpawnVehicle with `traffic`, RemoveActor), never storyboard entities. Pure: it reads the
+// entities' states and WorldSnapshot::traffic, and returns commands; its random choices come
+// from the run's seed, so a run with the same seed spawns the same vehicles at the same places.
+//
+//   swarm   keeps up to numberOfVehicles vehicles of its own in the annulus around its central
+//           entity: inside the ellipse (semiMajorAxis along the entity's heading, semiMinorAxis
+//           across it, its centre `offset` ahead of the entity) and outside the inner circle
+//           (innerRadius around that centre). A vehicle outside the ellipse is removed; missing
+//           ones are spawned on free road places in the annulus (none within kSpacing m of
+//           another vehicle or entity), facing their lane's direction of travel.
+//   source  spawns one vehicle every 1/rate s from its start, on a free road place within
+//           `radius` of its position (radius 0, or none free there: on the position's lane).
+//   sink    removes the traffic vehicles (of any TrafficAction) within `radius` of its
+//           position, at most `rate` per second (no rate: all at once).
+//   stop    (TrafficStopAction) ends the named traffic: a swarm no longer spawns or removes, a
+//           source no longer spawns, a sink no longer removes; the vehicles drive on.
+#include <cstdint>
+#include <map>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "opendrive/sumo_lanes.hpp"
+#include "openscenario/entity_motion.hpp"
+#include "openscenario/traffic_book.hpp"
+#include "sim/world.hpp"
+
+namespace orch {
+
+class OpenScenarioTraffic {
+ public:
+  static constexpr double kPlaceStep = 10.0;  // m between road places along a lane
+  static constexpr double kSpacing = 20.0;    // m: no spawn this close to another body (as esmini's swarm)
+  static constexpr double kInsertWait = 5.0;  // s: a spawn SUMO has not inserted by then is given up
+
+  // Road places: every kPlaceStep m along every lane for moving traffic (OpenDRIVE types
+  // driving, entry, exit, on/off ramps) that SUMO's net has, junctions' connecting roads left out.
+  OpenScenarioTraffic(const opendrive::SumoLaneIndex& lanes, long long seed);
+
+  // The commands of this step (t): removals first, then spawns. `seen` is WorldSnapshot::traffic.
+  std::vector<sim::Command> update(const openscenario::TrafficBook& book,
+                                   const std::map<std::string, openscenario::EntityState>& entities,
+                                   const std::vector<sim::NearbyVehicle>& seen, double t, double dt);
+
+  // Traffic vehicles now (spawned, not removed, not known to have left): per traffic serial.
+  [[nodiscard]] int count(int serial) const;
+  [[nodiscard]] int spawned_total() const { return next_id_; }
+  [[nodiscard]] int removed_total() const { return removed_; }
+
+  struct Place {
+    std::string road;
+    int lane = 0;
+    double s = 0;
+    Vec2 point{0, 0};
+    double heading = 0;  // direction of travel
+    opendrive::SumoLane sumo;
+  };
+  [[nodiscard]] const std::vector<Place>& places() const { return places_; }
+
+ private:
+  struct Vehicle {
+    int serial = 0;
+    Vec2 position{0, 0};
+    double spawned = 0;
+    bool seen = false;
+  };
+  void swarm(const openscenario::Traffic& traffic, const openscenario::TrafficSwarmAction& spec,
+             const std::map<std::string, openscenario::EntityState>& entities, double t,
+             std::vector<sim::Command>& out);
+  void source(const openscenario::Traffic& traffic, const openscenario::TrafficSourceAction& spec,
+              const std::map<std::string, openscenario::EntityState>& entities, double t,
+              std::vector<sim::Command>& out);
+  void sink(const openscenario::Traffic& traffic, const openscenario::TrafficSinkAction& spec, double dt,
+            std::vector<sim::Command>& out);
+  [[nodiscard]] bool free(const Vec2& p, const std::map<std::string, openscenario::EntityState>& entities) const;
+  void spawn(int serial, const Place& place, double speed, double max_speed, const std::string& category, double t,
+             std::vector<sim::Command>& out);
+  void remove(const std::string& id, std::vector<sim::Command>& out);
+  std::uint64_t draw(std::uint64_t n) { return n == 0 ? 0 : rng_() % n; }
+  double uniform() { return static_cast<double>(rng_() >> 11) * 0x1.0p-53; }
+  std::string category(const std::vector<openscenario::TrafficCategoryShare>& shares);
+
+  const opendrive::SumoLaneIndex& lanes_;
+  std::vector<Place> places_;
+  std::mt19937_64 rng_;
+  std::map<std::string, Vehicle> vehicles_;  // by SUMO id
+  std::map<int, int> spawned_by_source_;     // serial -> vehicles spawned so far
+  std::map<int, double> sink_credit_;        // serial -> removals due (rate x time) not yet made
+  int next_id_ = 0;
+  int removed_ = 0;
+};
+
+}  // namespace orch
