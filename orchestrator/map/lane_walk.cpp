@@ -99,14 +99,15 @@ RouteLanes LaneMap::walk(const WaypointRoute& route, const std::string& net_file
     }
     return false;
   };
-  // Mean distance of the route's next metres (see `ahead`) from waypoint i to the chain
+  // Mean distance of the route's next metres (see `whole`) from waypoint i to the chain
   // starting at lane `l` (each point on the first lane of the chain it does not lie beyond).
-  const auto score = [&](int l, std::size_t i) {
+  // `whole`: through a junction, its whole internal lane and kLookahead beyond, to choose
+  // between connections that run together for 20 m and then part (seed 31), which differ
+  // only past that; whether the route follows the chosen one is judged on kLookahead alone.
+  const auto score = [&](int l, std::size_t i, bool whole = false) {
     const double s0 = route.line.s_at_index(i);
-    // Through a junction, its whole internal lane and kLookahead beyond: two connections
-    // that run together for 20 m and then part (seed 31) differ only past that.
     const LaneInfo& first = lanes_[static_cast<std::size_t>(l)];
-    const double ahead = kLookahead + (first.internal ? first.shape.length() : 0.0);
+    const double ahead = kLookahead + (whole && first.internal ? first.shape.length() : 0.0);
     double sum = 0;
     int n = 0;
     int lane = l;
@@ -161,7 +162,10 @@ RouteLanes LaneMap::walk(const WaypointRoute& route, const std::string& net_file
       int best = -1;
       double best_score = off;
       for (const int next : lanes_[static_cast<std::size_t>(lane)].next) {
-        if (!leads_to_route(next) || place_on_lane(next, p).distance >= off) continue;  // the point itself too
+        // The point itself lies beside the successor, nearer than to the lane (not short of
+        // its start: a route drawn off a connection it shares is no reason to leave it early).
+        const Polyline::Projection pr = lanes_[static_cast<std::size_t>(next)].shape.project(p);
+        if (!leads_to_route(next) || pr.before_start || pr.distance >= off) continue;
         const double sc = score(next, i);
         if (sc < best_score) {
           best_score = sc;
@@ -176,14 +180,16 @@ RouteLanes LaneMap::walk(const WaypointRoute& route, const std::string& net_file
     while (beyond_end(lane, p) && !lanes_[static_cast<std::size_t>(lane)].next.empty()) {
       int best = -1;
       double best_score = std::numeric_limits<double>::infinity();
+      double best_whole = std::numeric_limits<double>::infinity();
       for (const int next : lanes_[static_cast<std::size_t>(lane)].next) {
         if (!leads_to_route(next)) continue;
-        const double sc = score(next, i);
-        if (sc < best_score) {
-          best_score = sc;
+        const double whole = score(next, i, true);
+        if (whole < best_whole) {
+          best_whole = whole;
           best = next;
         }
       }
+      if (best >= 0) best_score = score(best, i);
       if (best < 0 || best_score > kMaxMiss) {
         if (i + 1 == route.points.size()) break;  // the last waypoint may lie past the last lane
         // A route that ends a metre or two inside a junction, along the connection of routes
