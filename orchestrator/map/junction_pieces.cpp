@@ -8,6 +8,7 @@
 
 #include "core/checked_numeric.hpp"
 #include "map/junction_detours.hpp"
+#include "map/corridor_geometry.hpp"
 
 namespace orch {
 
@@ -87,7 +88,9 @@ void attach_loose_ends(const WaypointFile& wf, JunctionPieces& out) {
       const Polyline& line = route.line;
       if (line.length() < 1.0) continue;
       const Vec2 p = at_end ? line.points().back() : line.point(0);
-      const Vec2 dir = line.tangent_at(at_end ? line.length() : 0.0);
+      // Directions over the last (first) metres: a route's last segment may be a few
+      // centimetres of drawing noise pointing anywhere (seed 46: 3 cm at 31 degrees).
+      const Vec2 dir = corridor::end_direction(line, at_end);
       int best = -1;
       double best_gap = kMaxEndGap;
       for (std::size_t k = 0; k < out.pieces.size(); ++k) {
@@ -95,10 +98,11 @@ void attach_loose_ends(const WaypointFile& wf, JunctionPieces& out) {
         if ((at_end ? pc.from_zone : pc.to_zone) != jp.zone || pc.line.line.length() < 1.0) continue;
         const Polyline& l = pc.line.line;
         const Polyline::Projection pr = l.project(p);
-        if (l.tangent_at(pr.s).dot(dir) < kContainCos) continue;
         // On the lane (beside it), or short of its start (past its end) straight along it.
         const Vec2 tip = at_end ? l.point(0) : l.points().back();
-        const Vec2 along = l.tangent_at(at_end ? 0.0 : l.length());
+        const Vec2 along = corridor::end_direction(l, !at_end);
+        if (pr.before_start || pr.after_end ? along.dot(dir) < kContainCos : l.tangent_at(pr.s).dot(dir) < kContainCos)
+          continue;
         const double ahead = (tip - p).dot(along) * (at_end ? 1.0 : -1.0);  // > 0: p lies short of the lane
         double gap = 0;
         if (ahead > 0) {
@@ -154,10 +158,14 @@ void end_lanes_in_junctions(const WaypointFile& wf, JunctionPieces& out) {
     const auto& on_lane = out.pieces[static_cast<std::size_t>(k)].routes;
     // Shared by several routes, the lane goes on only where their passage is too short for
     // dead-end lanes of their own (below): there they are drawn together.
+    // A route on the lane that ends (starts) along it, before the junction, does not go on
+    // through it (seed 208: the lane went nowhere, the route's last 2 m lay on no lane).
+    const bool goes_on = std::any_of(out.passages.begin(), out.passages.end(), [&](const JunctionPassage& other) {
+      return other.zone == jp.zone && (loose_end ? other.before == k && other.after >= 0
+                                                 : other.after == k && other.before >= 0);
+    });
     const bool all_loose = (on_lane.size() == 1 || longest[{k, loose_end}] < 2 * kMinLooseLane) &&
-                           std::all_of(on_lane.begin(), on_lane.end(), [&](const std::string& id) {
-                             return std::find(together.begin(), together.end(), id) != together.end();
-                           });
+                           !goes_on && !together.empty();
     if (extended[static_cast<std::size_t>(k)] && all_loose) continue;  // the lane already goes on for it
     if (!all_loose) {
       // Its lane is driven by other routes too, which go on through the junction: the route
@@ -324,6 +332,10 @@ JunctionPieces cut_into_pieces(const WaypointFile& wf, const JunctionZones& zone
   out.pieces = std::move(kept);
   attach_loose_ends(wf, out);
   end_lanes_in_junctions(wf, out);
+  // A route ending (starting) inside a junction with too short a passage for a dead-end lane
+  // of its own, beside one drawn with it that got one (seed 165: two routes drawn to end
+  // 0.5 m apart on one lane), continues on (comes from) that dead-end lane.
+  attach_loose_ends(wf, out);
   add_detour_lanes(wf, out);
   return out;
 }

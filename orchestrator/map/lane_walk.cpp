@@ -23,6 +23,7 @@ namespace {
 constexpr double kLookahead = 6.0;     // m of route that decides between successors
 constexpr double kMaxMiss = 1.0;       // m: farther from every successor, the path is broken
 constexpr int kMaxChain = 4;           // lanes followed ahead when scoring a successor
+constexpr double kOffLane = 0.10;      // m: farther from its lane, a waypoint may have left it (map check's tolerance)
 constexpr double kStartTie = 0.10;     // m: lanes this much farther from the first waypoint may start it
 // m: successors scoring this close are told apart over a longer stretch of the route (two
 // paths through a junction that part only after the first kLookahead metres: a detour lane)
@@ -31,6 +32,60 @@ constexpr int kMaxLookaheadDoublings = 3;
 
 bool drives(const LaneInfo& lane, const std::string& route) {
   return std::find(lane.routes.begin(), lane.routes.end(), route) != lane.routes.end();
+}
+
+// The internal lane after `lane` that the route's waypoints from i to its last lie on, or -1.
+int ending_lane(const LaneMap& map, int lane, const WaypointRoute& route, std::size_t i) {
+  const std::vector<LaneInfo>& lanes = map.lanes();
+  int best = -1;
+  double best_sum = std::numeric_limits<double>::infinity();
+  for (const int next : lanes[static_cast<std::size_t>(lane)].next) {
+    const LaneInfo& info = lanes[static_cast<std::size_t>(next)];
+    if (!info.internal) continue;
+    double sum = 0;
+    for (std::size_t j = i; j < route.points.size() && sum < best_sum; ++j) {
+      const Polyline::Projection pr = info.shape.project(route.line.point(j));
+      if (pr.after_end || pr.distance > kMaxMiss) {
+        sum = std::numeric_limits<double>::infinity();
+        break;
+      }
+      sum += pr.distance;
+    }
+    if (sum < best_sum) {
+      best_sum = sum;
+      best = next;
+    }
+  }
+  return best;
+}
+
+// The internal lane before `lane` (the route's first) that its first waypoints lie on, or -1.
+int starting_lane(const LaneMap& map, int lane, const WaypointRoute& route) {
+  const std::vector<LaneInfo>& lanes = map.lanes();
+  const auto place_on_lane = [&](int l, const Vec2& p) { return map.place_on_lane(l, p); };
+  const double off = place_on_lane(lane, route.line.point(0)).distance;
+  int best = -1;
+  double best_mean = std::numeric_limits<double>::infinity();
+  for (std::size_t k = 0; k < lanes.size(); ++k) {
+    const LaneInfo& info = lanes[k];
+    if (!info.internal || std::find(info.next.begin(), info.next.end(), lane) == info.next.end()) continue;
+    double sum = 0;
+    int n = 0;
+    for (std::size_t j = 0; j < route.points.size(); ++j, ++n) {
+      const Polyline::Projection pr = info.shape.project(route.line.point(j));
+      if (pr.after_end || pr.s >= info.shape.length() - 1e-6) break;  // on the first lane from here
+      if (pr.distance > kMaxMiss) {
+        sum = std::numeric_limits<double>::infinity();
+        break;
+      }
+      sum += pr.distance;
+    }
+    if (n == 0 || !(sum / n < best_mean) || place_on_lane(static_cast<int>(k), route.line.point(0)).distance >= off)
+      continue;
+    best_mean = sum / n;
+    best = static_cast<int>(k);
+  }
+  return best;
 }
 
 }  // namespace
@@ -50,14 +105,16 @@ RouteLanes LaneMap::walk(const WaypointRoute& route, const std::string& net_file
     }
     return false;
   };
-  // Mean distance of the route's next kLookahead metres from waypoint i to the chain
+  // Mean distance of the route's next metres (see `whole`) from waypoint i to the chain
   // starting at lane `l` (each point on the first lane of the chain it does not lie beyond).
-  const auto score = [&](int l, std::size_t i, double lookahead = kLookahead) {
+  const auto score = [&](int l, std::size_t i, bool whole = false, double lookahead = kLookahead) {
     const double s0 = route.line.s_at_index(i);
+    const LaneInfo& first = lanes_[static_cast<std::size_t>(l)];
+    const double ahead = lookahead + (whole && first.internal ? first.shape.length() : 0.0);
     double sum = 0;
     int n = 0;
     int lane = l;
-    for (std::size_t j = i; j < route.points.size() && route.line.s_at_index(j) <= s0 + lookahead; ++j) {
+    for (std::size_t j = i; j < route.points.size() && route.line.s_at_index(j) <= s0 + ahead; ++j) {
       const Vec2& p = route.line.point(j);
       for (int depth = 0; depth < kMaxChain && beyond_end(lane, p); ++depth) {
         const auto& next = lanes_[static_cast<std::size_t>(lane)].next;
@@ -93,46 +150,84 @@ RouteLanes LaneMap::walk(const WaypointRoute& route, const std::string& net_file
       lane = l;
     }
   }
+  // A route that starts a metre or two inside a junction, along the connection of routes
+  // that come through it onto its first lane, starts on that connection's internal lane.
+  if (place_on_lane(lane, route.line.point(0)).distance > kOffLane)
+    if (const int start = starting_lane(*this, lane, route); start >= 0) lane = start;
   rl.lanes.push_back(lane);
   for (std::size_t i = 0; i < route.points.size(); ++i) {
     const Vec2& p = route.line.point(i);
-    while (beyond_end(lane, p) && !lanes_[static_cast<std::size_t>(lane)].next.empty()) {
+    // Off its lane before the lane's end: where a lane ends inside a 180-degree spike of the
+    // route (the line overshoots and comes back), the points after the spike lie nearest to
+    // its tip, inside the lane, though the route has gone on into the junction (seed 90). It
+    // moves on when a successor carries the next metres better than the lane carries this point.
+    if (const double off = place_on_lane(lane, p).distance; off > kOffLane && !beyond_end(lane, p)) {
       int best = -1;
-      double best_score = std::numeric_limits<double>::infinity();
-      std::vector<std::pair<int, double>> scored;
+      double best_score = off;
       for (const int next : lanes_[static_cast<std::size_t>(lane)].next) {
-        if (!leads_to_route(next)) continue;
+        // The point itself lies beside the successor, nearer than to the lane (not short of
+        // its start: a route drawn off a connection it shares is no reason to leave it early).
+        const Polyline::Projection pr = lanes_[static_cast<std::size_t>(next)].shape.project(p);
+        if (!leads_to_route(next) || pr.before_start || pr.distance >= off) continue;
         const double sc = score(next, i);
-        scored.emplace_back(next, sc);
         if (sc < best_score) {
           best_score = sc;
           best = next;
         }
       }
-      // Tied successors (their paths coincide over the lookahead): a longer stretch of the
-      // route decides, when it tells them apart by more than kScoreTie.
+      if (best >= 0) {
+        lane = best;
+        rl.lanes.push_back(lane);
+      }
+    }
+    while (beyond_end(lane, p) && !lanes_[static_cast<std::size_t>(lane)].next.empty()) {
+      // Successors are chosen on the route's next metres through the whole internal lane (two
+      // connections that run together for 20 m and then part, seed 31) ...
+      int best = -1;
+      double best_score = std::numeric_limits<double>::infinity();
+      double best_whole = std::numeric_limits<double>::infinity();
+      std::vector<std::pair<int, double>> scored;
+      for (const int next : lanes_[static_cast<std::size_t>(lane)].next) {
+        if (!leads_to_route(next)) continue;
+        const double whole = score(next, i, true);
+        scored.emplace_back(next, whole);
+        if (whole < best_whole) {
+          best_whole = whole;
+          best = next;
+        }
+      }
+      // ... and tied ones (their paths coincide over that stretch: a detour lane parting later)
+      // over a longer stretch of the route, when it tells them apart by more than kScoreTie.
       double lookahead = kLookahead;
-      for (int round = 0; round < kMaxLookaheadDoublings; ++round) {
+      for (int round = 0; round < kMaxLookaheadDoublings && best >= 0; ++round) {
         std::vector<int> tied;
         for (const auto& [next, sc] : scored)
-          if (sc <= best_score + kScoreTie) tied.push_back(next);
+          if (sc <= best_whole + kScoreTie) tied.push_back(next);
         if (tied.size() < 2) break;
         lookahead *= 2;
         scored.clear();
-        for (const int next : tied) scored.emplace_back(next, score(next, i, lookahead));
+        for (const int next : tied) scored.emplace_back(next, score(next, i, true, lookahead));
         const auto current = std::find_if(scored.begin(), scored.end(), [&](const auto& x) { return x.first == best; });
         const auto least = std::min_element(scored.begin(), scored.end(),
                                             [](const auto& a, const auto& b) { return a.second < b.second; });
         if (least->second < current->second - kScoreTie) {
           best = least->first;
-          best_score = least->second;
+          best_whole = least->second;
         } else {
-          best_score = current->second;
+          best_whole = current->second;
         }
       }
       if (best >= 0) best_score = score(best, i);
       if (best < 0 || best_score > kMaxMiss) {
         if (i + 1 == route.points.size()) break;  // the last waypoint may lie past the last lane
+        // A route that ends a metre or two inside a junction, along the connection of routes
+        // that go on through it, ends on that connection's internal lane (SUMO stops it at
+        // the end of the lane before, as any end inside a junction).
+        if (const int end = ending_lane(*this, lane, route, i); end >= 0) {
+          lane = end;
+          rl.lanes.push_back(lane);
+          continue;
+        }
         throw MapError(fmt::format(
             "route \"{}\" cannot be driven as one connected path: at wp_idx {} ({:.2f}, {:.2f}) it leaves lane \"{}\" "
             "and no lane that continues it follows the route{}",
@@ -142,6 +237,15 @@ RouteLanes LaneMap::walk(const WaypointRoute& route, const std::string& net_file
       lane = best;
       rl.lanes.push_back(lane);
     }
+    // Past the end of a lane that leads nowhere (a dead end): the route goes on where no lane
+    // carries it. Measured against that lane's end it would read as a waypoint far off its
+    // lane; it is a break of the path (the last waypoint may lie past the last lane).
+    if (i + 1 < route.points.size() && beyond_end(lane, p) && lanes_[static_cast<std::size_t>(lane)].next.empty() &&
+        place_on_lane(lane, p).distance > kMaxMiss)
+      throw MapError(fmt::format(
+          "route \"{}\" cannot be driven as one connected path: at wp_idx {} ({:.2f}, {:.2f}) it leaves lane \"{}\", "
+          "which leads nowhere ({:.2f} m past its end)",
+          route.id, i, p.x(), p.y(), lanes_[static_cast<std::size_t>(lane)].id, place_on_lane(lane, p).distance));
     rl.points.push_back(place_on_lane(lane, p));
     rl.visits.push_back(static_cast<int>(rl.lanes.size()) - 1);
   }

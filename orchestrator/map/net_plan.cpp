@@ -11,6 +11,7 @@
 #include "core/checked_numeric.hpp"
 #include "core/errors.hpp"
 #include "map/corridor_geometry.hpp"
+#include "map/junction_shape.hpp"
 #include "map/route_corridors.hpp"
 
 namespace orch {
@@ -376,6 +377,23 @@ class CorridorPlanner {
     for (const CutLaneEnd& e : ends) node.shape.push_back(e.point);
     node.shape.push_back(ends.back().point + half_width * ends.back().normal);
     for (auto e = ends.rbegin(); e != ends.rend(); ++e) node.shape.push_back(e->point);
+    // Lanes ending far apart (a free end where one lane turns away beside one going straight
+    // on, seed 246): the line across their ends runs along the turning lane, and netconvert
+    // would cut it there (13.7 m). A tree with no area through the lane ends cuts none.
+    std::vector<LaneEnd> lane_ends;
+    std::vector<TreeNode> tree;
+    for (const std::size_t seg : {c - 1, c}) {
+      if (seg >= edge_of_segment.size() || edge_of_segment[seg] < 0) continue;
+      for (const PlannedLane& l : edges[static_cast<std::size_t>(edge_of_segment[seg])].lanes) {
+        lane_ends.push_back({&l.shape, seg + 1 == c});
+        tree.push_back({seg + 1 == c ? l.shape.points().back() : l.shape.point(0), {}});
+      }
+    }
+    if (lane_ends.size() > 1 && cut_length(node.shape, lane_ends) > 0) {
+      tree.push_back({node.position, {}});
+      if (std::vector<Vec2> t = uncut_tree(tree, lane_ends); !t.empty() && cut_length(t, lane_ends) == 0)
+        node.shape = std::move(t);
+    }
     return node;
   }
 

@@ -22,9 +22,9 @@ using namespace orch::test;
 
 namespace {
 
-// The CI set: the 42 seeds of 1-91 that passed first, and 24 more (the failing seeds and why are listed
-// in docs/maps.md, "Generated maps"; they stay open until the builder handles them, and then
-// join this set as regression fixtures).
+// The CI set: the 42 seeds of 1-91 that passed first (39 now, below), and more (the failing
+// seeds and why are listed in docs/maps.md, "Generated maps"; they stay open until the builder
+// handles them, and then join this set as regression fixtures).
 // 28, 55, 64: routes ending (starting) inside a junction, continued on the lane they end on.
 // 10, 11, 33, 34, 40, 57, 76, 82, 85: a route ending (starting) inside a junction with no lane
 // continuing it keeps its own lane as a dead end; 13, 60: on a lane other routes drive, it
@@ -43,10 +43,20 @@ namespace {
 // another path gets a detour lane of its own (23: its path parts from the first only 10 m
 // into the junction, so `map check` tells the two apart over a longer stretch; 113: on a
 // closed route).
-constexpr int kCiSeeds[] = {7,  10, 11, 12, 13, 14, 16, 17, 20, 21, 26, 27, 28, 30, 33, 34, 36, 38, 40, 43, 48,
+// Then (the failures other than a second path between the same lanes): 143: a route's end
+// direction over 2 m, not its last 3 cm segment; 165: a route ending beside a neighbour's
+// dead-end lane continues on it; 208: a lane goes on to a loose route's end when no route on
+// it goes on; 150 (start), 229 (end): a route starting or ending a metre or two inside a
+// junction on other routes' connection lies on that internal lane; 263: connections that run
+// together and part are told apart over their whole internal lane; 90: a lane ending inside a
+// 180-degree spike; 246: a dead-end node with lanes ending far apart cuts none; 133: was
+// netconvert's "Could not insert connection".
+// To keep the set's time (~70 s), three of the 42 first seeds tied to no fix left it (26, 36,
+// 43: 9.6 s; scripts/map_soak.py --seeds 1-150 still runs them).
+constexpr int kCiSeeds[] = {7,  10, 11, 12, 13, 14, 16, 17, 20, 21, 27, 28, 30, 33, 34, 38, 40, 48,
                             49, 50, 55, 57, 59, 60, 63, 64, 65, 66, 69, 70, 72, 75, 76, 77, 79, 81, 82, 84, 85,
                             3,  6,  8,  15, 24, 32, 41, 56, 58, 118, 138, 151, 152, 155, 158, 184, 195, 205,
-                            207, 218, 23, 35, 113, 127};
+                            207, 218, 23, 35, 113, 127, 90, 133, 143, 150, 165, 208, 229, 246, 263};
 
 constexpr double kTolerance = 0.10;  // m, as `map check`
 
