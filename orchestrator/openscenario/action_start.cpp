@@ -316,10 +316,11 @@ std::vector<std::string> start_action(const PrivateAction& action, const std::st
             take_over(MotionDomain::Longitudinal, true, a.continuous);
             // Its speed for the coming step is set now, as every other action started now acts
             // from the coming step on (a SpeedAction's profile starts now); it is kept from the
-            // end of each step on (update_running_actions).
+            // end of each step on (update_running_actions). Before the first step (no step
+            // size yet: Init, or an event at 0 s) the first step's end sets it.
             if (!running.empty() && running.back().entity == entity && running.back().spec == &action) {
               running.back().distance_acceleration = state.acceleration;
-              (void)approach_distance(a, state, ctx, entity, running.back().distance_acceleration);
+              if (ctx.dt > 0) (void)approach_distance(a, state, ctx, entity, running.back().distance_acceleration);
             }
           } else {
             longitudinal_distance(a, state, ctx, entity);

@@ -89,8 +89,7 @@ bool approach_distance(const LongitudinalDistanceAction& a, EntityState& state, 
   wanted = std::clamp(wanted, 0.0, max_speed);
   const bool jerk_limited = a.max_acceleration_rate || a.max_deceleration_rate;
   if (!(ctx.dt > 0)) {
-    if (!jerk_limited) state.speed = wanted;
-    acceleration = 0;
+    acceleration = 0;  // no step to limit the change over: the speed stays
   } else {
     const double before = state.speed;
     double change = (wanted - before) / ctx.dt;

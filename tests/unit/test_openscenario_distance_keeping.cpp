@@ -26,13 +26,13 @@ std::string at_time(double at) {
          std::to_string(at) + R"(" rule="greaterOrEqual"/></ByValueCondition></Condition>)";
 }
 
-// A keeps `distance` m behind B within `constraints` (attributes of DynamicConstraints), from t = 1 s.
-std::string keep_distance(double distance, const std::string& constraints) {
+// A keeps `distance` m behind B within `constraints` (attributes of DynamicConstraints), from `start` s.
+std::string keep_distance(double distance, const std::string& constraints, double start = 1) {
   return R"(<Event name="Keep" priority="parallel"><Action name="KeepAction"><PrivateAction><LongitudinalAction>
 <LongitudinalDistanceAction entityRef="B" distance=")" +
          std::to_string(distance) + R"(" freespace="false" continuous="true"><DynamicConstraints )" + constraints +
          R"(/></LongitudinalDistanceAction></LongitudinalAction></PrivateAction></Action><StartTrigger><ConditionGroup>)" +
-         at_time(1) + "</ConditionGroup></StartTrigger></Event>";
+         at_time(start) + "</ConditionGroup></StartTrigger></Event>";
 }
 
 class DistanceKeeping : public ::testing::Test {
@@ -111,6 +111,17 @@ TEST_F(DistanceKeeping, WithoutJerkLimitsTheAccelerationJumps) {
   const double speed = entity("A").speed;
   runtime_->step(kStep);
   EXPECT_NEAR((entity("A").speed - speed) / kStep, 2.0, 1e-9);
+}
+
+// Started before the first step (at 0 s: no step size yet), the speed stays as it is until
+// the first step's end, and then changes within the limits (no jump to the braking law's
+// speed, 10 + sqrt(2 * 3 * 70) m/s).
+TEST_F(DistanceKeeping, StartedBeforeTheFirstStepTheSpeedDoesNotJump) {
+  load(110, keep_distance(30, R"(maxAcceleration="2" maxDeceleration="3" maxSpeed="40")", 0));
+  ASSERT_FALSE(test::transition_times(*runtime_, "KeepAction", "startTransition").empty());
+  EXPECT_DOUBLE_EQ(entity("A").speed, 10.0);
+  runtime_->step(kStep);
+  EXPECT_NEAR(entity("A").speed, 10 + 2 * kStep, 1e-9);
 }
 
 TEST_F(DistanceKeeping, ARateThatIsNotPositiveIsAnError) {
