@@ -84,6 +84,52 @@ double poly3_u_at(const Poly3& p, const GeometryTable* table, double ds) {
   return u;
 }
 
+// A parametric cubic's parameter p at x metres of the record's own scale: p runs over [0, 1]
+// (normalized) or [0, length] (arcLength) as x runs over [0, length].
+double param_p(const Geometry& g, const ParamPoly3& p, double x) {
+  return p.normalized ? (g.length > 0 ? x / g.length : 0.0) : x;
+}
+
+// |d(u, v)/dx|: how fast the curve runs as x advances.
+double param_speed(const Geometry& g, const ParamPoly3& p, double x) {
+  const double t = param_p(g, p, x);
+  const double du = p.bu + 2 * p.cu * t + 3 * p.du * t * t;
+  const double dv = p.bv + 2 * p.cv * t + 3 * p.dv * t * t;
+  const double dp_dx = p.normalized ? (g.length > 0 ? 1.0 / g.length : 0.0) : 1.0;
+  return std::hypot(du, dv) * dp_dx;
+}
+
+// Arc length of the parametric cubic from x = 0 to x.
+double param_arc_length(const Geometry& g, const ParamPoly3& p, const GeometryTable* table, double x) {
+  const auto speed = [&](double y) { return param_speed(g, p, y); };
+  return table == nullptr || table->piece <= 0 ? integrate(speed, 0.0, x, kPieceLength)
+                                               : integral_to(speed, table, table->a, x);
+}
+
+// The parameter p at `ds` metres along the record. OpenDRIVE's s is the length along the
+// reference line in metres (its reference line coordinate system), also on a parametric
+// cubic, whose p does not run at a constant speed: p is where the curve's arc
+// length is ds, the curve's length scaled to the record's `length` (the two differ a little
+// in real files; esmini scales the same way). Safeguarded Newton on x in [0, length].
+double param_p_at(const Geometry& g, const ParamPoly3& p, const GeometryTable* table, double ds) {
+  const double total = param_arc_length(g, p, table, g.length);
+  if (!(total > 0) || !(g.length > 0) || ds <= 0 || ds >= g.length) return param_p(g, p, ds);
+  const double target = ds * total / g.length;
+  double lo = 0.0, hi = g.length, x = ds;
+  for (int i = 0; i < 100; ++i) {
+    const double error = param_arc_length(g, p, table, x) - target;
+    if (error == 0) break;
+    (error > 0 ? hi : lo) = x;
+    const double speed = param_speed(g, p, x);
+    double next = speed > 1e-12 ? x - error / speed : 0.5 * (lo + hi);
+    if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
+    const bool done = std::abs(next - x) < 1e-12 * (1.0 + g.length);
+    x = next;
+    if (done) break;
+  }
+  return param_p(g, p, x);
+}
+
 double spiral_rate(const Geometry& g, const Spiral& sp) {
   return g.length > 0 ? (sp.curv_end - sp.curv_start) / g.length : 0.0;
 }
@@ -117,8 +163,7 @@ struct Evaluator {
     return local_to_world(g.start, u, v, std::atan(dv));
   }
   Pose2 operator()(const ParamPoly3& p) const {
-    // The parameter p runs linearly with s over the record (as other players read pRange).
-    const double t = p.normalized ? (g.length > 0 ? ds / g.length : 0.0) : ds;
+    const double t = param_p_at(g, p, table, ds);
     const double u = p.au + p.bu * t + p.cu * t * t + p.du * t * t * t;
     const double v = p.av + p.bv * t + p.cv * t * t + p.dv * t * t * t;
     const double du = p.bu + 2 * p.cu * t + 3 * p.du * t * t;
@@ -143,13 +188,17 @@ struct CurvatureOf {
     return ddv / std::pow(1.0 + dv * dv, 1.5);
   }
   double operator()(const ParamPoly3& p) const {
-    const double t = p.normalized ? (g.length > 0 ? ds / g.length : 0.0) : ds;
+    // Per metre of s: the curve's curvature times its length over the record's (1 in a
+    // file whose length is the curve's).
+    const double total = param_arc_length(g, p, table, g.length);
+    const double scale = total > 0 && g.length > 0 ? total / g.length : 1.0;
+    const double t = param_p_at(g, p, table, ds);
     const double du = p.bu + 2 * p.cu * t + 3 * p.du * t * t;
     const double dv = p.bv + 2 * p.cv * t + 3 * p.dv * t * t;
     const double ddu = 2 * p.cu + 6 * p.du * t;
     const double ddv = 2 * p.cv + 6 * p.dv * t;
     const double speed = std::hypot(du, dv);
-    return speed > 0 ? (du * ddv - dv * ddu) / (speed * speed * speed) : 0.0;
+    return speed > 0 ? scale * (du * ddv - dv * ddu) / (speed * speed * speed) : 0.0;
   }
 };
 
@@ -194,6 +243,10 @@ GeometryTable make_table(const Geometry& g) {
     // u runs at most as far as s (ds/du >= 1), so knots over u in [0, length] cover the record.
     table.piece = piece;
     fill(table.a, [&](double u) { return poly3_speed(*p, u); });
+  } else if (const auto* pp = std::get_if<ParamPoly3>(&g.shape)) {
+    // Over x in [0, length] (p scaled to it): the curve's arc length at the knots.
+    table.piece = piece;
+    fill(table.a, [&](double x) { return param_speed(g, *pp, x); });
   }
   return table;
 }

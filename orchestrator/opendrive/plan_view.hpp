@@ -5,7 +5,8 @@
 //
 // A PlanView answers pose(s) and curvature(s) in O(log g) for g records: the record by
 // binary search on s, and a spiral's or cubic polynomial's integral from a table of the
-// record's integrals at knots every <= 2 m, built once, plus one quadrature piece. It also
+// record's integrals at knots every <= 2 m, built once, plus one quadrature piece (a
+// parametric cubic's p is found where its arc length is s, by the same table). It also
 // keeps the reference line sampled about every metre in a PointTree, so projecting a point
 // onto the road finds its nearest sample without walking the road.
 #include <cstddef>
@@ -54,10 +55,11 @@ Pose2 evaluate(const Geometry& geometry, double ds);
 double curvature(const Geometry& geometry, double ds);
 
 // A record's integrals at knots `piece` metres apart (spiral: along s, the offsets u and v
-// from its start; poly3: along u, the arc length), so an evaluation integrates one piece.
+// from its start; poly3: along u, the arc length; parametric cubic: along p scaled to
+// [0, length], the arc length), so an evaluation integrates one piece.
 struct GeometryTable {
-  double piece = 0.0;      // 0: no table (lines, arcs, parametric cubics: closed forms)
-  std::vector<double> a;   // spiral: u at the knots; poly3: arc length at the knots
+  double piece = 0.0;      // 0: no table (lines, arcs: closed forms)
+  std::vector<double> a;   // spiral: u at the knots; poly3, parametric cubic: arc length at the knots
   std::vector<double> b;   // spiral: v at the knots
 };
 GeometryTable make_table(const Geometry& geometry);

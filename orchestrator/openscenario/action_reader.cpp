@@ -1,6 +1,7 @@
 // PrivateAction and GlobalAction: one table entry per action run (name, reader); the
 // readers of the motion and controller actions.
 #include <algorithm>
+#include <type_traits>
 
 #include <fmt/format.h>
 
@@ -69,8 +70,9 @@ std::string coordinate_system(Element& e) {
       .value_or("entity");
 }
 
-// The limits of a distance action's DynamicConstraints; maxAccelerationRate and
-// maxDecelerationRate are read, not applied.
+// The limits of a distance action's DynamicConstraints. The jerk limits maxAccelerationRate
+// and maxDecelerationRate apply to a LongitudinalDistanceAction (distance_keeping.cpp); a
+// LateralDistanceAction's are read, not applied.
 template <typename DistanceAction>
 void read_dynamic_constraints(Element& e, DistanceAction& a, bool must_be_positive) {
   auto constraints = e.optional_child("DynamicConstraints");
@@ -82,7 +84,15 @@ void read_dynamic_constraints(Element& e, DistanceAction& a, bool must_be_positi
     for (const char* name : {"maxAcceleration", "maxDeceleration", "maxSpeed"})
       if (constraints->has(name) && !(*constraints->optional_number(name) > 0))
         constraints->fail_attribute(name, "must be positive");
-  constraints->ignore_attributes({"maxAccelerationRate", "maxDecelerationRate"});
+  if constexpr (std::is_same_v<DistanceAction, LongitudinalDistanceAction>) {
+    a.max_acceleration_rate = constraints->optional_number("maxAccelerationRate");
+    a.max_deceleration_rate = constraints->optional_number("maxDecelerationRate");
+    for (const char* name : {"maxAccelerationRate", "maxDecelerationRate"})
+      if (constraints->has(name) && !(*constraints->optional_number(name) > 0))
+        constraints->fail_attribute(name, "must be positive");
+  } else {
+    constraints->ignore_attributes({"maxAccelerationRate", "maxDecelerationRate"});
+  }
   constraints->finish();
 }
 

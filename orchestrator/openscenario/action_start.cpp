@@ -315,6 +315,14 @@ std::vector<std::string> start_action(const PrivateAction& action, const std::st
           if (has_limits(a)) {
             check_distance_entities(a, state, ctx, entity);  // both placed: checked now
             take_over(MotionDomain::Longitudinal, true, a.continuous);
+            // Its speed for the coming step is set now, as every other action started now acts
+            // from the coming step on (a SpeedAction's profile starts now); it is kept from the
+            // end of each step on (update_running_actions). Before the first step (no step
+            // size yet: Init, or an event at 0 s) the first step's end sets it.
+            if (!running.empty() && running.back().entity == entity && running.back().spec == &action) {
+              running.back().distance_acceleration = state.acceleration;
+              if (ctx.dt > 0) (void)approach_distance(a, state, ctx, entity, running.back().distance_acceleration);
+            }
           } else {
             longitudinal_distance(a, state, ctx, entity);
             take_over(MotionDomain::Longitudinal, false, a.continuous);
@@ -435,7 +443,7 @@ std::vector<std::string> update_running_actions(ActionContext& ctx, std::vector<
         done = step_synchronize(*synchronize, *it->synchronize, it->entity, ctx);
       } else if (const auto* distance = std::get_if<LongitudinalDistanceAction>(it->spec)) {
         if (!has_limits(*distance)) longitudinal_distance(*distance, state, ctx, it->entity);  // continuous: keep it
-        else done = approach_distance(*distance, state, ctx, it->entity) && !it->continuous;
+        else done = approach_distance(*distance, state, ctx, it->entity, it->distance_acceleration) && !it->continuous;
       } else if (const auto* profile = std::get_if<SpeedProfileAction>(it->spec)) {
         done = step_speed_profile(*profile, *it->speed_profile, state, ctx.t, ctx.dt);
       } else if (state.speed_profile && state.speed_profile->done(ctx.t)) {

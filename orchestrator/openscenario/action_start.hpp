@@ -49,6 +49,7 @@ struct RunningAction {
   std::optional<SynchronizeRun> synchronize;  // a SynchronizeAction's targets and phase
   std::optional<SpeedProfileRun> speed_profile;  // a SpeedProfileAction's segments and progress
   std::optional<double> lateral_distance;        // a LateralDistanceAction's distance kept
+  double distance_acceleration = 0;              // a LongitudinalDistanceAction's last acceleration (its jerk limits)
 };
 
 // Starts `action` for `entity` ("" for global actions): immediate actions take effect now; actions that take time

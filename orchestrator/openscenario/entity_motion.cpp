@@ -34,6 +34,24 @@ int direction_of_heading(const opendrive::Road& road, double s, double heading) 
   return std::cos(heading - road.plan_view.pose(std::clamp(s, 0.0, road.length)).heading) >= 0 ? 1 : -1;
 }
 
+namespace {
+
+// How the lane's centre moves sideways along the road, dt/ds at s (a lane that narrows or
+// widens beside it, a lane offset): a central difference within s's lane section, whose
+// lanes the id names (across a section border the ids may change).
+double lane_center_slope(const opendrive::Road& road, int lane, double s) {
+  const std::size_t i = opendrive::section_index(road, s);
+  const double from = road.sections[i].s;
+  const double to = i + 1 < road.sections.size() ? road.sections[i + 1].s - 1e-6 : road.length;
+  constexpr double kHalfStep = 0.01;  // m
+  const double a = std::max(s - kHalfStep, from);
+  const double b = std::min(s + kHalfStep, to);
+  if (b - a < 1e-9) return 0.0;
+  return (road.lane_center_t(lane, b) - road.lane_center_t(lane, a)) / (b - a);
+}
+
+}  // namespace
+
 void update_pose(EntityState& state, const opendrive::RoadNetwork& roads) {
   if (state.road_id.empty()) return;  // on no road: the pose is its place
   const opendrive::Road& road = roads.road(state.road_id);
@@ -42,8 +60,17 @@ void update_pose(EntityState& state, const opendrive::RoadNetwork& roads) {
   const opendrive::Pose2 p = road.world(s, state.t);
   const int direction = travel_direction(state, road);
   const double along = std::sqrt(std::max(state.speed * state.speed - state.lateral_rate * state.lateral_rate, 0.0));
-  // Moving along +s, a leftward rate turns the heading left; along -s, right.
-  const double yaw = std::atan2(state.lateral_rate, along > 0 ? along : 1e-9);
+  // The entity faces where it moves: along its lane at `along` m/s, sideways at the action's
+  // lateral rate plus the lane centre's own drift (dt/ds per metre of its path, 1 - k t of
+  // s on a curve), as the lane carries it (trailers.xosc: road 202's lane 2 shifts 3.75 m
+  // right over 30 m, and the tractor turns with it; its trailers follow the tractor's heading).
+  const double stretch = std::max(1.0 - road.plan_view.curvature(s) * state.t, 0.1);
+  const double drift = direction * lane_center_slope(road, state.lane, s) / stretch;
+  // Moving along +s, a leftward rate turns the heading left; along -s, right. Standing, it
+  // faces along its lane.
+  const double yaw = along > 0 ? std::atan2(state.lateral_rate + drift * along, along)
+                     : state.lateral_rate != 0 ? std::atan2(state.lateral_rate, 1e-9)
+                                               : std::atan(drift);
   double heading = direction > 0 ? p.heading + yaw : p.heading + M_PI - yaw;
   heading = std::fmod(heading, 2 * M_PI);
   if (heading < 0) heading += 2 * M_PI;

@@ -124,6 +124,9 @@ struct LongitudinalDistanceAction {
   std::string coordinate_system = "entity";
   std::string displacement = "trailingReferencedEntity";
   std::optional<double> max_acceleration, max_deceleration, max_speed;
+  // DynamicConstraints' jerk limits (m/s^3): how fast the acceleration may grow (and the
+  // deceleration shrink), and how fast it may fall (the deceleration grow).
+  std::optional<double> max_acceleration_rate, max_deceleration_rate;
 };
 // SpeedProfileAction (1.2): the speeds to reach one after the other, each in its entry's time
 // (from the entry before; absent: as fast as the DynamicConstraints allow). With an entity

@@ -96,13 +96,62 @@ TEST(OpenDriveGeometry, ParamPoly3NormalizedAndArcLengthRanges) {
   const Pose2 p = evaluate(normalized, 15.0);
   EXPECT_NEAR(p.x, 15.0 * std::cos(std::numbers::pi / 4), 1e-12);
   EXPECT_NEAR(p.y, 15.0 * std::sin(std::numbers::pi / 4), 1e-12);
-  // arcLength range: p runs 0..length; u = p, v = 0.001 p^3.
-  const Geometry arc_length = at(0.0, 0.0, 0.0, 30.0, ParamPoly3{0, 1, 0, 0, 0, 0, 0, 0.001, false});
+  // arcLength range: p runs 0..length; u = p, v = 0: a line of 30 m.
+  const Geometry arc_length = at(0.0, 0.0, 0.0, 30.0, ParamPoly3{0, 1, 0, 0, 0, 0, 0, 0, false});
   const Pose2 q = evaluate(arc_length, 10.0);
   EXPECT_NEAR(q.x, 10.0, 1e-12);
-  EXPECT_NEAR(q.y, 1.0, 1e-12);
-  EXPECT_NEAR(q.heading, std::atan2(0.003 * 100, 1.0), 1e-12);
-  EXPECT_NEAR(curvature(arc_length, 10.0), 0.006 * 10 / std::pow(1 + 0.09, 1.5), 1e-12);
+  EXPECT_NEAR(q.y, 0.0, 1e-12);
+}
+
+// The length of a curve between two values of s, by a fine chord sum (independent of the
+// evaluator's quadrature).
+double chord_length(const Geometry& g, double from, double to) {
+  double sum = 0.0;
+  Pose2 last = evaluate(g, from);
+  for (int i = 1; i <= 2000; ++i) {
+    const Pose2 next = evaluate(g, from + (to - from) * i / 2000.0);
+    sum += std::hypot(next.x - last.x, next.y - last.y);
+    last = next;
+  }
+  return sum;
+}
+
+// s is the length along the reference line, also on a parametric cubic whose parameter does
+// not run at a constant speed: SUMO's right turn of junction_route.xosc (road 50,
+// u = 14.4 p - 7.2 p^2, v = -7.2 p^2, normalized; the curve runs 1.23 times faster than p at
+// its start, 0.87 times at its middle), and the same curve with a length attribute 10 %
+// short of the curve's (scaled, as esmini does: s still ends at the curve's end). With p
+// proportional to s the first half metre is 0.62 m of curve.
+TEST(OpenDriveGeometry, ParamPoly3AdvancesAlongItsArcLength) {
+  const ParamPoly3 turn{0, 14.4, -7.2, 0, 0, 0, -7.2, 0, true};
+  const double length = 11.67729721;
+  const Geometry g = at(-7.2, 0.0, 0.0, length, turn);
+  // The file's length is 0.08 % short of the curve's (11.6872 m): every metre of s is the
+  // same stretch of curve, the curve's length over the record's.
+  const double total = chord_length(g, 0.0, length);
+  EXPECT_NEAR(total, 11.6872, 1e-4);
+  for (double ds = 0.0; ds + 0.5 <= length; ds += 0.5)
+    EXPECT_NEAR(chord_length(g, ds, ds + 0.5), 0.5 * total / length, 1e-6) << "ds=" << ds;
+  const Pose2 end = evaluate(g, length);
+  EXPECT_NEAR(end.x, 0.0, 1e-12);
+  EXPECT_NEAR(end.y, -7.2, 1e-12);
+  EXPECT_NEAR(end.heading, -std::numbers::pi / 2, 1e-12);
+  // Curvature at s: the turn of the heading over a short stretch of s (per metre of s, as
+  // the entity's motion uses it).
+  for (const double ds : {0.5, 3.0, 5.8, 9.0}) {
+    const double turned = evaluate(g, ds + 1e-4).heading - evaluate(g, ds - 1e-4).heading;
+    EXPECT_NEAR(curvature(g, ds), turned / 2e-4, 1e-6) << "ds=" << ds;
+  }
+  const Geometry short_length = at(-7.2, 0.0, 0.0, 0.9 * length, turn);
+  for (double ds = 0.0; ds + 0.5 <= 0.9 * length; ds += 0.5)
+    EXPECT_NEAR(chord_length(short_length, ds, ds + 0.5), 0.5 * total / (0.9 * length), 1e-6) << "ds=" << ds;
+  EXPECT_NEAR(evaluate(short_length, 0.9 * length).y, -7.2, 1e-12);
+  // arcLength range: u = p, v = 0.001 p^3 over p in [0, 30] (37.1 m of curve, length 30).
+  const Geometry cubic = at(0.0, 0.0, 0.0, 30.0, ParamPoly3{0, 1, 0, 0, 0, 0, 0, 0.001, false});
+  const double cubic_total = chord_length(cubic, 0.0, 30.0);
+  for (double ds = 0.0; ds + 1.0 <= 30.0; ds += 1.0)
+    EXPECT_NEAR(chord_length(cubic, ds, ds + 1.0), cubic_total / 30.0, 1e-6) << "ds=" << ds;
+  EXPECT_NEAR(evaluate(cubic, 30.0).y, 27.0, 1e-12);
 }
 
 const char* kTwoSectionRoad = R"(<?xml version="1.0"?>
