@@ -38,7 +38,7 @@ double truncated(const std::optional<ValueRange>& range, const auto& one_draw) {
   return std::clamp(x, range->lower, range->upper);
 }
 
-struct Drawer {
+struct StochasticDrawer {
   std::mt19937_64& engine;
 
   double operator()(const UniformDistribution& d) const {
@@ -110,7 +110,7 @@ VariationValues product_values(const Variation& v, std::uint64_t index) {
   return out;
 }
 
-double draw_stochastic(const StochasticKind& d, std::mt19937_64& engine) { return std::visit(Drawer{engine}, d); }
+double draw_stochastic(const StochasticKind& d, std::mt19937_64& engine) { return std::visit(StochasticDrawer{engine}, d); }
 
 std::string value_text(const Parameter& p, double x) {
   return format_number(whole_number_type(p.type) ? std::round(x) : x);
