@@ -111,8 +111,8 @@ double param_arc_length(const Geometry& g, const ParamPoly3& p, const GeometryTa
 // cubic, whose p does not run at a constant speed: p is where the curve's arc
 // length is ds, the curve's length scaled to the record's `length` (the two differ a little
 // in real files; esmini scales the same way). Safeguarded Newton on x in [0, length].
-double param_p_at(const Geometry& g, const ParamPoly3& p, const GeometryTable* table, double ds) {
-  const double total = param_arc_length(g, p, table, g.length);
+// `total`: the curve's whole arc length (param_arc_length at the record's length).
+double param_p_at(const Geometry& g, const ParamPoly3& p, const GeometryTable* table, double ds, double total) {
   if (!(total > 0) || !(g.length > 0) || ds <= 0 || ds >= g.length) return param_p(g, p, ds);
   const double target = ds * total / g.length;
   double lo = 0.0, hi = g.length, x = ds;
@@ -163,7 +163,7 @@ struct Evaluator {
     return local_to_world(g.start, u, v, std::atan(dv));
   }
   Pose2 operator()(const ParamPoly3& p) const {
-    const double t = param_p_at(g, p, table, ds);
+    const double t = param_p_at(g, p, table, ds, param_arc_length(g, p, table, g.length));
     const double u = p.au + p.bu * t + p.cu * t * t + p.du * t * t * t;
     const double v = p.av + p.bv * t + p.cv * t * t + p.dv * t * t * t;
     const double du = p.bu + 2 * p.cu * t + 3 * p.du * t * t;
@@ -192,7 +192,7 @@ struct CurvatureOf {
     // file whose length is the curve's).
     const double total = param_arc_length(g, p, table, g.length);
     const double scale = total > 0 && g.length > 0 ? total / g.length : 1.0;
-    const double t = param_p_at(g, p, table, ds);
+    const double t = param_p_at(g, p, table, ds, total);
     const double du = p.bu + 2 * p.cu * t + 3 * p.du * t * t;
     const double dv = p.bv + 2 * p.cv * t + 3 * p.dv * t * t;
     const double ddu = 2 * p.cu + 6 * p.du * t;
