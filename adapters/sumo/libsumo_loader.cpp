@@ -4,11 +4,13 @@
 #include <fmt/format.h>
 
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <mutex>
 #include <utility>
 
 #include "core/errors.hpp"
+#include "libsumo_build_stamp.hpp"
 #include "libsumo_module.hpp"
 #include "sumo_ego_control.hpp"
 
@@ -43,9 +45,11 @@ const LibsumoModule& load_module() {
     auto entry = reinterpret_cast<Entry>(dlsym(handle, "orch_libsumo_module"));
     if (!entry) throw SimulationError(fmt::format("{} is not the orchestrator's libsumo module: {}", path.string(), dlerror()));
     const LibsumoModule* m = entry();
-    if (m->abi != kLibsumoModuleAbi)
-      throw SimulationError(fmt::format("{} belongs to another build of the orchestrator (interface {} here, {} there)",
-                                        path.string(), kLibsumoModuleAbi, m->abi));
+    if (m->abi != kLibsumoModuleAbi || std::strcmp(m->build, ORCH_LIBSUMO_BUILD_STAMP) != 0)
+      throw SimulationError(fmt::format(
+          "{} belongs to another build of the orchestrator (build {} here, {} there): put the module built with this "
+          "program beside it (or name it with ORCH_LIBSUMO_MODULE), or choose --backend traci",
+          path.string(), ORCH_LIBSUMO_BUILD_STAMP, m->abi == kLibsumoModuleAbi ? m->build : "of an older interface"));
     module = m;  // never unloaded: libsumo keeps its simulation in static state
   });
   return *module;

@@ -14,15 +14,19 @@
 
 namespace orch {
 
-// What the module hands the program. `abi` guards against a module of another build.
+// What the module hands the program. `abi` (this struct's own shape) and `build` (the build
+// stamp: a hash of every header and the compiler flags, cmake/build_stamp.cmake) guard
+// against a module of another build, whose types may differ in shape from the program's.
 struct LibsumoModule {
   int abi;
+  const char* build;
   std::unique_ptr<Simulator> (*make_simulator)(const SumoBackendOptions& options);
   std::unique_ptr<traci::EgoWorld> (*make_ego_control)();
 };
 
-// Changes whenever LibsumoModule or the types crossing it change shape.
-inline constexpr int kLibsumoModuleAbi = 1;
+// Changes whenever LibsumoModule itself changes shape (the types crossing it are covered by
+// the build stamp).
+inline constexpr int kLibsumoModuleAbi = 2;
 
 }  // namespace orch
 

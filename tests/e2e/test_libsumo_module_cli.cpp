@@ -10,15 +10,14 @@ using namespace orch::test;
 
 namespace {
 
-// Points the program at a module file that does not exist, for one test.
-class WithoutLibsumoModule {
+// Points the program at another module file (one that does not exist, one of another
+// build), for one test.
+class WithLibsumoModule {
  public:
-  explicit WithoutLibsumoModule(const std::filesystem::path& missing) {
-    ::setenv("ORCH_LIBSUMO_MODULE", missing.c_str(), 1);
-  }
-  ~WithoutLibsumoModule() { ::unsetenv("ORCH_LIBSUMO_MODULE"); }
-  WithoutLibsumoModule(const WithoutLibsumoModule&) = delete;
-  WithoutLibsumoModule& operator=(const WithoutLibsumoModule&) = delete;
+  explicit WithLibsumoModule(const std::filesystem::path& module) { ::setenv("ORCH_LIBSUMO_MODULE", module.c_str(), 1); }
+  ~WithLibsumoModule() { ::unsetenv("ORCH_LIBSUMO_MODULE"); }
+  WithLibsumoModule(const WithLibsumoModule&) = delete;
+  WithLibsumoModule& operator=(const WithLibsumoModule&) = delete;
 };
 
 }  // namespace
@@ -26,7 +25,7 @@ class WithoutLibsumoModule {
 TEST(LibsumoModuleCli, WithoutTheModuleOnlyLibsumoRunsFailAndSaySo) {
   TempDir dir;
   const std::string scenario = source_path("scenarios/alks_obstacle_stop.json");
-  const WithoutLibsumoModule missing(dir / "no-such-module.so");
+  const WithLibsumoModule missing(dir / "no-such-module.so");
 
   const auto validate = run_cli({"validate", scenario});
   EXPECT_EQ(validate.exit_code, 0) << validate.output;
@@ -42,6 +41,21 @@ TEST(LibsumoModuleCli, WithoutTheModuleOnlyLibsumoRunsFailAndSaySo) {
   const std::string reason = result["reason"];
   EXPECT_NE(reason.find("no-such-module.so"), std::string::npos) << reason;
   EXPECT_NE(reason.find("--backend traci"), std::string::npos) << reason;
+}
+
+// A stale module beside a copied program crashed on the first type whose shape had changed;
+// now its build stamp differs and the run ends with an error that says so.
+TEST(LibsumoModuleCli, AModuleOfAnotherBuildIsRefusedWithAMessage) {
+  TempDir dir;
+  const WithLibsumoModule other(ORCH_OTHER_BUILD_MODULE);
+  const auto r = run_cli({"run", source_path("scenarios/alks_obstacle_stop.json"), "--out", (dir / "out").string(), "-q",
+                          "--no-report"});
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  const auto result = read_json(dir / "out" / "result.json");
+  EXPECT_EQ(result["verdict"], "error");
+  const std::string reason = result["reason"];
+  EXPECT_NE(reason.find("belongs to another build of the orchestrator"), std::string::npos) << reason;
+  EXPECT_NE(reason.find("0000000000000000 there"), std::string::npos) << reason;
 }
 
 TEST(LibsumoModuleCli, TheDefaultBackendLoadsTheModuleBesideTheProgram) {
