@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 namespace orch::openscenario {
 namespace {
@@ -52,13 +53,24 @@ double lookahead(const FollowLimits& limits, double speed) {
   return std::max({kFollowMinLookahead, kFollowLookaheadTime * speed, radius});
 }
 
+// The goal L_d beyond the entity's nearest point on the path: its distance and its bearing
+// from the entity's heading.
+std::pair<double, double> goal_from(const PathMotion& path, const FollowLimits& limits, const opendrive::Pose2& pose,
+                                    double speed) {
+  const opendrive::Pose2 goal = extended_pose(path, path.distance + lookahead(limits, speed));
+  return {std::hypot(goal.x - pose.x, goal.y - pose.y), wrapped(std::atan2(goal.y - pose.y, goal.x - pose.x) - pose.heading)};
+}
+
 // Pure pursuit: the curvature of the circle through the entity's reference point, tangent to
-// its heading, that reaches the goal L_d beyond its nearest point on the path.
+// its heading, that reaches the goal.
 double pursuit_curvature(const PathMotion& path, const FollowLimits& limits, const opendrive::Pose2& pose,
                          double speed) {
-  const opendrive::Pose2 goal = extended_pose(path, path.distance + lookahead(limits, speed));
-  const double to_goal = std::hypot(goal.x - pose.x, goal.y - pose.y);
-  const double alpha = wrapped(std::atan2(goal.y - pose.y, goal.x - pose.x) - pose.heading);
+  auto [to_goal, alpha] = goal_from(path, limits, pose, speed);
+  // A goal behind the entity (it faces away from the path: placed facing the other way):
+  // 2 sin(alpha) / L falls to 0 as the goal comes straight behind, and the entity would drive
+  // away from the path for ever (esmini's pedestrian.xosc did, for 3,600 s). Turn towards the
+  // goal's side as for a goal abeam instead: a U-turn on a circle of diameter L.
+  if (std::abs(alpha) > M_PI / 2) alpha = alpha < 0 ? -M_PI / 2 : M_PI / 2;
   return to_goal > 1e-9 ? 2 * std::sin(alpha) / to_goal : 0.0;
 }
 
@@ -121,6 +133,12 @@ double follow_step(PathMotion& path, opendrive::Pose2& pose, double& speed, std:
     const double due = path.distance_at(t);
     const double due_speed = (due - path.distance_at(t - dt)) / dt;
     wanted = due_speed + (path.distance_at(t - dt) - path.distance) / kFollowSpeedTau;
+  }
+  // An entity with no steering limit (no axles: a pedestrian, an object) facing away from
+  // its goal turns round on the spot, as a person does, instead of walking a U-turn.
+  if (std::isinf(limits.max_curvature)) {
+    const double alpha = goal_from(path, limits, pose, f.speed).second;
+    if (std::abs(alpha) > M_PI / 2) pose.heading = std::fmod(pose.heading + alpha + 2 * M_PI, 2 * M_PI);
   }
   // Steering: towards the goal L_d beyond the nearest point (L_d from the speed so far).
   const double pursuit = pursuit_curvature(path, limits, pose, f.speed);

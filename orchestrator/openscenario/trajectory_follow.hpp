@@ -7,7 +7,9 @@
 //               (never inside the tightest turning circle)
 //   goal        the path point L_d beyond the entity's nearest point (past the end: on the
 //               last segment's extension)
-//   curvature   k = 2 sin(alpha) / |goal - p|   (alpha: the goal's bearing from the heading),
+//   curvature   k = 2 sin(alpha) / |goal - p|   (alpha: the goal's bearing from the heading,
+//               at most +-pi/2: a goal behind turns the entity round, a U-turn on a circle
+//               of diameter |goal - p|; with no steering limit, no axles, on the spot),
 //               |k| <= k_max = tan(maxSteering) / wheelbase and <= kFollowMaxLateralAcceleration / v^2
 //   speed       timed: v* = v_due + e / kFollowSpeedTau, e = due distance - nearest point's
 //               distance; untimed: the speed the storyboard sets; v* within [0, maxSpeed]

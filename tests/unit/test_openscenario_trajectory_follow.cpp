@@ -142,5 +142,24 @@ TEST(TrajectoryFollow, UntimedPathAtTheStoryboardsSpeed) {
   EXPECT_NEAR(speed, 14.5, 1e-9);
 }
 
+// Placed facing away from its path (esmini's pedestrian.xosc: a relative Orientation h=0 on a
+// left-hand sidewalk, the path going the other way): the goal lies straight behind, where
+// 2 sin(alpha) / L is 0. It walked away from the path for ever; now it turns round and
+// follows it to the end.
+TEST(TrajectoryFollow, FacingAwayFromThePathItTurnsRound) {
+  std::vector<PathPoint> points{{0, 0, 0, std::nullopt}, {-10, 0, 0, std::nullopt}};
+  PathMotion path = make_path(points, false);
+  const FollowLimits pedestrian = follow_limits(Entity{});
+  const FollowRun run = follow(path, {0, 0, 0}, 1.5, pedestrian, 30);
+  EXPECT_GT(run.end_time, 0.0) << "never reached the path's end";
+  EXPECT_LT(run.end_time, 15.0);  // 10 m at 1.5 m/s, plus the turn
+  EXPECT_LT(run.max_off, 0.1);    // no axles: it turns round on the spot
+  // A car turns on a circle (a U-turn, its lookahead the diameter), then follows the path.
+  const FollowRun car = follow(path, {0, 0, 0}, 5.0, car_limits(), 30);
+  EXPECT_GT(car.end_time, 0.0) << "the car never reached the path's end";
+  EXPECT_GT(car.max_off, 3.0);
+  EXPECT_LT(car.max_off, 15.0);
+}
+
 }  // namespace
 }  // namespace orch::openscenario
