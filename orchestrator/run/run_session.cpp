@@ -125,9 +125,10 @@ bool RunSession::take(const sim::WorldSnapshot& snap) {
     if (!result_.collision) result_.collision = format_->ego_collision(snap, t, *log_);
     if (format_->ended()) {
       ended = true;
-    } else if (req_.max_time && t >= *req_.max_time - 1e-9) {
+    } else if (t >= req_.max_time.value_or(kDefaultMaxTimeS) - 1e-9) {
       result_.verdict = Verdict::Failure;
-      result_.reason = format_->max_time_reason(*req_.max_time);
+      result_.reason = format_->max_time_reason(req_.max_time.value_or(kDefaultMaxTimeS));
+      if (!req_.max_time) result_.reason += " (the limit without --max-time; give --max-time to run longer)";
       log_->at(t, result_.reason);
       ended = true;
     } else if (req_.interrupted && req_.interrupted->load()) {

@@ -17,12 +17,17 @@
 
 namespace orch {
 
+// A run ends here when no --max-time is given and nothing else ended it (a StopTrigger that
+// never fires, a scene never left): an hour of simulated time, far beyond a test scenario,
+// but a batch never hangs on one run and a trace never grows without bound.
+inline constexpr double kDefaultMaxTimeS = 3600.0;
+
 struct RunRequest {
   std::string scenario_file;
   std::filesystem::path out_dir = "out";
   double step = 0.05;
   long long seed = 42;
-  std::optional<double> max_time;
+  std::optional<double> max_time;  // none: kDefaultMaxTimeS
   bool strict = false;  // validation warnings stop the run
   bool echo = true;     // run log to the terminal too
   std::vector<std::filesystem::path> map_dirs;  // empty: MapRegistry::default_search_dirs()

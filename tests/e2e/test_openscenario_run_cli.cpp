@@ -85,6 +85,37 @@ TEST(OpenScenarioRunCli, AMisspeltAttributeIsAnErrorNamingTheFileAndLine) {
 
 }  // namespace
 
+// A StopTrigger that never fires (esmini's cut-in_cr.xosc waits for a continuous action to
+// end) ran for ever: 58,835 s simulated and a 3.5-million-line trace before it was killed.
+// Without --max-time a run now ends at kDefaultMaxTimeS (3,600 s), with a reason that says so.
+TEST(OpenScenarioRunCli, AStopTriggerThatNeverFiresEndsAtTheDefaultLimit) {
+  TempDir dir;
+  const auto file = dir.write("never_stops.xosc", R"(<?xml version="1.0"?><OpenSCENARIO>
+<FileHeader revMajor="1" revMinor="3" date="2024-01-01T00:00:00" author="t" description="never stops"/>
+<RoadNetwork/>
+<Entities><ScenarioObject name="Car"><Vehicle name="car" vehicleCategory="car">
+<BoundingBox><Center x="1.5" y="0" z="0.9"/><Dimensions width="2" length="5" height="1.8"/></BoundingBox>
+<Performance maxSpeed="70" maxDeceleration="10" maxAcceleration="10"/>
+<Axles><FrontAxle maxSteering="0.5" wheelDiameter="0.8" trackWidth="1.68" positionX="3" positionZ="0.4"/>
+<RearAxle maxSteering="0" wheelDiameter="0.8" trackWidth="1.68" positionX="0" positionZ="0.4"/></Axles>
+</Vehicle></ScenarioObject></Entities>
+<Storyboard><Init><Actions><Private entityRef="Car">
+<PrivateAction><TeleportAction><Position><WorldPosition x="1.8" y="-358" z="0" h="1.5707963"/></Position></TeleportAction></PrivateAction>
+</Private></Actions></Init>
+<StopTrigger><ConditionGroup><Condition name="Stop" delay="0" conditionEdge="none"><ByValueCondition>
+<SimulationTimeCondition value="5000" rule="greaterOrEqual"/></ByValueCondition></Condition></ConditionGroup></StopTrigger>
+</Storyboard></OpenSCENARIO>)");
+  TempDir out;
+  const auto r = run_cli({"run", file.string(), "--out", out.path().string(), "-q", "--no-report", "--step", "1"});
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  const auto result = read_json(out / "result.json");
+  EXPECT_EQ(result["verdict"], "failure");
+  EXPECT_NEAR(result["sim_time"].get<double>(), 3600.0, 1e-6);
+  const std::string reason = result["reason"];
+  EXPECT_NE(reason.find("the limit without --max-time"), std::string::npos) << reason;
+  EXPECT_TRUE(result["max_time"].is_null());  // the user gave none
+}
+
 // A scenario without a road (no LogicFile, as the standard allows): SUMO runs on a generated
 // parking road and the car is where the storyboard puts it by world position, off every lane,
 // moving straight on along its heading (north here) at its SpeedAction's speed.
