@@ -8,6 +8,7 @@
 
 #include "core/errors.hpp"
 #include "map/route_path.hpp"
+#include "opendrive/lane_graph.hpp"
 
 namespace orch::position {
 namespace {
@@ -132,9 +133,18 @@ ResolvedPosition PositionResolver::resolve(const Position& position, const Entit
           return on_road(road, s, from.road->t + kind.dt, oriented(kind.orientation, road.plan_view.pose(s).heading));
         } else if constexpr (std::is_same_v<T, LanePosition>) {
           const opendrive::Road& road = roads().road(kind.road_id);
-          const double heading = road.plan_view.pose(kind.s).heading;
+          // A relative Orientation of a LanePosition turns from the lane's driving direction
+          // (the road's s, turned round on a lane that drives against it), as esmini reads
+          // it; the standard is ambiguous here: its Orientation says "aligned with the
+          // direction of the reference lane or road s-axis", LanePosition's orientation "the
+          // referenced road's s and t coordinates". Real files are written so (esmini's
+          // left-hand-traffic_by_heading.xosc: h=pi on lane 3 to drive with s; a pedestrian on
+          // lane 3 with h=0 walking against s). The Relative*Position and RoadPosition keep the
+          // road's s, as in esmini.
+          const double along = road.plan_view.pose(kind.s).heading +
+                               (opendrive::lane_direction(road, kind.lane_id) < 0 ? std::numbers::pi : 0.0);
           return on_road(road, kind.s, road.lane_center_t(kind.lane_id, kind.s) + kind.offset,
-                         oriented(kind.orientation, heading));
+                         oriented(kind.orientation, along));
         } else if constexpr (std::is_same_v<T, RoutePosition>) {
           return resolve_on_route(kind, entities);
         } else {  // RelativeLanePosition

@@ -41,22 +41,15 @@ EntityPoseLookup poses(ActionContext& ctx) {
   };
 }
 
-// A road or lane position without an Orientation: the entity faces its lane's driving
-// direction, the way the runtime then moves it (update_pose), as esmini places it. The road's
-// own heading would face an entity on a left lane (right-hand traffic) backwards at the start,
-// and a trailer placed behind it would stand in front of it.
+// A LanePosition without an Orientation: the entity faces its lane's driving direction, the
+// way the runtime then moves it (update_pose), as esmini places it (an Orientation left out is
+// a relative one of h=0, and a LanePosition's relative heading is the lane's driving
+// direction: map/position_resolver.cpp). The road positions and the relative lane position
+// face the road's s then, as in esmini (measured: a RelativeLanePosition, RoadPosition or
+// RelativeRoadPosition without Orientation on a left lane of right-hand traffic faces along s).
 bool faces_driving_direction(const position::Position& p) {
-  return std::visit(
-      [](const auto& kind) {
-        using T = std::decay_t<decltype(kind)>;
-        if constexpr (std::is_same_v<T, position::LanePosition> || std::is_same_v<T, position::RoadPosition> ||
-                      std::is_same_v<T, position::RelativeLanePosition> ||
-                      std::is_same_v<T, position::RelativeRoadPosition>)
-          return !kind.orientation.has_value();
-        else
-          return false;
-      },
-      p);
+  const auto* lane = std::get_if<position::LanePosition>(&p);
+  return lane && !lane->orientation.has_value();
 }
 
 // The height above the road a position gives: dz above its reference entity (RelativeObject /
