@@ -62,6 +62,22 @@ TEST_F(Positions, LanePositionIsTheLaneCentrePlusOffset) {
   EXPECT_THROW((void)resolve(LanePosition{"7", -2, 10.0, 0.0, std::nullopt}), MapError);
 }
 
+// On left lane 1 (right-hand traffic: it drives against s) a LanePosition's relative
+// Orientation turns from the lane's driving direction, a road position's from the road's s,
+// and an Orientation left out is relative h=0: as esmini places them (the standard is
+// ambiguous for the LanePosition: docs/openscenario.md, Positions).
+TEST_F(Positions, ALanePositionsRelativeHeadingIsTheLanesDrivingDirection) {
+  EXPECT_NEAR(resolve(LanePosition{"0", 1, 50.0, 0.0, Orientation{true, 0.0}}).pose.heading, M_PI, 1e-12);
+  EXPECT_NEAR(resolve(LanePosition{"0", 1, 50.0, 0.0, std::nullopt}).pose.heading, M_PI, 1e-12);
+  EXPECT_NEAR(std::remainder(resolve(LanePosition{"0", 1, 50.0, 0.0, Orientation{true, M_PI}}).pose.heading, 2 * M_PI),
+              0.0, 1e-12);  // h = pi: along s, as a left-hand-traffic file places it
+  EXPECT_NEAR(resolve(LanePosition{"0", -2, 50.0, 0.0, Orientation{true, 0.2}}).pose.heading, 0.2, 1e-12);
+  EXPECT_NEAR(resolve(LanePosition{"0", 1, 50.0, 0.0, Orientation{false, 0.2}}).pose.heading, 0.2, 1e-12);
+  EXPECT_NEAR(resolve(RoadPosition{"0", 50.0, 1.75, Orientation{true, 0.0}}).pose.heading, 0.0, 1e-12);
+  entities_["Ego"] = Pose2{100.0, 1.75, M_PI};  // on lane 1
+  EXPECT_NEAR(resolve(RelativeLanePosition{"Ego", 0, -30.0, 0.0, Orientation{true, 0.0}}).pose.heading, 0.0, 1e-12);
+}
+
 TEST_F(Positions, RelativeLanePositionCountsLanesAcrossTheCentre) {
   entities_["Ego"] = Pose2{100.0, -3.75, 0.0};  // lane -2
   const ResolvedPosition right = resolve(RelativeLanePosition{"Ego", -1, 30.0, 0.0, std::nullopt});
