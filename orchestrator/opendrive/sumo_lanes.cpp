@@ -3,7 +3,11 @@
 #include <fmt/format.h>
 #include <pugixml.hpp>
 
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
 #include <set>
+#include <vector>
 
 #include "core/errors.hpp"
 #include "opendrive/lane_graph.hpp"
@@ -45,6 +49,33 @@ SumoLaneIndex::SumoLaneIndex(const RoadNetwork& roads, const std::string& net_fi
 
 bool SumoLaneIndex::connected(const std::string& from, const std::string& to) const {
   return connections_.count({from, to}) > 0;
+}
+
+std::optional<SumoLane> SumoLaneIndex::entry_near(const std::string& road_id, int lane_id, double s,
+                                                 double spread) const {
+  if (const Road* road = roads_.find(road_id); road && !road->sections.empty()) {
+    // The lanes of the section outward from `lane_id`'s side first, by distance in lanes.
+    const LaneSection& section = road->section_at(s);
+    std::vector<int> ids;
+    for (const Lane& lane : section.right) ids.push_back(lane.id);
+    for (const Lane& lane : section.left) ids.push_back(lane.id);
+    std::stable_sort(ids.begin(), ids.end(), [&](int a, int b) {
+      const bool a_side = (a < 0) == (lane_id < 0), b_side = (b < 0) == (lane_id < 0);
+      if (a_side != b_side) return a_side;
+      return std::abs(a - lane_id) < std::abs(b - lane_id);
+    });
+    for (const int id : ids)
+      if (auto lane = find(road_id, id, s)) return lane;
+  }
+  for (const Road& road : roads_.roads()) {
+    if (road.sections.empty()) continue;
+    const double at = road.length > 0 ? std::fmod(std::max(0.0, spread), road.length) : 0.0;
+    const LaneSection& section = road.section_at(at);
+    for (const auto* side : {&section.right, &section.left})
+      for (const Lane& lane : *side)
+        if (auto found = find(road.id, lane.id, at)) return found;
+  }
+  return std::nullopt;
 }
 
 std::optional<SumoLane> SumoLaneIndex::find(const std::string& road_id, int lane_id, double s) const {

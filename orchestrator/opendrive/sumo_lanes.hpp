@@ -27,6 +27,12 @@ class SumoLaneIndex {
   // The SUMO lane of OpenDRIVE lane `lane_id` of `road_id` at `s`; nullopt when netconvert
   // made none of it (a discarded lane type, the centre lane, an unknown road).
   [[nodiscard]] std::optional<SumoLane> find(const std::string& road_id, int lane_id, double s) const;
+  // A SUMO lane near a place that has none, where a scripted entity can enter SUMO before it
+  // is moved to its place off the lanes: the lane of `road_id` at `s` nearest `lane_id` (a
+  // border or a lane of type none beside it), else on any road, `spread` metres along it (so
+  // that several such entities do not enter at one point). nullopt: the net has no lane.
+  [[nodiscard]] std::optional<SumoLane> entry_near(const std::string& road_id, int lane_id, double s,
+                                                   double spread) const;
   [[nodiscard]] const RoadNetwork& roads() const { return roads_; }
   // Whether the net lets a vehicle drive from edge `from` onto edge `to` (a <connection>).
   [[nodiscard]] bool connected(const std::string& from, const std::string& to) const;

@@ -67,9 +67,12 @@ double height_of(const position::Position& p, ActionContext& ctx) {
       p);
 }
 
-void teleport(const TeleportAction& a, EntityState& state, ActionContext& ctx, const std::string& entity) {
+void teleport(const TeleportAction& a, EntityState& state, ActionContext& ctx) {
   const ResolvedPosition r = ctx.resolver.resolve(a.position, poses(ctx));
-  if (!r.road && ctx.roads.roads().empty()) {  // a scenario without a road: placed by its pose alone
+  // A scenario without a road, or a place off every lane of the roads (a camera or an object
+  // beside the road, esmini's parking_demo.xosc): placed by its pose alone, and moving as on no
+  // road (straight on along its heading) until an action puts it on a lane.
+  if (!r.road || !r.lane) {
     state.placed = true;
     state.road_id.clear();
     state.s = state.t = state.offset = 0;
@@ -80,9 +83,6 @@ void teleport(const TeleportAction& a, EntityState& state, ActionContext& ctx, c
     state.lateral_rate = 0;
     return;
   }
-  if (!r.road || !r.lane)
-    throw MapError(fmt::format("the position of \"{}\" (x {:.3f}, y {:.3f}) is on no lane of the road network", entity,
-                               r.pose.x, r.pose.y));
   const opendrive::Road& road = ctx.roads.road(r.road->road_id);
   state.placed = true;
   state.road_id = road.id;
@@ -250,7 +250,7 @@ std::vector<std::string> start_action(const PrivateAction& action, const std::st
       [&](const auto& a) {
         using T = std::decay_t<decltype(a)>;
         if constexpr (std::is_same_v<T, TeleportAction>) {
-          teleport(a, state, ctx, entity);
+          teleport(a, state, ctx);
         } else if constexpr (std::is_same_v<T, SpeedAction>) {
           const double to = target_speed(a, ctx);
           const double duration =
@@ -371,7 +371,7 @@ std::vector<std::string> start_action(const PrivateAction& action, const std::st
           EntityState& added = state_of(ctx, a.entity);
           added = EntityState{};
           added.controller = ctx.scenario.entity(a.entity)->controller ? ctx.scenario.entity(a.entity)->controller->name : "";
-          teleport(TeleportAction{a.position}, added, ctx, a.entity);
+          teleport(TeleportAction{a.position}, added, ctx);
         } else if constexpr (std::is_same_v<T, DeleteEntityAction>) {
           state_of(ctx, a.entity).placed = false;
           std::erase_if(running, [&](const RunningAction& r) {

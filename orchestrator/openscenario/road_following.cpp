@@ -104,4 +104,12 @@ bool at_dead_end(const EntityState& state, const opendrive::RoadNetwork& roads) 
   return at_end && opendrive::next_lanes(roads, road->id, state.lane).empty();
 }
 
+bool off_road(const position::ResolvedPosition& at, const opendrive::RoadNetwork& roads) {
+  if (!at.lane || !at.road) return true;
+  const opendrive::Road* road = roads.find(at.road->road_id);
+  if (road == nullptr) return true;
+  const opendrive::Lane* lane = road->section_at(at.road->s).lane(*at.lane);
+  return lane == nullptr || lane->type == "none";
+}
+
 }  // namespace orch::openscenario

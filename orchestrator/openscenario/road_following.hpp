@@ -6,6 +6,7 @@
 // else the straightest continuation. Where nothing continues, it stays at the road's end.
 #include <cstddef>
 
+#include "map/position_resolver.hpp"
 #include "opendrive/road_network.hpp"
 #include "openscenario/entity_motion.hpp"
 
@@ -18,5 +19,12 @@ void follow_links(EntityState& state, const opendrive::RoadNetwork& roads, std::
 // True when the entity stands at the end of its road in its direction of travel and no
 // lane continues its lane there (EndOfRoadCondition).
 bool at_dead_end(const EntityState& state, const opendrive::RoadNetwork& roads);
+
+// True when `at` (a position located on the roads) is off the road (OffroadCondition): on no
+// lane, or on a lane of OpenDRIVE type "none" (a lane that is no part of the road's surface:
+// esmini's jolengatan.xodr draws 6 m of it beside the border). Border, shoulder and sidewalk
+// lanes are the road's, as esmini counts them (measured: an entity on each fires no
+// OffroadCondition there, one on a "none" lane does); the standard does not define it.
+bool off_road(const position::ResolvedPosition& at, const opendrive::RoadNetwork& roads);
 
 }  // namespace orch::openscenario

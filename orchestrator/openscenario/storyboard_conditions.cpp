@@ -113,7 +113,7 @@ bool StoryboardRuntime::Impl::entity_condition(const ByEntityCondition& c, const
         else if constexpr (std::is_same_v<T, EndOfRoadCondition>) {
           return held_for(m, name, at_dead_end(stepped, roads), k.duration);
         } else if constexpr (std::is_same_v<T, OffroadCondition>)
-          return held_for(m, name, !resolver.locate(stepped.pose).lane.has_value(), k.duration);
+          return held_for(m, name, off_road(resolver.locate(stepped.pose), roads), k.duration);
         else if constexpr (std::is_same_v<T, ReachPositionCondition>) {
           const EntityState target = point_state(k.position);
           return std::hypot(target.pose.x - self.pose.x, target.pose.y - self.pose.y) <= k.tolerance;

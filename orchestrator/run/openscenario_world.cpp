@@ -88,9 +88,12 @@ std::vector<std::string> OpenScenarioActors::sumo_route_of(const openscenario::E
 void OpenScenarioActors::spawn(const std::string& name, Body& body, const openscenario::EntityState& state,
                                std::vector<sim::Command>& out) {
   // An entity on no road (a scenario without one) enters SUMO on the parking road and is moved
-  // to its world position by the pose that follows (run/roadless_net.hpp).
-  const auto hint = state.road_id.empty() ? lanes_.find(kParkingRoadId, kParkingLane, parking_place(body.id))
-                                          : lanes_.find(state.road_id, state.lane, state.s);
+  // to its world position by the pose that follows (run/roadless_net.hpp). One where the net
+  // has no lane (a border, a lane of type none, off every lane of the roads) enters on a lane
+  // near it and is moved off the lanes the same way; SUMO's driver drives on lanes only.
+  auto hint = state.road_id.empty() ? lanes_.find(kParkingRoadId, kParkingLane, parking_place(body.id))
+                                    : lanes_.find(state.road_id, state.lane, state.s);
+  if (!hint && !body.driven) hint = lanes_.entry_near(state.road_id, state.lane, state.s, parking_place(body.id));
   if (!hint)
     throw MapError(fmt::format("entity {} starts on road {} lane {} at s={:.2f}, of which the SUMO net has no lane",
                                name, state.road_id, state.lane, state.s));

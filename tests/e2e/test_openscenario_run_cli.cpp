@@ -116,6 +116,61 @@ TEST(OpenScenarioRunCli, AStopTriggerThatNeverFiresEndsAtTheDefaultLimit) {
   EXPECT_TRUE(result["max_time"].is_null());  // the user gave none
 }
 
+// Entities placed off every lane of a road network (a camera, an object beside the road:
+// esmini's parking_demo.xosc) were refused ("on no lane of the road network"); now they stand
+// at their world position off the lanes (SUMO's vehicle entered on a lane near them and moved
+// there), an OffroadCondition fires for them and not for an entity on a lane.
+TEST(OpenScenarioRunCli, AnEntityOffEveryLaneOfTheRoadsStandsWhereItIsPlaced) {
+  TempDir dir;
+  const std::string road = std::string(ORCH_SOURCE_DIR) + "/scenarios/openscenario/roads/rural_2_lanes_600m.xodr";
+  const char* car = R"(<Vehicle name="car" vehicleCategory="car">
+<BoundingBox><Center x="1.5" y="0" z="0.9"/><Dimensions width="2" length="5" height="1.8"/></BoundingBox>
+<Performance maxSpeed="70" maxDeceleration="10" maxAcceleration="10"/>
+<Axles><FrontAxle maxSteering="0.5" wheelDiameter="0.8" trackWidth="1.68" positionX="3" positionZ="0.4"/>
+<RearAxle maxSteering="0" wheelDiameter="0.8" trackWidth="1.68" positionX="0" positionZ="0.4"/></Axles></Vehicle>)";
+  const auto off_road_event = [](const std::string& entity) {
+    return "<Event name=\"Off" + entity + "\" priority=\"parallel\"><Action name=\"Set" + entity +
+           "\"><GlobalAction><ParameterAction parameterRef=\"p\"><SetAction value=\"1\"/></ParameterAction></GlobalAction>"
+           "</Action><StartTrigger><ConditionGroup><Condition name=\"c" + entity +
+           "\" delay=\"0\" conditionEdge=\"none\"><ByEntityCondition><TriggeringEntities triggeringEntitiesRule=\"any\">"
+           "<EntityRef entityRef=\"" + entity + "\"/></TriggeringEntities><EntityCondition><OffroadCondition duration=\"0.2\"/>"
+           "</EntityCondition></ByEntityCondition></Condition></ConditionGroup></StartTrigger></Event>";
+  };
+  const auto file = dir.write("off_lanes.xosc", std::string(R"(<?xml version="1.0"?><OpenSCENARIO>
+<FileHeader revMajor="1" revMinor="3" date="2024-01-01T00:00:00" author="t" description="off the lanes"/>
+<ParameterDeclarations><ParameterDeclaration name="p" parameterType="double" value="0"/></ParameterDeclarations>
+<RoadNetwork><LogicFile filepath=")") + road + R"("/></RoadNetwork>
+<Entities><ScenarioObject name="Camera">)" + car + R"(</ScenarioObject><ScenarioObject name="Car">)" + car +
+                                                   R"(</ScenarioObject></Entities>
+<Storyboard><Init><Actions>
+<Private entityRef="Camera"><PrivateAction><TeleportAction><Position><WorldPosition x="100" y="25" z="0" h="0"/></Position></TeleportAction></PrivateAction></Private>
+<Private entityRef="Car"><PrivateAction><TeleportAction><Position><LanePosition roadId="1" laneId="-1" s="50" offset="0"/></Position></TeleportAction></PrivateAction></Private>
+</Actions></Init>
+<Story name="S"><Act name="A"><ManeuverGroup maximumExecutionCount="1" name="G"><Actors selectTriggeringEntities="false"/><Maneuver name="M">)" +
+                                                   off_road_event("Camera") + off_road_event("Car") + R"(</Maneuver></ManeuverGroup>
+<StartTrigger><ConditionGroup><Condition name="go" delay="0" conditionEdge="none"><ByValueCondition><SimulationTimeCondition value="0" rule="greaterOrEqual"/></ByValueCondition></Condition></ConditionGroup></StartTrigger></Act></Story>
+<StopTrigger><ConditionGroup><Condition name="Stop" delay="0" conditionEdge="none"><ByValueCondition>
+<SimulationTimeCondition value="1" rule="greaterOrEqual"/></ByValueCondition></Condition></ConditionGroup></StopTrigger>
+</Storyboard></OpenSCENARIO>)");
+  TempDir out;
+  const auto r = run_cli({"run", file.string(), "--out", out.path().string(), "-q", "--no-report"});
+  const auto result = read_json(out / "result.json");
+  ASSERT_EQ(result["verdict"], "success") << result["reason"] << "\n" << r.output;
+  const std::string log = slurp(out / "run.log");
+  EXPECT_NE(log.find("event OffCamera startTransition"), std::string::npos) << log;
+  EXPECT_EQ(log.find("event OffCar startTransition"), std::string::npos) << log;
+  const Trace trace(out / "trace.csv");
+  int rows = 0;
+  for (const auto& row : trace.rows()) {
+    if (row.str("actor_id") != "Camera") continue;
+    ++rows;
+    EXPECT_NEAR(row.num("x"), 100.0, 0.01) << "@" << row.str("time");
+    EXPECT_NEAR(row.num("y"), 25.0, 0.01) << "@" << row.str("time");
+    EXPECT_EQ(row.str("edge"), "") << "@" << row.str("time");  // off the lanes
+  }
+  EXPECT_GT(rows, 10);
+}
+
 // A scenario without a road (no LogicFile, as the standard allows): SUMO runs on a generated
 // parking road and the car is where the storyboard puts it by world position, off every lane,
 // moving straight on along its heading (north here) at its SpeedAction's speed.
