@@ -296,7 +296,7 @@ std::vector<std::string> start_action(const PrivateAction& action, const std::st
           state.path.reset();
           const double duration =
               a.max_lateral_acc ? duration_for_lateral_acceleration(a.shape, to - state.offset, *a.max_lateral_acc) : 0.0;
-          state.lateral_profile = LateralProfile{ctx.t, duration, state.offset, to, a.shape};
+          state.lateral_profile = LateralProfile{ctx.t, duration, state.offset, to, a.shape, true};
           take_over(MotionDomain::Lateral, duration > 0, a.continuous);
           if (duration <= 0) {
             state.offset = to;
@@ -467,7 +467,7 @@ std::vector<std::string> update_running_actions(ActionContext& ctx, std::vector<
         state.pose.heading = heading;
         done = true;
       }
-    } else if (state.lateral_profile && state.lateral_profile->done(ctx.t)) {
+    } else if (state.lateral_profile && state.lateral_profile->done(state.lateral_profile->clock(ctx.t, ctx.dt))) {
       state.offset = state.lateral_profile->to;
       state.lateral_profile.reset();
       state.lateral_rate = 0;

@@ -149,8 +149,9 @@ void advance(EntityState& state, const opendrive::RoadNetwork& roads, double t, 
   state.acceleration = dt > 0 ? (state.speed - previous_speed) / dt : 0.0;
   state.lateral_rate = 0.0;
   if (state.lateral_profile) {
-    state.offset = state.lateral_profile->at(t);
-    state.lateral_rate = state.lateral_profile->rate(t);
+    const double clock = state.lateral_profile->clock(t, dt);
+    state.offset = state.lateral_profile->at(clock);
+    state.lateral_rate = state.lateral_profile->rate(clock);
   }
   if (state.road_id.empty()) {  // on no road (a scenario without one): straight on along its heading
     state.pose.x += state.speed * dt * std::cos(state.pose.heading);
@@ -159,16 +160,20 @@ void advance(EntityState& state, const opendrive::RoadNetwork& roads, double t, 
     return;
   }
   const opendrive::Road& road = roads.road(state.road_id);
+  // The speed it travels this step with (EntityState::lane_change_before_speed).
+  const double travel = state.lane_change_before_speed && state.lateral_profile ? previous_speed : state.speed;
+  // Its speed along its path, less what a lane change takes sideways (a lane offset's
+  // sideways motion is on top: LateralProfile::lane_offset).
+  const double sideways = state.lateral_profile && state.lateral_profile->lane_offset ? 0.0 : state.lateral_rate;
   // A negative speed drives backwards (esmini's light_state.xosc reverses at -3 m/s).
-  const double along =
-      std::copysign(std::sqrt(std::max(state.speed * state.speed - state.lateral_rate * state.lateral_rate, 0.0)), state.speed);
+  const double along = std::copysign(std::sqrt(std::max(travel * travel - sideways * sideways, 0.0)), travel);
   // The speed is along the entity's own path, at lateral position t: on a curve of
   // curvature k that path is (1 - k t) times as long as the reference line.
   const double stretch = 1.0 - road.plan_view.curvature(state.s) * state.t;
   const std::size_t section = opendrive::section_index(road, std::clamp(state.s, 0.0, road.length));
   state.s += travel_direction(state, road) * along * dt / (stretch > 0.1 ? stretch : 0.1);
   follow_links(state, roads, section);  // lane sections, and on past the road's end
-  state.odometer += std::abs(state.speed) * dt;
+  state.odometer += std::abs(travel) * dt;
   update_pose(state, roads);
 }
 

@@ -25,9 +25,20 @@ struct SpeedProfile {
 struct LateralProfile {
   double start = 0, duration = 0, from = 0, to = 0;
   DynamicsShape shape = DynamicsShape::Step;
+  // A LaneOffsetAction's, moved as esmini moves it (the standard gives the shape over the
+  // action's duration, not how a player steps it): its shape runs one step behind the
+  // action's start (the offset at t is the shape at t - dt, so its first step keeps the
+  // offset it starts from and it ends one step after start + duration), and the entity
+  // keeps its full speed along its lane meanwhile (esmini's default controller moves it
+  // along s; a LaneChangeAction moves it along its path, sqrt(v^2 - v_lat^2) along s).
+  // OSC-ALKS 4.1_2 chains four sinusoidal swerves by endTransition; each takes one step
+  // more than its duration in esmini.
+  bool lane_offset = false;
   [[nodiscard]] double at(double t) const;
   [[nodiscard]] double rate(double t) const;  // m/s, positive to the left of the road
   [[nodiscard]] bool done(double t) const { return t - start >= duration - 1e-9; }
+  // The time on the shape's clock at t, after a step of dt.
+  [[nodiscard]] double clock(double t, double dt) const { return lane_offset ? t - dt : t; }
 };
 
 struct EntityState {
@@ -51,6 +62,12 @@ struct EntityState {
   opendrive::Pose2 pose;  // reference point in the inertial frame
   std::optional<SpeedProfile> speed_profile;
   std::optional<LateralProfile> lateral_profile;
+  // A running LaneChangeAction comes before the running SpeedAction in the storyboard: the
+  // lane change moves the entity along its lane with the speed from before this step's
+  // speed update. The standard leaves the order of actions within a step open; esmini steps
+  // the running actions in storyboard order and its lane change moves the entity itself with
+  // the speed it finds (cut-in_simple.xosc: braking during the cut-in gains 0.0125 m a step).
+  bool lane_change_before_speed = false;
   bool controller_active = false;  // ActivateControllerAction (the ego's system under test)
   std::string controller;          // its controller's name ("" = none; AssignControllerAction replaces it)
   VisibilityAction visibility;     // graphics, traffic, sensors

@@ -24,7 +24,10 @@ StoryboardRuntime::Impl::Impl(const Scenario& s, const opendrive::RoadNetwork& r
           names[{"maneuver", m.key}] = m.name;
           for (const Event& e : m.events) {
             names[{"event", e.key}] = e.name;
-            for (const Action& a : e.actions) names[{"action", a.key}] = a.name;
+            for (const Action& a : e.actions) {
+              names[{"action", a.key}] = a.name;
+              action_order.emplace(a.key, static_cast<int>(action_order.size()));
+            }
           }
         }
       }
@@ -235,11 +238,28 @@ void StoryboardRuntime::Impl::run_init() {
     transition("story", story.key, "startTransition", ElementState::Running);
 }
 
+void StoryboardRuntime::Impl::lane_change_motion_order() {
+  const auto order = [&](const std::string& key) {
+    const auto it = action_order.find(key);
+    return it == action_order.end() ? -1 : it->second;  // Init actions first
+  };
+  for (auto& [name, state] : entities) {
+    std::optional<int> lane_change, speed;
+    for (const RunningAction& r : running) {
+      if (r.entity != name || r.spec == nullptr) continue;
+      if (r.domain == MotionDomain::Lateral && std::holds_alternative<LaneChangeAction>(*r.spec)) lane_change = order(r.action);
+      if (r.domain == MotionDomain::Longitudinal && std::holds_alternative<SpeedAction>(*r.spec)) speed = order(r.action);
+    }
+    state.lane_change_before_speed = lane_change && speed && *lane_change < *speed;
+  }
+}
+
 void StoryboardRuntime::Impl::step(double dt) {
   if (finished) return;
   ++step_index;
   last_dt = dt;
   t = static_cast<double>(step_index) * dt;
+  lane_change_motion_order();
   for (auto& [name, state] : entities)
     if (!is_towed(trailers, name)) advance(state, roads, t, dt);  // a towed trailer only follows its bar
   pull_trailers(scenario, entities, trailers, roads, dt);

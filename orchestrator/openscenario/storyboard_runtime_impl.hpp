@@ -62,6 +62,10 @@ struct StoryboardRuntime::Impl {
   TrailerLinks trailers;                        // tractor -> trailer towed now
   TrafficSignals signals;                       // signal states, controller phases
   TrafficBook traffic;                          // traffic started by TrafficActions
+  // Each storyboard action's place in the file (stories, acts, groups, maneuvers, events,
+  // actions in document order; Init actions, key "", come before all): the order in which
+  // esmini steps running actions within a step (lane_change_motion_order below).
+  std::map<std::string, int> action_order;
 
   Impl(const Scenario& s, const opendrive::RoadNetwork& r);
 
@@ -107,6 +111,9 @@ struct StoryboardRuntime::Impl {
   void stop_storyboard();
   void evaluate_storyboard();
   void run_init();
+  // Marks the entities whose LaneChangeAction is stepped before their SpeedAction (see
+  // EntityState::lane_change_before_speed).
+  void lane_change_motion_order();
   void step(double dt);
 };
 

@@ -55,10 +55,11 @@ TEST(AlksReferenceTriggers, LoggedTriggerTimesMatch) {
   };
   // The README logs the condition times; the elements they start start at the same step.
   const Trigger triggers[] = {
-      // Known difference of one step: the swerve (sinusoidal, maxLateralAcc 0.3 m/s^2 over
-      // 1.5 m) lasts pi sqrt(d / 2a) = 4.967 s here and ends at 15.0; the other player ends it
-      // one step later, so the event 5 s after its end starts at 20.00 here, 20.05 there.
-      {"alks_scenario_4_1_2_swerving_lead_vehicle_template", "action", "SwerveAction2", 20.050, 21.0, 0.05 + 1e-6},
+      // The swerve (sinusoidal, maxLateralAcc 0.3 m/s^2 over 1.5 m) lasts pi sqrt(d / 2a) =
+      // 4.967 s and runs one step behind its start at 10.0, as the other player steps a lane
+      // offset (LateralProfile::lane_offset): it ends at 15.05, the event 5 s after its end
+      // starts at 20.05.
+      {"alks_scenario_4_1_2_swerving_lead_vehicle_template", "action", "SwerveAction2", 20.050, 21.0},
       {"alks_scenario_4_3_1_follow_lead_vehicle_comfortable_template", "action", "VaryingSpeedAction", 10.000, 11.0},
       {"alks_scenario_4_4_1_cut_in_no_collision_template", "action", "CutInAction", 9.100, 10.0},
       {"alks_scenario_4_5_1_cut_out_fully_blocking_template", "action", "CutOutAction", 24.200, 25.0},

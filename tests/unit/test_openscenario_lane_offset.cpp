@@ -79,7 +79,9 @@ TEST_F(LaneOffset, RelativeTargetIsBesideTheReferenceEntity) {
 // OSC-ALKS 4.1_2's swerve: 1.5 m to the left, sinusoidal, maxLateralAcc 0.3 m/s^2. The
 // standard's sinusoidal shape has zero slope at both ends (f = A sin(x) + B over half a
 // period): the offset is 1.5 (1 - cos(pi tau / T)) / 2, whose peak lateral acceleration
-// 1.5 / 2 (pi / T)^2 is maxLateralAcc, so T = pi sqrt(1.5 / 0.6) = 4.967 s.
+// 1.5 / 2 (pi / T)^2 is maxLateralAcc, so T = pi sqrt(1.5 / 0.6) = 4.967 s. The shape runs
+// one step behind the action's start, as esmini steps it (LateralProfile::lane_offset): the
+// first step keeps the offset it starts from.
 TEST_F(LaneOffset, SinusoidalShapeReachesMaxLateralAccelerationOnce) {
   load(offset_event("Swerve", R"(<AbsoluteTargetLaneOffset value="1.5"/>)", 0.3, at_time("T", 10.0)));
   const double duration = std::numbers::pi * std::sqrt(1.5 / (2 * 0.3));
@@ -90,14 +92,16 @@ TEST_F(LaneOffset, SinusoidalShapeReachesMaxLateralAccelerationOnce) {
     runtime_->step(0.05);
   }
   for (std::size_t i = 0; i < y.size(); ++i) {
-    const double tau = std::min(0.05 * static_cast<double>(i), duration);
+    const double tau = std::clamp(0.05 * (static_cast<double>(i) - 1), 0.0, duration);
     EXPECT_NEAR(y[i], -1.75 + 1.5 * 0.5 * (1 - std::cos(std::numbers::pi * tau / duration)), 1e-9) << "tau " << tau;
   }
   double peak = 0;  // second difference: the lateral acceleration
   for (std::size_t i = 1; i + 1 < y.size(); ++i) peak = std::max(peak, std::abs(y[i + 1] - 2 * y[i] + y[i - 1]) / 0.0025);
   EXPECT_NEAR(peak, 0.3, 0.01);
-  // Ends at the first step at or after T: 10 + 4.967 -> 15.00.
-  EXPECT_EQ(test::transition_times(*runtime_, "SwerveAction", "endTransition"), std::vector<double>{15.0});
+  // Ends at the first step at or after T, one step late: 10 + 0.05 + 4.967 -> 15.05.
+  EXPECT_EQ(test::transition_times(*runtime_, "SwerveAction", "endTransition"), std::vector<double>{15.05});
+  // Along its lane at its full 10 m/s all the while (the lateral motion on top, as in esmini).
+  EXPECT_NEAR(a().s, 10.0 + 10.0 * runtime_->time(), 1e-6);
 }
 
 // The value is in the reference entity's coordinate system: positive is to its left, which

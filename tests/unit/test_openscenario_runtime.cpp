@@ -265,7 +265,7 @@ TEST_F(Runtime, EntityConditionsOnMotion) {
        mark("Stopped", R"(<StandStillCondition duration="1.0"/>)"));
   run_until(15);
   EXPECT_NEAR(first("Traveled"), 2.5, 1e-9);   // 25 m at 10 m/s
-  EXPECT_NEAR(first("Reached"), 2.95, 1e-9);   // s 39.5 at t 2.95
+  EXPECT_NEAR(first("Reached"), 3.0, 1e-9);    // s 40 at t 3.0 (s 39.5 at 2.95 is on the rim, not within)
   // Headway in s: (50 + 10 t - 10 - 10 t) / 10 = 4 s never drops below 3 s.
   EXPECT_TRUE(times("Headway", "startTransition").empty());
   EXPECT_NEAR(first("Near"), 7.05, 1e-9);           // x 80.5: 19.5 m from x 100
