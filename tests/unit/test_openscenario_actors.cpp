@@ -104,11 +104,19 @@ TEST_F(OpenScenarioActorsOnRoad3, SpawnsOnceOnTheSumoLaneAndPosesTheBoxCentre) {
   EXPECT_NEAR(ref.x(), state.pose.x, 1e-9);
   EXPECT_NEAR(ref.y(), state.pose.y, 1e-9);
 
-  // An entity that first appears where SUMO has no lane is an error naming it.
+  // An entity that first appears where SUMO has no lane (lane -1, discarded by the net) enters
+  // on the SUMO lane nearest it and is posed there off the lanes (no edge); one that SUMO
+  // drives (the ego) cannot drive off the lanes: an error naming it.
   state.lane = -1;
   OpenScenarioActors other(s, lanes, "");
   entities["Lead"] = state;
-  EXPECT_THROW((void)other.place(entities), MapError);
+  const auto off = other.place(entities);
+  ASSERT_EQ(off.size(), 2u);
+  EXPECT_EQ(std::get<sim::SpawnVehicle>(off[0]).edge, "-3");
+  EXPECT_EQ(std::get<sim::SpawnVehicle>(off[0]).lane, 1);
+  EXPECT_EQ(std::get<sim::SetPose>(off[1]).edge, "");
+  OpenScenarioActors driven(s, lanes, "Lead", EgoDrive::Sumo);
+  EXPECT_THROW((void)driven.place(entities), MapError);
 }
 
 TEST_F(OpenScenarioActorsOnRoad3, TheEgoIsPlacedOnceThenOnlyItsDesiredSpeedFollowsTheStoryboard) {

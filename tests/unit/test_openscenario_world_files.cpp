@@ -166,19 +166,21 @@ TEST(OpenScenarioWithoutRoad, ANegativeSpeedBacksAlongATrajectoryAndTheEntitySto
   EXPECT_EQ(runtime.entities().at("A").speed, 0.0);
 }
 
-// On a road network that has roads, a position on none of its lanes stays an error.
-TEST(OpenScenarioWithoutRoad, AWorldPositionOffTheLanesOfARealRoadIsStillAnError) {
+// On a road network that has roads, a position on none of its lanes (a camera beside the
+// road) is placed there by its pose alone, on no road, as in a scenario without one.
+TEST(OpenScenarioWithoutRoad, AWorldPositionOffTheLanesOfARealRoadStandsThere) {
   TempDir dir;
   dir.write("road.xodr", orch::test::kStraightTwoLaneRoad);
   const Scenario s = load_scenario(
       dir.write("s.xosc", scenario("", world_teleport(10, 500, 0), R"(<LogicFile filepath="road.xodr"/>)")).string());
   const opendrive::RoadNetwork roads = opendrive::read_xodr_file((dir / "road.xodr").string());
-  EXPECT_THROW(
-      {
-        StoryboardRuntime runtime(s, roads);
-        runtime.step(0.05);
-      },
-      OrchError);
+  StoryboardRuntime runtime(s, roads);
+  runtime.step(0.05);
+  const EntityState& a = runtime.entities().at("A");
+  EXPECT_TRUE(a.placed);
+  EXPECT_TRUE(a.road_id.empty());
+  EXPECT_NEAR(a.pose.x, 10.0, 1e-9);
+  EXPECT_NEAR(a.pose.y, 500.0, 1e-9);
 }
 
 }  // namespace
