@@ -222,6 +222,7 @@ std::string to_json(const RunResult& r) {
   j["timing"]["observers_s"] = nlohmann::ordered_json::object();
   for (const auto& [name, s] : r.timing.observers_s) j["timing"]["observers_s"][name] = s;
   j["outputs"] = {{"trace", "trace.csv"}, {"log", "run.log"}, {"sumo_log", "sumo.log"}, {"metrics", "metrics.csv"}};
+  if (!r.storyboard_traffic.empty()) j["outputs"]["traffic_actions"] = "traffic_actions.csv";
   return json_text(j, 2) + "\n";
 }
 
