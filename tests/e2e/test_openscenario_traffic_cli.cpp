@@ -115,8 +115,19 @@ TEST(OpenScenarioTrafficCli, TheTrafficVehiclesAreTracedAndCarriedIntoTheReport)
   for (const auto& row : trace.rows()) trace_times.insert(row.num("time"));
   for (double t : times) EXPECT_TRUE(trace_times.count(t)) << t;
   // No source vehicle is traced past the sink's circle (a step's travel after entering it).
-  for (const auto& row : vehicles.rows())
-    if (row.integer("traffic") == 2) EXPECT_LE(row.num("x"), kSinkX + kSinkRadius + 1.5) << row.str("vehicle_id");
+  for (const auto& row : vehicles.rows()) {
+    if (row.integer("traffic") == 2) {
+      EXPECT_LE(row.num("x"), kSinkX + kSinkRadius + 1.5) << row.str("vehicle_id");
+    }
+  }
+  // The metrics measure them as they measure background traffic: the ego's leader and nearest
+  // body are TrafficAction vehicles (the swarm drives in the ego's lane ahead of it).
+  const Trace metrics(traffic_run() / "metrics.csv");
+  std::size_t led_by_traffic = 0;
+  for (const auto& row : metrics.rows())
+    if (row.str("leader").rfind("traffic", 0) == 0) ++led_by_traffic;
+  EXPECT_GT(led_by_traffic, 0u);
+  EXPECT_TRUE(read_json(traffic_run() / "result.json")["ego_exposure"]["min_gap"].is_number());
   // trace.csv keeps the storyboard's entities only.
   for (const auto& row : trace.rows()) EXPECT_EQ(row.str("actor_id"), "Ego");
   // The report carries the vehicles for its replay, and the counts for its header.
