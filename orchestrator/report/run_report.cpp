@@ -99,9 +99,10 @@ json actors_json(const RunFiles& run, std::optional<Bounds>& bounds) {
   return actors;
 }
 
-// Background vehicles near the actors (--trace-background), thinned to at most ~15,000 rows
-// so a long dense run stays a file a browser opens at once.
-json background_json(const CsvTable& table) {
+// Background vehicles near the actors (--trace-background), or an OpenSCENARIO run's
+// TrafficAction vehicles (traffic_actions.csv, with `extra` columns), thinned to at most
+// ~15,000 rows so a long dense run stays a file a browser opens at once.
+json vehicles_json(const CsvTable& table, const std::vector<std::string>& extra = {}) {
   constexpr std::size_t kMaxRows = 15000;
   const std::size_t time = *table.column("time");
   std::vector<double> times;
@@ -121,13 +122,25 @@ json background_json(const CsvTable& table) {
     }
     if (step_index % stride == 0) rows.push_back(r);
   }
-  json out = columns_of(table, rows, {"time", "x", "y", "heading", "length", "width"});
+  std::vector<std::string> columns{"time", "x", "y", "heading", "length", "width"};
+  columns.insert(columns.end(), extra.begin(), extra.end());
+  json out = columns_of(table, rows, columns);
   json ids = json::array();
   const std::size_t id = *table.column("vehicle_id");
   for (const std::size_t r : rows) ids.push_back(table.cell(r, id));
   out["vehicle_id"] = std::move(ids);
   out["stride_steps"] = stride;
   return out;
+}
+
+void widen(std::optional<Bounds>& bounds, const CsvTable& table) {
+  const std::size_t xc = *table.column("x"), yc = *table.column("y");
+  for (std::size_t r = 0; r < table.rows(); ++r) {
+    const auto x = table.number(r, xc), y = table.number(r, yc);
+    if (!x || !y) continue;
+    bounds = Bounds{std::min(bounds->min_x, *x), std::min(bounds->min_y, *y), std::max(bounds->max_x, *x),
+                    std::max(bounds->max_y, *y)};
+  }
 }
 
 json metrics_json(const CsvTable& table) {
@@ -172,8 +185,11 @@ json run_report_data(const RunFiles& run, const std::vector<std::string>& read_p
   data["problems"] = read_problems;
   std::optional<Bounds> bounds;
   data["actors"] = actors_json(run, bounds);
+  // The map reaches the TrafficAction vehicles too (a swarm spreads hundreds of m around the ego).
+  if (bounds && run.traffic_actions) widen(bounds, *run.traffic_actions);
   data["lanes"] = lanes_json(run.result, run.dir, bounds, data["problems"]);
-  data["background"] = run.background ? background_json(*run.background) : json(nullptr);
+  data["background"] = run.background ? vehicles_json(*run.background) : json(nullptr);
+  data["traffic_actions"] = run.traffic_actions ? vehicles_json(*run.traffic_actions, {"traffic"}) : json(nullptr);
   data["metrics"] = run.metrics ? metrics_json(*run.metrics) : json(nullptr);
   data["log"] = run.run_log;
   return data;

@@ -5,6 +5,7 @@
 #include "json/json_document.hpp"
 #include "run/metrics_recorder.hpp"
 #include "run/trace_writer.hpp"
+#include "run/traffic_actions_trace.hpp"
 #include "run/traffic_trace.hpp"
 
 namespace orch {
@@ -23,6 +24,12 @@ const std::vector<std::string>& metrics_columns() {
 
 const std::vector<std::string>& background_columns() {
   static const std::vector<std::string> columns = csv_columns(TrafficTrace::kBackgroundHeader);
+  return columns;
+}
+
+const std::vector<std::string>& traffic_actions_columns() {
+  static const std::vector<std::string> columns =
+      csv_columns(std::string(TrafficTrace::kBackgroundHeader) + TrafficActionsTrace::kExtraColumns);
   return columns;
 }
 
@@ -51,6 +58,7 @@ RunFiles read_run_files(const fs::path& dir, std::vector<std::string>* problems)
   f.trace = read_optional(dir / "trace.csv", trace_columns(), problems);
   f.metrics = read_optional(dir / "metrics.csv", metrics_columns(), problems);
   f.background = read_optional(dir / "background.csv", background_columns(), problems);
+  f.traffic_actions = read_optional(dir / TrafficActionsTrace::kFile, traffic_actions_columns(), problems);
   if (fs::exists(dir / "run.log")) f.run_log = read_file(dir / "run.log");
   return f;
 }

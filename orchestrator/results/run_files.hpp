@@ -1,6 +1,6 @@
 #pragma once
 // One run folder read back (README "Outputs"): result.json, trace.csv, metrics.csv,
-// background.csv and run.log. What a run did not write (a run that failed before SUMO
+// background.csv, traffic_actions.csv and run.log. What a run did not write (a run that failed before SUMO
 // started has no trace; metrics exist only when the evaluation wrote them) is absent, not
 // an error; a file that is there but of the wrong shape is an error naming it.
 #include <filesystem>
@@ -18,6 +18,7 @@ struct RunFiles {
   std::optional<CsvTable> trace;
   std::optional<CsvTable> metrics;
   std::optional<CsvTable> background;
+  std::optional<CsvTable> traffic_actions;  // an OpenSCENARIO run's TrafficAction vehicles
   std::string run_log;  // "" when there is none
 };
 
@@ -32,5 +33,6 @@ const std::vector<std::string>& trace_columns();
 // metrics.csv's: every column the writer's header has (metrics/metric_table.hpp generates it).
 const std::vector<std::string>& metrics_columns();
 const std::vector<std::string>& background_columns();
+const std::vector<std::string>& traffic_actions_columns();
 
 }  // namespace orch

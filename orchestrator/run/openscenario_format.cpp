@@ -24,6 +24,8 @@
 #include "run/openscenario_observed.hpp"
 #include "run/openscenario_signals.hpp"
 #include "run/openscenario_traffic.hpp"
+#include "run/traffic_actions_trace.hpp"
+#include "run/traffic_trace.hpp"
 #include "run/openscenario_world.hpp"
 #include "run/reference_ego_setup.hpp"
 #include "run/roadless_net.hpp"
@@ -146,6 +148,11 @@ class OpenScenarioFormat : public RunFormat {
 
   void add_observers(RunObservers& observers) override {
     observers.add(std::make_unique<EntityTrace>(req_.out_dir / "trace.csv", *actors_, *roads_, [this] { return ego_label_; }));
+    // The TrafficActions' vehicles (traffic_actions.csv), and as in ScenarioExecutor runs the
+    // background's counts (counts.csv) and, with --trace-background, its vehicles (background.csv).
+    observers.add(std::make_unique<TrafficActionsTrace>(
+        req_.out_dir, [this]() -> const openscenario::TrafficBook* { return runtime_ ? &runtime_->traffic() : nullptr; }));
+    observers.add(std::make_unique<TrafficTrace>(req_.out_dir, req_.trace_background));
   }
   [[nodiscard]] const LaneMap& measured_lanes() const override { return *sumo_lanes_; }
   [[nodiscard]] const ObservedRun& observed() const override { return *observed_; }
@@ -180,7 +187,7 @@ class OpenScenarioFormat : public RunFormat {
     runtime_->step(req_.step);
     auto commands = actors_->place(runtime_->entities());
     add_signal_commands(commands, log);
-    add_traffic_commands(commands, snap.traffic, log);
+    add_traffic_commands(commands, snap.traffic, log, snap.nearby);
     watch_ego(&snap);
     return commands;
   }
@@ -198,8 +205,7 @@ class OpenScenarioFormat : public RunFormat {
     if (!result.traffic.empty() && result.traffic != "none")
       log.note(fmt::format("{} background vehicles in SUMO at the end", background_));
     if (traffic_)
-      log.note(fmt::format("TrafficActions: {} vehicles spawned, {} removed (SUMO drives them; not in trace.csv)",
-                           traffic_->spawned_total(), traffic_->removed_total()));
+      for (const openscenario::Traffic& t : runtime_->traffic().all()) log.note(traffic_outcome(traffic_record(t, *traffic_)));
   }
 
   void finish(RunResult& result) override {
@@ -209,6 +215,8 @@ class OpenScenarioFormat : public RunFormat {
     }
     if (actors_) result.actors = entity_records(*actors_, ego_summary_);
     if (observed_) result.collisions = observed_->contacts();
+    if (traffic_ && runtime_)
+      for (const openscenario::Traffic& t : runtime_->traffic().all()) result.storyboard_traffic.push_back(traffic_record(t, *traffic_));
   }
   [[nodiscard]] std::optional<std::string> ego_collision_reason() const override { return collision_; }
 
@@ -241,7 +249,7 @@ class OpenScenarioFormat : public RunFormat {
   // The storyboard's TrafficActions on SUMO (openscenario_traffic.hpp), from the first one
   // that starts; run.log names each traffic as it starts and stops.
   void add_traffic_commands(std::vector<sim::Command>& commands, const std::vector<sim::NearbyVehicle>& seen,
-                            RunLog& log) {
+                            RunLog& log, const std::vector<sim::NearbyVehicle>& background = {}) {
     const openscenario::TrafficBook& book = runtime_->traffic();
     if (book.all().empty()) return;
     if (!traffic_) {
@@ -254,7 +262,7 @@ class OpenScenarioFormat : public RunFormat {
       if (logged_traffic_.insert({t.serial, false}).second) log.at(t.started, label + " starts");
       if (t.stopped && logged_traffic_.insert({t.serial, true}).second) log.at(*t.stopped, label + " stopped");
     }
-    for (auto& c : traffic_->update(book, runtime_->entities(), seen, runtime_->time(), req_.step))
+    for (auto& c : traffic_->update(book, runtime_->entities(), seen, runtime_->time(), req_.step, background))
       commands.push_back(std::move(c));
   }
   static std::string traffic_label(const openscenario::Traffic& t) {

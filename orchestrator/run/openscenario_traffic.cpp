@@ -92,6 +92,11 @@ OpenScenarioTraffic::OpenScenarioTraffic(const opendrive::SumoLaneIndex& lanes, 
   }
 }
 
+OpenScenarioTraffic::Tally OpenScenarioTraffic::tally(int serial) const {
+  const auto it = tallies_.find(serial);
+  return it == tallies_.end() ? Tally{} : it->second;
+}
+
 int OpenScenarioTraffic::count(int serial) const {
   return static_cast<int>(std::count_if(vehicles_.begin(), vehicles_.end(),
                                         [&](const auto& v) { return v.second.serial == serial; }));
@@ -136,25 +141,47 @@ void OpenScenarioTraffic::spawn(int serial, const Place& place, double speed, do
   c.max_speed = max_speed;
   out.push_back(std::move(c));
   vehicles_[id] = {serial, place.point, t, false};
+  ++tallies_[serial].spawned;
 }
 
-void OpenScenarioTraffic::remove(const std::string& id, std::vector<sim::Command>& out) {
+void OpenScenarioTraffic::remove(const std::string& id, int by, std::vector<sim::Command>& out) {
   out.push_back(sim::RemoveActor{id, ActorKind::Vehicle});
-  vehicles_.erase(id);
+  const auto it = vehicles_.find(id);
+  const int owner = it == vehicles_.end() ? 0 : it->second.serial;  // 0: a background vehicle
+  if (it != vehicles_.end()) {
+    Tally& own = tallies_[owner];
+    if (by == 0) ++own.not_inserted;
+    else ++own.removed;
+    vehicles_.erase(it);
+  }
+  if (by == 0) return;
   ++removed_;
+  if (by != owner) {  // a sink's removal (a swarm removes only its own)
+    Tally& remover = tallies_[by];
+    ++remover.removed;
+    if (owner == 0) ++remover.removed_background;
+  }
 }
 
 std::vector<sim::Command> OpenScenarioTraffic::update(const openscenario::TrafficBook& book,
                                                       const std::map<std::string, openscenario::EntityState>& entities,
-                                                      const std::vector<sim::NearbyVehicle>& seen, double t, double dt) {
+                                                      const std::vector<sim::NearbyVehicle>& seen, double t, double dt,
+                                                      const std::vector<sim::NearbyVehicle>& background) {
   std::map<std::string, const sim::NearbyVehicle*> now;
   for (const auto& v : seen) now[v.sumo_id] = &v;
+  // The background vehicles a sink may take: near an entity, neither an entity nor ours (the
+  // ones we spawned are in `seen` or still waiting to be inserted).
+  std::vector<const sim::NearbyVehicle*> others;
+  for (const auto& v : background)
+    if (!now.count(v.sumo_id) && !vehicles_.count(v.sumo_id)) others.push_back(&v);
+  removed_background_.clear();
   for (auto it = vehicles_.begin(); it != vehicles_.end();) {
     const auto found = now.find(it->first);
     if (found != now.end()) {
       it->second.position = found->second->position;
       it->second.seen = true;
     } else if (it->second.seen) {  // it left SUMO (its route ended)
+      ++tallies_[it->second.serial].left;
       it = vehicles_.erase(it);
       continue;
     }
@@ -164,7 +191,7 @@ std::vector<sim::Command> OpenScenarioTraffic::update(const openscenario::Traffi
   // A spawn SUMO could not insert (its place stayed taken) is given up.
   for (auto it = vehicles_.begin(); it != vehicles_.end();) {
     const auto next = std::next(it);
-    if (!it->second.seen && t - it->second.spawned > kInsertWait) remove(it->first, out);
+    if (!it->second.seen && t - it->second.spawned > kInsertWait) remove(it->first, 0, out);
     it = next;
   }
   for (const openscenario::Traffic& traffic : book.all()) {
@@ -174,7 +201,7 @@ std::vector<sim::Command> OpenScenarioTraffic::update(const openscenario::Traffi
           using T = std::decay_t<decltype(spec)>;
           if constexpr (std::is_same_v<T, openscenario::TrafficSwarmAction>) swarm(traffic, spec, entities, t, out);
           else if constexpr (std::is_same_v<T, openscenario::TrafficSourceAction>) source(traffic, spec, entities, t, out);
-          else sink(traffic, spec, dt, out);
+          else sink(traffic, spec, dt, others, out);
         },
         traffic.spec);
   }
@@ -210,7 +237,7 @@ void OpenScenarioTraffic::swarm(const openscenario::Traffic& traffic, const open
     const auto next = std::next(it);
     if (it->second.serial == traffic.serial && it->second.seen &&
         ellipse_value(it->second.position, centre, pose.heading, spec.semi_major, spec.semi_minor) > 1.0)
-      remove(it->first, out);
+      remove(it->first, traffic.serial, out);
     it = next;
   }
   int missing = spec.vehicles - count(traffic.serial);
@@ -270,12 +297,15 @@ void OpenScenarioTraffic::source(const openscenario::Traffic& traffic, const ope
 }
 
 void OpenScenarioTraffic::sink(const openscenario::Traffic& traffic, const openscenario::TrafficSinkAction& spec,
-                               double dt, std::vector<sim::Command>& out) {
+                               double dt, const std::vector<const sim::NearbyVehicle*>& background,
+                               std::vector<sim::Command>& out) {
   if (!traffic.place) return;
   const Vec2 at{traffic.place->pose.x, traffic.place->pose.y};
-  std::vector<std::string> inside;
+  std::vector<std::string> inside;  // ours first (id order), then the background's (id order)
   for (const auto& [id, v] : vehicles_)
     if (v.seen && distance(v.position, at) <= spec.radius) inside.push_back(id);
+  for (const sim::NearbyVehicle* v : background)
+    if (!removed_background_.count(v->sumo_id) && distance(v->position, at) <= spec.radius) inside.push_back(v->sumo_id);
   std::size_t n = inside.size();
   if (spec.rate) {
     double& credit = sink_credit_[traffic.serial];
@@ -283,7 +313,46 @@ void OpenScenarioTraffic::sink(const openscenario::Traffic& traffic, const opens
     n = std::min(n, static_cast<std::size_t>(std::floor(credit + 1e-9)));
     credit -= static_cast<double>(n);
   }
-  for (std::size_t i = 0; i < n; ++i) remove(inside[i], out);
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!vehicles_.count(inside[i])) removed_background_.insert(inside[i]);
+    remove(inside[i], traffic.serial, out);
+  }
+}
+
+TrafficActionRecord traffic_record(const openscenario::Traffic& t, const OpenScenarioTraffic& traffic) {
+  TrafficActionRecord r;
+  r.kind = std::visit(
+      [](const auto& spec) -> std::string {
+        using T = std::decay_t<decltype(spec)>;
+        if constexpr (std::is_same_v<T, openscenario::TrafficSwarmAction>) return "swarm";
+        else if constexpr (std::is_same_v<T, openscenario::TrafficSourceAction>) return "source";
+        else return "sink";
+      },
+      t.spec);
+  r.name = t.name;
+  r.label = t.name.empty() ? fmt::format("traffic{}", t.serial) : t.name;
+  if (r.kind != "sink") r.vehicles = fmt::format("traffic{}.N", t.serial);
+  r.started = t.started;
+  r.stopped = t.stopped;
+  const OpenScenarioTraffic::Tally tally = traffic.tally(t.serial);
+  r.spawned = tally.spawned;
+  r.removed = tally.removed;
+  r.left = tally.left;
+  r.not_inserted = tally.not_inserted;
+  r.removed_background = tally.removed_background;
+  r.active_at_end = traffic.count(t.serial);
+  return r;
+}
+
+std::string traffic_outcome(const TrafficActionRecord& r) {
+  const std::string span =
+      fmt::format("{:.2f} s to {}", r.started, r.stopped ? fmt::format("{:.2f} s", *r.stopped) : std::string("the end"));
+  if (r.kind == "sink")
+    return fmt::format("{} (sink, {}): removed {} vehicles ({} of them background)", r.label, span, r.removed,
+                       r.removed_background);
+  return fmt::format("{} ({}, {}): {} vehicles spawned, {} removed, {} reached their route's end, {} not inserted, "
+                     "{} in SUMO at the end (traffic_actions.csv; SUMO drives them)",
+                     r.label, r.kind, span, r.spawned, r.removed, r.left, r.not_inserted, r.active_at_end);
 }
 
 }  // namespace orch

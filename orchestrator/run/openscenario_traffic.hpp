@@ -13,19 +13,25 @@
 //           another vehicle or entity), facing their lane's direction of travel.
 //   source  spawns one vehicle every 1/rate s from its start, on a free road place within
 //           `radius` of its position (radius 0, or none free there: on the position's lane).
-//   sink    removes the traffic vehicles (of any TrafficAction) within `radius` of its
-//           position, at most `rate` per second (no rate: all at once).
+//   sink    removes the traffic vehicles (of any TrafficAction) and the background vehicles
+//           (--traffic, the route file's) within `radius` of its position, at most `rate` per
+//           second (no rate: all at once): the standard's sink takes every traffic participant.
+//           Background vehicles are known only near the scenario's entities
+//           (WorldSnapshot::nearby, within 75 m of one), so a sink farther from every entity
+//           removes only TrafficAction vehicles.
 //   stop    (TrafficStopAction) ends the named traffic: a swarm no longer spawns or removes, a
 //           source no longer spawns, a sink no longer removes; the vehicles drive on.
 #include <cstdint>
 #include <map>
 #include <random>
+#include <set>
 #include <string>
 #include <vector>
 
 #include "opendrive/sumo_lanes.hpp"
 #include "openscenario/entity_motion.hpp"
 #include "openscenario/traffic_book.hpp"
+#include "run/run_result.hpp"
 #include "sim/world.hpp"
 
 namespace orch {
@@ -40,15 +46,29 @@ class OpenScenarioTraffic {
   // driving, entry, exit, on/off ramps) that SUMO's net has, junctions' connecting roads left out.
   OpenScenarioTraffic(const opendrive::SumoLaneIndex& lanes, long long seed);
 
-  // The commands of this step (t): removals first, then spawns. `seen` is WorldSnapshot::traffic.
+  // The commands of this step (t): removals first, then spawns. `seen` is WorldSnapshot::traffic,
+  // `background` WorldSnapshot::nearby (it may hold traffic vehicles too; they are told apart).
   std::vector<sim::Command> update(const openscenario::TrafficBook& book,
                                    const std::map<std::string, openscenario::EntityState>& entities,
-                                   const std::vector<sim::NearbyVehicle>& seen, double t, double dt);
+                                   const std::vector<sim::NearbyVehicle>& seen, double t, double dt,
+                                   const std::vector<sim::NearbyVehicle>& background = {});
 
   // Traffic vehicles now (spawned, not removed, not known to have left): per traffic serial.
   [[nodiscard]] int count(int serial) const;
   [[nodiscard]] int spawned_total() const { return next_id_; }
   [[nodiscard]] int removed_total() const { return removed_; }
+
+  // What became of one traffic's vehicles (result.json's storyboard_traffic). For a swarm or a
+  // source: spawned = active now + removed + left + not_inserted. For a sink: removed counts the
+  // vehicles it removed (any traffic's and the background's), removed_background the latter.
+  struct Tally {
+    int spawned = 0;
+    int removed = 0;       // its vehicles the TrafficActions removed (out of a swarm's area, in a sink)
+    int left = 0;          // its vehicles that reached their route's end (SUMO took them out)
+    int not_inserted = 0;  // spawns SUMO did not insert within kInsertWait (given up)
+    int removed_background = 0;  // a sink's: background (--traffic) vehicles it removed
+  };
+  [[nodiscard]] Tally tally(int serial) const;
 
   struct Place {
     std::string road;
@@ -74,11 +94,12 @@ class OpenScenarioTraffic {
               const std::map<std::string, openscenario::EntityState>& entities, double t,
               std::vector<sim::Command>& out);
   void sink(const openscenario::Traffic& traffic, const openscenario::TrafficSinkAction& spec, double dt,
-            std::vector<sim::Command>& out);
+            const std::vector<const sim::NearbyVehicle*>& background, std::vector<sim::Command>& out);
   [[nodiscard]] bool free(const Vec2& p, const std::map<std::string, openscenario::EntityState>& entities) const;
   void spawn(int serial, const Place& place, double speed, double max_speed, const std::string& category, double t,
              std::vector<sim::Command>& out);
-  void remove(const std::string& id, std::vector<sim::Command>& out);
+  // `by`: the traffic whose action removed it (0: given up, not inserted).
+  void remove(const std::string& id, int by, std::vector<sim::Command>& out);
   std::uint64_t draw(std::uint64_t n) { return n == 0 ? 0 : rng_() % n; }
   double uniform() { return static_cast<double>(rng_() >> 11) * 0x1.0p-53; }
   std::string category(const std::vector<openscenario::TrafficCategoryShare>& shares);
@@ -89,8 +110,14 @@ class OpenScenarioTraffic {
   std::map<std::string, Vehicle> vehicles_;  // by SUMO id
   std::map<int, int> spawned_by_source_;     // serial -> vehicles spawned so far
   std::map<int, double> sink_credit_;        // serial -> removals due (rate x time) not yet made
+  std::map<int, Tally> tallies_;             // serial -> what became of its vehicles
+  std::set<std::string> removed_background_;  // this step's: a vehicle two sinks reach is removed once
   int next_id_ = 0;
   int removed_ = 0;
 };
+
+// What one TrafficAction did (result.json's storyboard_traffic), and run.log's line of it.
+TrafficActionRecord traffic_record(const openscenario::Traffic& t, const OpenScenarioTraffic& traffic);
+std::string traffic_outcome(const TrafficActionRecord& record);
 
 }  // namespace orch

@@ -61,6 +61,42 @@ nlohmann::ordered_json metrics_json(const std::vector<metrics::ActorSummary>& al
   return j;
 }
 
+// The storyboard's TrafficActions: totals over all of them, then each (docs/outputs.md).
+nlohmann::ordered_json storyboard_traffic_json(const std::vector<TrafficActionRecord>& actions) {
+  if (actions.empty()) return nullptr;
+  int spawned = 0, removed = 0, left = 0, not_inserted = 0, active = 0, removed_background = 0;
+  nlohmann::ordered_json list = nlohmann::ordered_json::array();
+  for (const auto& a : actions) {
+    spawned += a.spawned;
+    // A vehicle a sink removed counts in its owner's `removed` and in the sink's: once here.
+    if (a.kind == "sink") removed_background += a.removed_background;
+    else removed += a.removed;
+    left += a.left;
+    not_inserted += a.not_inserted;
+    active += a.active_at_end;
+    nlohmann::ordered_json e{{"kind", a.kind},
+                             {"name", a.name},
+                             {"label", a.label},
+                             {"vehicles", a.vehicles.empty() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(a.vehicles)},
+                             {"started", a.started},
+                             {"stopped", optional_json(a.stopped)},
+                             {"spawned", a.spawned},
+                             {"removed", a.removed},
+                             {"left", a.left},
+                             {"not_inserted", a.not_inserted},
+                             {"active_at_end", a.active_at_end}};
+    if (a.kind == "sink") e["removed_background"] = a.removed_background;
+    list.push_back(std::move(e));
+  }
+  return {{"spawned", spawned},
+          {"removed", removed + removed_background},
+          {"removed_background", removed_background},
+          {"left", left},
+          {"not_inserted", not_inserted},
+          {"active_at_end", active},
+          {"actions", std::move(list)}};
+}
+
 nlohmann::ordered_json file_json(const InputFile& f) {
   return {{"path", f.path}, {"sha256", f.sha256}};
 }
@@ -175,6 +211,7 @@ std::string to_json(const RunResult& r) {
                           {"min_gap", optional_json(ref.min_gap)},
                           {"reference_min_gap", optional_json(ref.reference_min_gap)}};
   }
+  j["storyboard_traffic"] = storyboard_traffic_json(r.storyboard_traffic);
   j["trace_rows"] = r.trace_rows;
   j["wall_time_s"] = r.wall_time_s;
   j["timing"] = {{"start_s", r.timing.start_s},
@@ -185,6 +222,7 @@ std::string to_json(const RunResult& r) {
   j["timing"]["observers_s"] = nlohmann::ordered_json::object();
   for (const auto& [name, s] : r.timing.observers_s) j["timing"]["observers_s"][name] = s;
   j["outputs"] = {{"trace", "trace.csv"}, {"log", "run.log"}, {"sumo_log", "sumo.log"}, {"metrics", "metrics.csv"}};
+  if (!r.storyboard_traffic.empty()) j["outputs"]["traffic_actions"] = "traffic_actions.csv";
   return json_text(j, 2) + "\n";
 }
 

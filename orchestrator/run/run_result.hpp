@@ -48,6 +48,20 @@ struct ReferenceRunRecord {
   std::optional<double> min_gap, reference_min_gap;  // the ego's, m
 };
 
+// One TrafficAction of an OpenSCENARIO storyboard that ran (result.json "storyboard_traffic";
+// run/openscenario_traffic.hpp counts). For a swarm or a source: spawned = active_at_end +
+// removed + left + not_inserted; a sink spawns none and counts what it removed.
+struct TrafficActionRecord {
+  std::string kind;   // "swarm", "source", "sink"
+  std::string name;   // the trafficName ("" none)
+  std::string label;  // as run.log and traffic_actions.csv name it: the name, or "traffic<serial>"
+  std::string vehicles;  // the SUMO ids of its vehicles: "traffic<serial>.N" ("" a sink)
+  double started = 0;
+  std::optional<double> stopped;  // a TrafficStopAction's time; none: it ran to the run's end
+  int spawned = 0, removed = 0, left = 0, not_inserted = 0, active_at_end = 0;
+  int removed_background = 0;  // a sink's: --traffic vehicles among `removed`
+};
+
 struct RunResult {
   Verdict verdict = Verdict::Error;
   std::string reason;
@@ -100,6 +114,8 @@ struct RunResult {
   // ahead in its lane, through the reference driver's eyes.
   std::optional<double> ego_min_gap, ego_min_ttc;
   std::optional<ReferenceRunRecord> reference_run;
+  // OpenSCENARIO: the storyboard's TrafficActions that started (empty: none; then null).
+  std::vector<TrafficActionRecord> storyboard_traffic;
 };
 
 std::string to_json(const RunResult& r);

@@ -1,5 +1,7 @@
 #include "run/traffic_trace.hpp"
 
+#include <algorithm>
+
 namespace orch {
 
 TrafficTrace::TrafficTrace(const std::filesystem::path& dir, bool background_rows)
@@ -10,7 +12,11 @@ TrafficTrace::TrafficTrace(const std::filesystem::path& dir, bool background_row
 void TrafficTrace::record(const sim::WorldSnapshot& snap) {
   counts_.print(FMT_COMPILE("{:.3f},{},{},{}\n"), snap.time, snap.other_vehicles, snap.nearby.size(), snap.long_waiting);
   if (background_) {
+    // An OpenSCENARIO run's TrafficAction vehicles are near the entities too: they have their
+    // own file (traffic_actions.csv); both lists are in id order.
+    const auto by_id = [](const sim::NearbyVehicle& a, const sim::NearbyVehicle& b) { return a.sumo_id < b.sumo_id; };
     for (const auto& v : snap.nearby) {
+      if (std::binary_search(snap.traffic.begin(), snap.traffic.end(), v, by_id)) continue;
       background_->print(FMT_COMPILE("{:.3f},{},{:.3f},{:.3f},{:.4f},{:.3f},{:.3f},{:.3f}\n"), snap.time, v.sumo_id,
                  v.position.x(), v.position.y(), v.heading, v.speed, v.length, v.width);
       ++background_rows_;

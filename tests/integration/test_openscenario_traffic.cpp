@@ -139,7 +139,11 @@ semiMinorAxis="15" numberOfVehicles="10" velocity="20" offset="0"><CentralObject
   EXPECT_EQ(run.traffic().count(1), 10);  // and kept: the removed ones were replaced
   EXPECT_GT(checked_spawns, 10u);
   EXPECT_GT(checked_removals, 0u);  // the faster vehicles ahead left the ellipse
-  EXPECT_EQ(run.traffic().spawned_total(), 10 + run.traffic().removed_total());
+  // Every vehicle spawned is accounted for (result.json's storyboard_traffic).
+  const OpenScenarioTraffic::Tally tally = run.traffic().tally(1);
+  EXPECT_EQ(tally.spawned, run.traffic().spawned_total());
+  EXPECT_EQ(tally.spawned, 10 + tally.removed + tally.left + tally.not_inserted);
+  EXPECT_EQ(tally.removed, run.traffic().removed_total());
 }
 
 TEST(OpenScenarioTraffic, ASourceInjectsAtItsRateAndASinkRemovesWhatReachesIt) {
@@ -167,6 +171,9 @@ TEST(OpenScenarioTraffic, ASourceInjectsAtItsRateAndASinkRemovesWhatReachesIt) {
   // Those that reached the sink (300 m at 25 m/s: 12 s) are gone.
   EXPECT_GE(run.traffic().removed_total(), 5);
   EXPECT_LE(run.traffic().count(1), 15);
+  // The sink (traffic 2) removed what the source (traffic 1) lost: no background here.
+  EXPECT_EQ(run.traffic().tally(2).removed, run.traffic().tally(1).removed);
+  EXPECT_EQ(run.traffic().tally(2).removed_background, 0);
 }
 
 }  // namespace orch

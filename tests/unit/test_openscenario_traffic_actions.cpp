@@ -228,6 +228,35 @@ TEST_F(TrafficActions, ASwarmRemovesItsVehiclesOutsideTheEllipse) {
   ASSERT_EQ(commands.size(), 2u);
   EXPECT_TRUE(std::holds_alternative<sim::SpawnVehicle>(commands[1]));
   EXPECT_EQ(traffic.count(1), 8);
+  // result.json's counts: 9 spawned, 1 removed, 8 there.
+  const OpenScenarioTraffic::Tally tally = traffic.tally(1);
+  EXPECT_EQ(tally.spawned, 9);
+  EXPECT_EQ(tally.removed, 1);
+  EXPECT_EQ(tally.left + tally.not_inserted, 0);
+  EXPECT_EQ(traffic.removed_total(), 1);
+}
+
+// The standard's sink removes every traffic participant in its radius: the background
+// vehicles (--traffic) near the entities too, each once when two sinks reach it.
+TEST_F(TrafficActions, ASinkRemovesBackgroundVehiclesInItsRadiusOnce) {
+  const std::string sink = R"(<TrafficAction trafficName="Out"><TrafficSinkAction radius="15"><Position>
+<LanePosition roadId="0" laneId="-1" s="1050" offset="0"/></Position></TrafficSinkAction></TrafficAction>)";
+  const std::string other = R"(<TrafficAction trafficName="Out2"><TrafficSinkAction radius="15"><Position>
+<LanePosition roadId="0" laneId="-1" s="1060" offset="0"/></Position></TrafficSinkAction></TrafficAction>)";
+  const Scenario s = load(sink + "</GlobalAction><GlobalAction>" + other);
+  const opendrive::RoadNetwork roads = opendrive::read_xodr_file((dir_.path() / "road.xodr").string());
+  const opendrive::SumoLaneIndex lanes{roads, dir_.write("n.net.xml", kNet).string()};
+  StoryboardRuntime runtime(s, roads);
+  OpenScenarioTraffic traffic(lanes, 1);
+  const std::vector<sim::NearbyVehicle> background{{"bg.inside_both", {1055, -1.75}, 0, 20, 4.5, 1.8},
+                                                   {"bg.outside", {1200, -1.75}, 0, 20, 4.5, 1.8}};
+  const auto commands = traffic.update(runtime.traffic(), runtime.entities(), {}, 0.0, 0.05, background);
+  ASSERT_EQ(commands.size(), 1u);
+  EXPECT_EQ(std::get<sim::RemoveActor>(commands.front()).sumo_id, "bg.inside_both");
+  EXPECT_EQ(traffic.tally(1).removed, 1);
+  EXPECT_EQ(traffic.tally(1).removed_background, 1);
+  EXPECT_EQ(traffic.tally(2).removed, 0);
+  EXPECT_EQ(traffic.removed_total(), 1);
 }
 
 }  // namespace

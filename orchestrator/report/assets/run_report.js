@@ -63,9 +63,13 @@
     const ending = storyboard ? ['storyboard end', storyboardEnd()]
       : ['ending scene', R.ending_scene === null || R.ending_scene === undefined ? 'none' : 'scene ' + R.ending_scene];
     const meta = [['ego driven by', R.ego_model], ['seed', R.seed], ['backend', R.backend], ['map', R.map_id], ['simulated', fmtNum(R.sim_time, 2) + ' s'],
-      ['steps', R.steps + ' × ' + step + ' s'], ending, ['traffic', R.traffic],
+      ['steps', R.steps + ' × ' + step + ' s'], ending, ['traffic', trafficText()],
       ['wall time', fmtNum(R.wall_time_s, 2) + ' s'], ['SUMO', R.sumo_version], ['orchestrator', R.orchestrator_version]];
     c.append(el('div', { class: 'meta' }, meta.map(([k, v]) => el('div', {}, el('span', { text: k }), v === undefined ? '–' : String(v)))));
+    if (ST) {
+      c.append(el('h3', { text: 'Traffic actions (SUMO drives their vehicles)' }));
+      c.append(trafficActionsTable());
+    }
     const inputs = Object.entries(R.inputs || {}).filter(([, f]) => f && f.path);
     if (inputs.length) {
       c.append(el('h3', { text: 'Inputs' }));
@@ -76,6 +80,33 @@
     for (const p of REPORT.problems || []) c.append(el('div', { class: 'problem', text: p }));
     for (const w of R.warnings || []) c.append(el('div', { class: 'problem', text: 'validation warning: ' + w }));
     return c;
+  }
+
+  // The run's traffic in a few words: the background (--traffic) and the storyboard's
+  // TrafficActions with what they did, e.g. "swarm (300 spawned, 248 removed)".
+  const ST = R.storyboard_traffic || null;
+  function trafficText() {
+    const parts = [];
+    if (R.traffic && R.traffic !== 'none') parts.push('background ' + R.traffic);
+    if (ST) {
+      const kinds = [...new Set(ST.actions.map(a => a.kind))].join(' + ');
+      const counts = [ST.spawned + ' spawned', ST.removed + ' removed'];
+      if (ST.removed_background) counts.push(ST.removed_background + ' of them background');
+      parts.push(kinds + ' (' + counts.join(', ') + ')');
+    }
+    return parts.length ? parts.join('; ') : 'none';
+  }
+  // One row per TrafficAction: what it is, when it ran, what became of its vehicles.
+  function trafficActionsTable() {
+    const head = ['traffic', 'kind', 'from (s)', 'to (s)', 'spawned', 'removed', 'left (route end)', 'not inserted', 'at end'];
+    return el('table', { id: 'traffic-actions' }, el('tr', {}, head.map(h => el('th', { text: h }))),
+      ST.actions.map(a => el('tr', { 'data-traffic': a.label }, el('td', { text: a.label }), el('td', { text: a.kind }),
+        el('td', { class: 'num', text: fmtNum(a.started, 2) }), el('td', { class: 'num', text: a.stopped === null ? 'end' : fmtNum(a.stopped, 2) }),
+        el('td', { class: 'num', text: a.kind === 'sink' ? '–' : String(a.spawned) }),
+        el('td', { class: 'num', text: String(a.removed) + (a.kind === 'sink' && a.removed_background ? ` (${a.removed_background} background)` : '') }),
+        el('td', { class: 'num', text: a.kind === 'sink' ? '–' : String(a.left) }),
+        el('td', { class: 'num', text: a.kind === 'sink' ? '–' : String(a.not_inserted) }),
+        el('td', { class: 'num', text: a.kind === 'sink' ? '–' : String(a.active_at_end) }))));
   }
 
   // How the storyboard ended: its StopTrigger (or not), and the last element that ran.
@@ -138,6 +169,8 @@
     view.append(markers);
     const bgBoxes = svgEl('g', { class: 'background' });
     view.append(bgBoxes);
+    const trafficBoxes = svgEl('g', { class: 'traffic-actions' });
+    view.append(trafficBoxes);
     const boxes = svgEl('g', { class: 'boxes' });
     const boxOf = new Map();
     for (const a of actors.slice().reverse()) {
@@ -199,27 +232,41 @@
         b.setAttribute('data-time', st.time);
         if (a === ego && state.follow) { state.cx = st.x; state.cy = st.y; }
       }
-      drawBackground(bgBoxes, t);
+      // On the overview drawn at least 3 px long, as the actors.
+      const grow = (length) => follow ? 1 : Math.max(1, 3 / (length * state.scale));
+      drawVehicles(bgSet, bgBoxes, 'bg-box', t, grow);
+      drawVehicles(trafficSet, trafficBoxes, 'traffic-box', t, grow);
       apply();
     }
     return { svg, update, fit: () => { if (!follow) fit(); apply(); } };
   }
 
-  // Background vehicles at time t: the rows of the last traced step not after t.
-  const bg = REPORT.background;
-  const bgSteps = [];
-  if (bg) for (let i = 0; i < bg.time.length; i++) if (!bgSteps.length || bg.time[bgSteps[bgSteps.length - 1]] !== bg.time[i]) bgSteps.push(i);
-  function drawBackground(group, t) {
-    if (!bg) return;
-    const times = bgSteps.map(i => bg.time[i]);
-    const k = indexAt(times, t);
-    const from = k < 0 ? 0 : bgSteps[k], to = k < 0 ? 0 : (k + 1 < bgSteps.length ? bgSteps[k + 1] : bg.time.length);
-    while (group.children.length < to - from) group.append(svgEl('polygon', { class: 'bg-box', 'vector-effect': 'non-scaling-stroke' }));
+  // Vehicles that are no scenario actors at time t: the rows of the last traced step not after
+  // t. The background (background.csv, --trace-background) and the storyboard's TrafficAction
+  // vehicles (traffic_actions.csv) are drawn the same way, each in its own colour.
+  function vehicleSet(rows) {
+    if (!rows) return null;
+    const steps = [];
+    for (let i = 0; i < rows.time.length; i++) if (!steps.length || rows.time[steps[steps.length - 1]] !== rows.time[i]) steps.push(i);
+    return { rows, steps, times: steps.map(i => rows.time[i]) };
+  }
+  const bgSet = vehicleSet(REPORT.background), trafficSet = vehicleSet(REPORT.traffic_actions);
+  const trafficLabel = (k) => ST && ST.actions[k - 1] ? ST.actions[k - 1].label : '';
+  function drawVehicles(set, group, cls, t, grow) {
+    if (!set) return;
+    const v = set.rows, k = indexAt(set.times, t);
+    // A step without rows (none in SUMO then, or the file ended before the trace): none drawn.
+    const gone = k >= 0 && t > set.times[k] + step * ((v.stride_steps || 1) + 0.5);
+    const from = k < 0 || gone ? 0 : set.steps[k], to = k < 0 || gone ? 0 : (k + 1 < set.steps.length ? set.steps[k + 1] : v.time.length);
+    while (group.children.length < to - from) group.append(svgEl('polygon', { class: cls, 'vector-effect': 'non-scaling-stroke' }));
     for (let j = 0; j < group.children.length; j++) {
       const p = group.children[j], i = from + j;
       if (i >= to) { p.setAttribute('visibility', 'hidden'); continue; }
       p.setAttribute('visibility', 'visible');
-      p.setAttribute('points', pointsText(boxCorners(bg.x[i], bg.y[i], bg.heading[i], bg.length[i], bg.width[i])));
+      const g = grow(v.length[i]);
+      p.setAttribute('points', pointsText(boxCorners(v.x[i], v.y[i], v.heading[i], v.length[i] * g, v.width[i] * g)));
+      p.setAttribute('data-vehicle', v.vehicle_id[i]);
+      if (v.traffic) p.setAttribute('data-traffic', trafficLabel(v.traffic[i]));
     }
   }
 
@@ -354,6 +401,8 @@
     views = [overview, replay];
     c.append(el('div', { class: 'legend' }, actors.map(a => el('span', {}, el('i', { style: 'background:' + a.color }), actorName(a) +
       (a.size_known ? ` (${fmtNum(a.length, 1)} × ${fmtNum(a.width, 1)} m)` : ''))),
+      bgSet ? el('span', {}, el('i', { class: 'legend-bg' }), 'background vehicles (near the actors)') : null,
+      trafficSet ? el('span', {}, el('i', { class: 'legend-traffic' }), 'TrafficAction vehicles (' + ST.actions.filter(a => a.kind !== 'sink').map(a => a.label).join(', ') + ')') : null,
       el('span', { class: 'muted', text: '○ scene change  ● collision  ● lane-change conflict (orange) · drag to pan, wheel to zoom, double-click to reset' })));
     c.append(el('div', { class: 'row' }, el('div', {}, el('h3', { text: 'Trajectories' }), overview.svg),
       el('div', {}, el('h3', { text: 'Replay (follows the ego)' }), replay.svg)));
