@@ -3,6 +3,7 @@ small outputs written here, in both players' formats: what is compared, what is 
 difference, and how a file is judged against the table of expected differences."""
 import json
 import pathlib
+import shutil
 import sys
 import tempfile
 import unittest
@@ -161,6 +162,92 @@ class PeerCsv(unittest.TestCase):
             self.assertEqual(sim.read_text().splitlines(),
                              ["time, id, name, x, y", "0.000, 0, A, 1.000, 2.000", "0.050, 0, A, 1.000, 2.000",
                               "0.100, 0, A, 1.000, 2.000"])
+
+
+class ControllersOff(unittest.TestCase):
+    """A file where either player may run a controller is compared again with controllers off
+    in both; the file's status stays the as-written comparison's."""
+
+    def test_which_files_have_controllers(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            f = pathlib.Path(tmp) / "f.xosc"
+            for text, has in (('<ObjectController><Controller name="c"/></ObjectController>', True),
+                              ("<ObjectController>\n<CatalogReference/></ObjectController>", True),
+                              ("<PrivateAction><ControllerAction><ActivateControllerAction/>", True),
+                              ('<GlobalAction><InfrastructureAction><TrafficSignalAction><TrafficSignalControllerAction '
+                               'trafficSignalControllerRef="x" phase="go"/>', False),
+                              ('<TrafficSignalController name="x">', False)):
+                f.write_text(text)
+                self.assertEqual(players.has_controllers(f), has, text)
+
+    def test_the_peers_log_says_when_a_controller_of_its_own_took_over(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            folder = pathlib.Path(tmp)
+            for line, ran in (("[0.000] [info] Controller interactiveDriver active on domains: Lateral & "
+                               "Longitudinal (mask=0x3)", True),
+                              ("[0.000] [info] Controller ACCController active on domains: Longitudinal (mask=0x1)", True),
+                              ("[] [info] Skipping ActivateControllerAction for object Ego due to --disable_controllers",
+                               False)):
+                (folder / "log.txt").write_text(PEER_LOG + line + "\n")
+                self.assertEqual(players.peer_ran_controller(folder), ran, line)
+
+    def fake_players(self, root, calls, shift_when_controllers):
+        """run_peer / run_ours that write Outputs-like folders: our car A is 0.5 m off the
+        peer's while controllers run, on it without them."""
+        def peer(esmini, xosc, folder, timeout, max_time, controllers=True):
+            calls.append(("peer", controllers))
+            return players.Run(folder, True, end_time=2.0)
+
+        def ours(orchestrator, xosc, folder, max_time, timeout, controllers=True):
+            calls.append(("ours", controllers))
+            pair = folder.parent
+            shutil.rmtree(pair, ignore_errors=True)
+            pair.mkdir(parents=True)
+            Outputs(pair, shift=lambda t: shift_when_controllers if controllers else 0.0,
+                    ours_events=OUR_EVENTS, peer_log=PEER_LOG)
+            return players.Run(folder, True, end_time=2.0)
+        return peer, ours
+
+    def run_file(self, text, shift=0.5):
+        calls = []
+        with tempfile.TemporaryDirectory() as tmp:
+            root = pathlib.Path(tmp)
+            xosc = root / "f.xosc"
+            xosc.write_text(text)
+            peer, ours = self.fake_players(root, calls, shift)
+            saved = players.run_peer, players.run_ours
+            players.run_peer, players.run_ours = peer, ours
+            try:
+                r = osc_differential.run_file(xosc, root / "work", root / "orchestrator", root / "esmini")
+            finally:
+                players.run_peer, players.run_ours = saved
+        return r, calls
+
+    def test_a_file_with_a_controller_runs_again_without_and_keeps_its_status(self):
+        r, calls = self.run_file('<ObjectController><Controller name="interactiveDriver"/></ObjectController>')
+        self.assertEqual(calls, [("peer", True), ("ours", True), ("peer", False), ("ours", False)])
+        self.assertEqual(r["status"], "differs")                    # the headline: as written
+        self.assertIn("position A at 0.00 s", r["detail"])
+        self.assertEqual(r["storyboard_only"]["status"], "match")   # the storyboard alone agrees
+        self.assertEqual(osc_differential.storyboard_only_text(r)[:35], "controllers off in both: match (1 e")
+        self.assertEqual(osc_differential.storyboard_only_figure([r, {"storyboard_only": None}]),
+                         "1 of 1 files with controllers match with controllers off in both")
+
+    def test_a_file_without_controllers_runs_once_unless_a_run_shows_one(self):
+        # The Outputs' Ego is SUMO-driven in our trace: a controller ran (a system under test).
+        r, calls = self.run_file("<Entities/>")
+        self.assertEqual(len(calls), 4)
+        self.assertIsNotNone(r["storyboard_only"])
+        saved = players.has_controllers, players.peer_ran_controller
+        players.has_controllers = players.peer_ran_controller = lambda _: False
+        try:
+            pair = {"comparison": compare.Comparison(["A"], {}, 2.0, 5, 0, []), "peer_controller": False}
+            self.assertFalse(osc_differential.runs_controllers(pathlib.Path("f.xosc"), pair))
+            pair["peer_controller"] = True
+            self.assertTrue(osc_differential.runs_controllers(pathlib.Path("f.xosc"), pair))
+        finally:
+            players.has_controllers, players.peer_ran_controller = saved
+        self.assertEqual(osc_differential.storyboard_only_text({"storyboard_only": None}), "")
 
 
 class Judgement(unittest.TestCase):
