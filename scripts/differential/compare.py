@@ -176,11 +176,15 @@ def compare_positions(ours, drivers, peer, end_time: float):
 
 def compare_transitions(ours: list, peer: list, end_time: float):
     """Pairs the k-th occurrence of each (element, transition) in both runs; a time off by
-    more than one step, or an occurrence in one run only (before end_time), is a difference."""
+    more than one step, or an occurrence in one run only (before end_time), is a difference.
+    An occurrence up to one step after end_time is paired too (and then compared), but not
+    missed when the other run has none: a run that stops at its StopTrigger one step before
+    the other (within the tolerance) ends the comparison there, and the other's stop is one
+    step later."""
     def grouped(items):
         g = collections.defaultdict(list)
         for t, name, transition in items:
-            if t <= end_time + 1e-6:
+            if t <= end_time + STEP + 1e-6:
                 g[(name, transition)].append(t)
         return g
     a, b = grouped(ours), grouped(peer)
@@ -194,6 +198,9 @@ def compare_transitions(ours: list, peer: list, end_time: float):
             y = tb[i] if i < len(tb) else None
             if x is None or y is None:
                 t = x if x is not None else y
+                if t > end_time + 1e-6:  # after the compared end, in one run only: not compared
+                    count -= 1
+                    break
                 differences.append(Difference("transition", subject, t, f"{x:.2f} s" if x is not None else "none",
                                               f"{y:.2f} s" if y is not None else "none"))
                 break

@@ -115,6 +115,22 @@ class Comparison(unittest.TestCase):
         self.assertEqual([d.text() for d in c.differences], ["GoAction endTransition at 1.55 s: ours none, peer 1.55 s"])
 
 
+    def test_a_stop_one_step_after_the_other_runs_end_is_paired_not_missed(self):
+        # Ours stops at its StopTrigger at 2.00 s (the compared end), the peer one step later.
+        late_stop = PEER_LOG.replace("[2.000] [info] storyBoard", "[2.050] [info] storyBoard")
+        c = Outputs(self.root, ours_events=OUR_EVENTS, peer_log=late_stop).compare()
+        self.assertTrue(c.matches, [d.text() for d in c.differences])
+        self.assertEqual(c.transitions, 4)
+        # The peer's stop one step after the end with none in ours is not compared ...
+        (self.root / "none").mkdir()
+        c = Outputs(self.root / "none", ours_events=OUR_EVENTS[:-1], peer_log=late_stop).compare()
+        self.assertTrue(c.matches, [d.text() for d in c.differences])
+        self.assertEqual(c.transitions, 3)
+        # ... while one missing before the end is a difference, as always.
+        (self.root / "missing").mkdir()
+        c = Outputs(self.root / "missing", ours_events=OUR_EVENTS[:-1], peer_log=PEER_LOG).compare()
+        self.assertEqual([d.text() for d in c.differences], ["Storyboard stopTransition at 2.00 s: ours none, peer 2.00 s"])
+
     def test_an_entity_added_one_step_apart_is_not_a_difference_two_steps_is(self):
         for peer_from, differs in ((1.05, False), (1.1, True)):
             folder = self.root / f"added_{peer_from}"
