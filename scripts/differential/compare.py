@@ -210,12 +210,16 @@ def compare_transitions(ours: list, peer: list, end_time: float):
     return differences, count
 
 
-def compare_runs(our_folder: pathlib.Path, peer_folder: pathlib.Path, our_end: float, peer_end: float) -> Comparison:
+def compare_runs(our_folder: pathlib.Path, peer_folder: pathlib.Path, our_end: float, peer_end: float,
+                 left_out_actions: frozenset = frozenset()) -> Comparison:
+    """`left_out_actions`: names of our actions whose transitions are not compared (the
+    controller actions esmini drops with --disable_controllers)."""
     ours, drivers = read_our_trace(our_folder / "trace.csv")
     peer = read_peer_trace(peer_folder / "sim.csv")
     end = min(our_end, peer_end)
     pos_diff, compared, not_compared, positions = compare_positions(ours, drivers, peer, end)
-    tr_diff, transitions = compare_transitions(read_our_transitions(our_folder / "result.json"),
+    our_transitions = [tr for tr in read_our_transitions(our_folder / "result.json") if tr[1] not in left_out_actions]
+    tr_diff, transitions = compare_transitions(our_transitions,
                                                read_peer_transitions(peer_folder / "log.txt"), end)
     differences = sorted(pos_diff + tr_diff, key=lambda d: (d.time, d.what, d.subject))
     return Comparison(compared, not_compared, end, positions, transitions, differences)

@@ -45,6 +45,24 @@ def has_controllers(xosc: pathlib.Path) -> bool:
     return bool(CONTROLLER_ELEMENT.search(xosc.read_text(errors="replace")))
 
 
+def controller_action_names(xosc: pathlib.Path) -> set:
+    """The names of the file's storyboard Actions that activate or assign a controller. esmini
+    --disable_controllers drops them from the storyboard when it loads the file ("Skipping
+    ActivateControllerAction for object Ego due to --disable_controllers"): their Events run
+    without them and log no transitions for them, while ours runs them (and logs them)."""
+    import xml.etree.ElementTree as ET
+    names = set()
+    try:
+        root = ET.parse(xosc).getroot()
+    except ET.ParseError:
+        return names
+    for action in root.iter("Action"):
+        if any(e.tag in ("ControllerAction", "ActivateControllerAction", "AssignControllerAction")
+               for e in action.iter()):
+            names.add(action.get("name", ""))
+    return names
+
+
 def peer_ran_controller(peer_folder: pathlib.Path) -> bool:
     """esmini activated a controller of its own in this run (its log.txt says so)."""
     log = peer_folder / "log.txt"

@@ -207,6 +207,26 @@ class ControllersOff(unittest.TestCase):
                 (folder / "log.txt").write_text(PEER_LOG + line + "\n")
                 self.assertEqual(players.peer_ran_controller(folder), ran, line)
 
+    def test_controller_actions_are_left_out_of_the_controllers_off_transitions(self):
+        # esmini --disable_controllers drops them from its storyboard: no transitions there.
+        with tempfile.TemporaryDirectory() as tmp:
+            root = pathlib.Path(tmp)
+            f = root / "f.xosc"
+            f.write_text('<OpenSCENARIO><Storyboard><Action name="Go"><PrivateAction><LongitudinalAction/>'
+                         '</PrivateAction></Action><Action name="HandOver"><PrivateAction><ControllerAction>'
+                         '<ActivateControllerAction longitudinal="true"/></ControllerAction></PrivateAction></Action>'
+                         '<Action name="Old"><PrivateAction><ActivateControllerAction/></PrivateAction></Action>'
+                         '<Action name="Light"><GlobalAction><InfrastructureAction><TrafficSignalAction>'
+                         '<TrafficSignalControllerAction/></TrafficSignalAction></InfrastructureAction></GlobalAction>'
+                         '</Action></Storyboard></OpenSCENARIO>')
+            self.assertEqual(players.controller_action_names(f), {"HandOver", "Old"})
+            events = OUR_EVENTS + [(1.0, "action", "action HandOver startTransition"),
+                                   (1.0, "action", "action HandOver endTransition")]
+            o = Outputs(root / "run", ours_events=events, peer_log=PEER_LOG) if (root / "run").mkdir() is None else None
+            self.assertFalse(o.compare().matches)
+            c = compare.compare_runs(o.ours, o.peer, 2.0, 2.0, frozenset({"HandOver"}))
+            self.assertTrue(c.matches, [d.text() for d in c.differences])
+
     def fake_players(self, root, calls, shift_when_controllers):
         """run_peer / run_ours that write Outputs-like folders: our car A is 0.5 m off the
         peer's while controllers run, on it without them."""
