@@ -2,7 +2,10 @@
 """Differential test of the OpenSCENARIO runtime against a peer player (esmini, headless,
 ../shared/tools/esmini): every file of the corpus runs in both at a 0.05 s step; every
 entity that follows the storyboard is compared every 0.5 s by its reference point (0.10 m)
-and every storyboard element transition by its time (one step). See docs/differential.md.
+and every storyboard element transition by its time (one step). A file where either player
+may run a controller is compared a second time with controllers off in both (esmini
+--disable_controllers, ours --controllers off): reported per file and in the summary, not
+judged (the file's status is the as-written comparison's). See docs/differential.md.
 
 Corpus: ../shared/data/openscenario/*.xosc (OSC-ALKS), ../shared/data/esmini_examples/xosc/
 *.xosc and scenarios/openscenario/*.xosc. A file that does not match is a failure unless
@@ -50,32 +53,65 @@ def relative(path: pathlib.Path) -> str:
     return os.path.relpath(path.resolve(), ROOT)
 
 
-def run_file(xosc: pathlib.Path, work: pathlib.Path, orchestrator: pathlib.Path, esmini: pathlib.Path) -> dict:
-    """Both players on one file; {'file', 'status', 'detail', 'comparison', 'seconds'}."""
-    folder = work / relative(xosc).replace("../", "").replace("/", "__")
-    start = time.monotonic()
-    peer = players.run_peer(esmini, xosc, folder / "peer", PEER_TIMEOUT, MAX_TIME)
-    out = {"file": relative(xosc), "comparison": None}
+def run_pair(xosc: pathlib.Path, folder: pathlib.Path, orchestrator: pathlib.Path, esmini: pathlib.Path,
+             controllers: bool = True) -> dict:
+    """Both players on one file, with their controllers or (False) without any in both:
+    {'status', 'detail', 'comparison'}; the peer's folder is folder/peer, ours folder/ours."""
+    peer = players.run_peer(esmini, xosc, folder / "peer", PEER_TIMEOUT, MAX_TIME, controllers)
+    out = {"comparison": None, "peer_controller": False}
     if not peer.ok:
         out.update(status="peer-error", detail=peer.error)
+        return out
+    out["peer_controller"] = players.peer_ran_controller(peer.folder)
+    max_time = min(peer.end_time + 1.0, MAX_TIME)
+    ours = players.run_ours(orchestrator, xosc, folder / "ours", max_time, OURS_TIMEOUT, controllers)
+    if not ours.ok:
+        out.update(status="ours-error" if ours.timed_out or ours.crashed else "unreadable", detail=ours.error)
+        return out
+    # Without controllers esmini drops the Activate/AssignControllerActions from the storyboard
+    # (no transitions); ours runs them: theirs are not compared then.
+    left_out = frozenset() if controllers else frozenset(players.controller_action_names(xosc))
+    c = compare.compare_runs(ours.folder, peer.folder, ours.end_time, min(peer.end_time, MAX_TIME), left_out)
+    out["comparison"] = c
+    if ours.error:
+        out.update(status="ours-error", detail=f"stopped at {ours.end_time:.2f} s: {ours.error}")
+    elif c.differences:
+        first = c.differences[0]
+        more = f" (+{len(c.differences) - 1} more)" if len(c.differences) > 1 else ""
+        out.update(status="differs", detail=f"{first.what} {first.text()}{more}")
     else:
-        max_time = min(peer.end_time + 1.0, MAX_TIME)
-        ours = players.run_ours(orchestrator, xosc, folder / "ours", max_time, OURS_TIMEOUT)
-        if not ours.ok:
-            out.update(status="ours-error" if ours.timed_out or ours.crashed else "unreadable", detail=ours.error)
-        else:
-            c = compare.compare_runs(ours.folder, peer.folder, ours.end_time, min(peer.end_time, MAX_TIME))
-            out["comparison"] = c
-            if ours.error:
-                out.update(status="ours-error", detail=f"stopped at {ours.end_time:.2f} s: {ours.error}")
-            elif c.differences:
-                first = c.differences[0]
-                more = f" (+{len(c.differences) - 1} more)" if len(c.differences) > 1 else ""
-                out.update(status="differs", detail=f"{first.what} {first.text()}{more}")
-            else:
-                out.update(status="match", detail="")
-    # Paths in messages relative to the checkout, as in the table of expected differences.
-    out["detail"] = out["detail"].replace(str(ROOT.parent.resolve()) + "/", "../").replace("invalid scenario: ", "")
+        out.update(status="match", detail="")
+    return out
+
+
+def runs_controllers(xosc: pathlib.Path, pair: dict) -> bool:
+    """Whether either player may run a controller on this file: the file has a controller
+    element, or the as-written runs show one (our trace has an entity SUMO, the reference
+    driver or a plug-in drove; esmini's log has a controller of its own taking over)."""
+    c = pair["comparison"]
+    return players.has_controllers(xosc) or pair["peer_controller"] or bool(c and c.not_compared)
+
+
+def clean(detail: str) -> str:
+    """Paths in messages relative to the checkout, as in the table of expected differences."""
+    return detail.replace(str(ROOT.parent.resolve()) + "/", "../").replace("invalid scenario: ", "")
+
+
+def run_file(xosc: pathlib.Path, work: pathlib.Path, orchestrator: pathlib.Path, esmini: pathlib.Path) -> dict:
+    """Both players on one file: {'file', 'status', 'detail', 'comparison', 'storyboard_only',
+    'seconds'}. A file where either player may run a controller is compared a second time with
+    controllers off in both (esmini --disable_controllers, ours --controllers off):
+    `storyboard_only` is that comparison's {'status', 'detail', 'comparison'} (None for the
+    other files); the file's status stays the as-written comparison's."""
+    folder = work / relative(xosc).replace("../", "").replace("/", "__")
+    start = time.monotonic()
+    pair = run_pair(xosc, folder, orchestrator, esmini)
+    out = {"file": relative(xosc), "status": pair["status"], "detail": clean(pair["detail"]),
+           "comparison": pair["comparison"], "storyboard_only": None}
+    if pair["status"] != "peer-error" and runs_controllers(xosc, pair):
+        off = run_pair(xosc, folder / "controllers-off", orchestrator, esmini, controllers=False)
+        out["storyboard_only"] = {"status": off["status"], "detail": clean(off["detail"]),
+                                  "comparison": off["comparison"]}
     out["seconds"] = time.monotonic() - start
     return out
 
@@ -86,7 +122,7 @@ def run_guarded(xosc: pathlib.Path, work: pathlib.Path, orchestrator: pathlib.Pa
         return run_file(xosc, work, orchestrator, esmini)
     except Exception as e:  # noqa: BLE001 (reported per file, the other files go on)
         return {"file": relative(xosc), "status": "harness-error", "detail": f"{type(e).__name__}: {e}",
-                "comparison": None, "seconds": 0.0}
+                "comparison": None, "storyboard_only": None, "seconds": 0.0}
 
 
 def summary_of(c) -> str:
@@ -95,6 +131,24 @@ def summary_of(c) -> str:
     skipped = ", ".join(f"{n} {why}" for n, why in sorted(c.not_compared.items()))
     return (f"{len(c.compared_entities)} entities, {c.positions} points, {c.transitions} transitions up to "
             f"{c.end_time:.2f} s" + (f"; not compared: {skipped}" if skipped else ""))
+
+
+def storyboard_only_text(result: dict) -> str:
+    """The controllers-off comparison in words ("" for a file without controllers)."""
+    off = result.get("storyboard_only")
+    if not off:
+        return ""
+    if off["status"] == "match":
+        return f"controllers off in both: match ({summary_of(off['comparison'])})"
+    return f"controllers off in both: {off['status']}: {off['detail']}"
+
+
+def storyboard_only_figure(results: list) -> str:
+    """'N of M files with controllers match with controllers off in both' (the extra files
+    left out by the caller)."""
+    with_controllers = [r for r in results if r.get("storyboard_only")]
+    matching = sum(1 for r in with_controllers if r["storyboard_only"]["status"] == "match")
+    return f"{matching} of {len(with_controllers)} files with controllers match with controllers off in both"
 
 
 def judge(result: dict, listed) -> tuple:
@@ -170,20 +224,28 @@ def main() -> int:
             results.append(r)
             counts[r["status"]] = counts.get(r["status"], 0) + 1
             if r["file"] in extra_names:
-                print(f"extra {r['file']}: {r['status']} {r['detail']} ({summary_of(r['comparison'])})", flush=True)
+                off = storyboard_only_text(r)
+                print(f"extra {r['file']}: {r['status']} {r['detail']} ({summary_of(r['comparison'])})" +
+                      (f"\n    {off}" if off else ""), flush=True)
                 continue
             ok, line = judge(r, entries.get(r["file"]))
-            print(line, flush=True)
+            off = storyboard_only_text(r)
+            print(line + (f"\n    {off}" if off else ""), flush=True)
             status |= 0 if ok else 1
     elapsed = time.monotonic() - start
     slowest = sorted(results, key=lambda r: -r["seconds"])[:3]
     print(f"differential: {len(results)} files in {elapsed:.1f} s with {args.jobs} jobs: " +
           ", ".join(f"{n} {k}" for k, n in sorted(counts.items())) +
+          "; " + storyboard_only_figure([r for r in results if r["file"] not in extra_names]) +
           "; slowest: " + ", ".join(f"{pathlib.Path(r['file']).name} {r['seconds']:.1f} s" for r in slowest))
     if args.results:
         args.results.write_text(json.dumps(
             sorted(({"file": r["file"], "status": r["status"], "detail": r["detail"],
-                     "summary": summary_of(r["comparison"])} for r in results), key=lambda r: r["file"]),
+                     "summary": summary_of(r["comparison"]),
+                     "storyboard_only": None if not r.get("storyboard_only") else {
+                         "status": r["storyboard_only"]["status"], "detail": r["storyboard_only"]["detail"],
+                         "summary": summary_of(r["storyboard_only"]["comparison"])}}
+                    for r in results), key=lambda r: r["file"]),
             indent=1) + "\n")
     if args.update:
         for r in results:

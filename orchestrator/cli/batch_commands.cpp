@@ -53,6 +53,7 @@ struct BatchCliOptions {
   std::optional<std::string> fork_at;  // --fork-at SECONDS|EVENT: --fork with a checkpoint there
   std::string ego_model;       // --ego-model: passed to every run
   bool reference_run = false;  // --reference-run: passed to every run
+  std::string controllers;     // --controllers on|off: passed to every run
   CommonOptions common;
 };
 
@@ -143,6 +144,12 @@ int batch_command(const BatchCliOptions& o, const CLI::App& app) {
   b.run_flags = run_flags_of(b.orchestrator);
   if (!o.ego_model.empty()) b.run_args = {"--ego-model", o.ego_model};
   if (o.reference_run) b.run_args.emplace_back("--reference-run");
+  if (!o.controllers.empty()) {
+    if (o.controllers == "off" && (!o.ego_model.empty() || o.reference_run))
+      throw OrchError(fmt::format("--controllers off: every entity follows the storyboard; {} asks for a driver of "
+                                  "the ego: give one or the other", o.reference_run ? "--reference-run" : "--ego-model"));
+    b.run_args.insert(b.run_args.end(), {"--controllers", o.controllers});
+  }
   b.out_stream = &std::cout;
   b.terminal = ::isatty(STDOUT_FILENO) == 1;
   try {
@@ -251,6 +258,10 @@ Handler setup_batch(CLI::App& cmd) {
   cmd.add_flag("--reference-run", o->reference_run,
                "Give every run a reference run with the R157 reference driver (run --reference-run): the "
                "`preventable` column");
+  cmd.add_option("--controllers", o->controllers,
+                 "on or off, passed to every run (run --controllers): off, no controller runs and every entity "
+                 "follows the storyboard")
+      ->check(CLI::IsMember({"on", "off"}));
   cmd.add_option("--maps", o->common.map_dirs, "Folder holding map folders (repeatable), passed to every run")
       ->allow_extra_args(false);
   cmd.add_option("--catalog", o->common.catalog, "Model catalog JSON, passed to every run");

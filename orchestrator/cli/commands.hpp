@@ -56,6 +56,7 @@ struct RunOptions {
   std::vector<std::string> parameters;   // --param NAME=VALUE (OpenSCENARIO runs)
   std::string ego_model;                 // --ego-model sumo|r157|cruise ("" = sumo, or the evaluation file's)
   bool reference_run = false;            // --reference-run: again with the R157 reference driver
+  std::string controllers = "on";        // --controllers on|off: off, every entity follows the storyboard
   std::string ego_address = "127.0.0.1";  // --ego-address: loopback unless asked otherwise
   double ego_wait = 60;                  // --ego-wait, s to wait for the plug-in to connect
   double ego_timeout = 30;               // --ego-timeout, s to wait for its next message

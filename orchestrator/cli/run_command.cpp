@@ -113,11 +113,25 @@ int run_command(const RunOptions& o) {
   }
   req.reference_run = o.reference_run;
 
+  req.controllers_off = o.controllers == "off";
+  if (req.controllers_off) {  // the options that ask for a driver contradict it (the format checks the rest)
+    for (const char* driver : {"--ego-model", "--reference-run"})
+      if (given(o, driver))
+        throw OrchError(fmt::format("--controllers off: every entity follows the storyboard; {} asks for a driver of "
+                                    "the ego: give one or the other", driver));
+    if (o.ego_port)
+      throw OrchError("--controllers off: every entity follows the storyboard; --ego-port asks for a plug-in to drive "
+                      "the ego: give one or the other");
+  }
+
   RunOptions options = o;
   if (is_evaluation_file(o.file)) {
     const auto code = prepare_evaluation(options, req);
     if (code) return *code;
   }
+  if (req.controllers_off && detect_scenario_format(req.scenario_file) != ScenarioFormat::OpenScenario)
+    throw OrchError("--controllers off: OpenSCENARIO runs only (" + req.scenario_file +
+                    " is a ScenarioExecutor scenario, whose ego SUMO or a plug-in drives)");
   const std::string backend = choose_backend(options);
   SumoBackendOptions sumo_options;
   sumo_options.gui = o.gui;

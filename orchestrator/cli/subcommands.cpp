@@ -64,6 +64,11 @@ Handler setup_run(CLI::App& cmd) {
   r->add_flag("--reference-run", run->reference_run,
               "Run the scenario again with the R157 reference driver (into reference/) and judge whether a collision "
               "was preventable");
+  r->add_option("--controllers", run->controllers,
+                "OpenSCENARIO runs: off runs no controller (esmini's --disable_controllers): every entity, the ego too, "
+                "follows the storyboard; controllers are read and checked, Activate/AssignControllerActions are logged "
+                "and hand nobody to SUMO. Not with --ego-model, --ego-port or --reference-run (default: on)")
+      ->check(CLI::IsMember({"on", "off"}));
   r->add_option("--ego-address", run->ego_address, "Address the ego TraCI server listens on")->capture_default_str();
   r->add_option("--ego-wait", run->ego_wait, "Seconds to wait for the ego plug-in to connect")
       ->capture_default_str()->check(kTimeRange);

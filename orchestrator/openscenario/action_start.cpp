@@ -424,6 +424,12 @@ std::vector<std::string> start_action(const PrivateAction& action, const std::st
   return replaced;
 }
 
+void steer_synchronize(ActionContext& ctx, std::vector<RunningAction>& running) {
+  for (RunningAction& r : running)
+    if (const auto* synchronize = std::get_if<SynchronizeAction>(r.spec); synchronize && r.synchronize)
+      r.synchronized = step_synchronize(*synchronize, *r.synchronize, r.entity, ctx);
+}
+
 std::vector<std::string> update_running_actions(ActionContext& ctx, std::vector<RunningAction>& running) {
   for (auto& [name, state] : ctx.entities)
     if (state.placed && !state.route.empty()) count_passed_waypoints(state, ctx.roads);
@@ -432,8 +438,8 @@ std::vector<std::string> update_running_actions(ActionContext& ctx, std::vector<
     EntityState& state = ctx.entities.at(it->entity);
     bool done = false;
     if (it->domain == MotionDomain::Longitudinal) {
-      if (const auto* synchronize = std::get_if<SynchronizeAction>(it->spec)) {
-        done = step_synchronize(*synchronize, *it->synchronize, it->entity, ctx);
+      if (std::holds_alternative<SynchronizeAction>(*it->spec)) {
+        done = it->synchronized;  // steered before the move (steer_synchronize)
       } else if (const auto* distance = std::get_if<LongitudinalDistanceAction>(it->spec)) {
         if (!has_limits(*distance)) longitudinal_distance(*distance, state, ctx, it->entity);  // continuous: keep it
         else done = approach_distance(*distance, state, ctx, it->entity, it->distance_acceleration) && !it->continuous;

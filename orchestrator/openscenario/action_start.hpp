@@ -50,6 +50,7 @@ struct RunningAction {
   std::optional<SpeedProfileRun> speed_profile;  // a SpeedProfileAction's segments and progress
   std::optional<double> lateral_distance;        // a LateralDistanceAction's distance kept
   double distance_acceleration = 0;              // a LongitudinalDistanceAction's last acceleration (its jerk limits)
+  bool synchronized = false;  // a SynchronizeAction done (steer_synchronize, before the step's move)
 };
 
 // Starts `action` for `entity` ("" for global actions): immediate actions take effect now; actions that take time
@@ -58,6 +59,12 @@ struct RunningAction {
 std::vector<std::string> start_action(const PrivateAction& action, const std::string& entity,
                                       const std::string& action_name, ActionContext& ctx,
                                       std::vector<RunningAction>& running);
+
+// Before the entities move to ctx.t: the speed of each SynchronizeAction for this step, from
+// where the entities are (as esmini's: the entity moves with it in the same step; set after
+// the move, it lagged one step behind, 0.15 m at 0.5 s for an NPC starting from standstill in
+// esmini's synchronize.xosc).
+void steer_synchronize(ActionContext& ctx, std::vector<RunningAction>& running);
 
 // After the entities moved to ctx.t: ends the actions whose motion is done (returns their
 // names once no actor of theirs is still running them) and keeps continuous ones on target.

@@ -260,10 +260,11 @@ void StoryboardRuntime::Impl::step(double dt) {
   last_dt = dt;
   t = static_cast<double>(step_index) * dt;
   lane_change_motion_order();
+  ActionContext ctx = context();
+  steer_synchronize(ctx, running);  // its speed moves the entity in this step
   for (auto& [name, state] : entities)
     if (!is_towed(trailers, name)) advance(state, roads, t, dt);  // a towed trailer only follows its bar
   pull_trailers(scenario, entities, trailers, roads, dt);
-  ActionContext ctx = context();
   for (const std::string& ended : update_running_actions(ctx, running))
     if (!ended.empty()) transition("action", ended, "endTransition", ElementState::Complete);
   settle();

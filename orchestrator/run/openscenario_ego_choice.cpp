@@ -74,6 +74,7 @@ EgoChoice with_note(const openscenario::Scenario& scenario, EgoChoice choice, bo
 
 EgoDriving ego_driving(const EgoChoice& choice, const EgoRequests& requests) {
   if (choice.entity.empty()) return {false, choice.rule};
+  if (requests.controllers_off) return {false, "--controllers off; " + choice.controller_note};
   if (requests.plugin) return {true, "--ego-port: an external plug-in"};
   if (!requests.ego_model.empty()) return {true, "--ego-model " + requests.ego_model};
   if (requests.reference_driver) return {true, "the reference run"};

@@ -37,6 +37,7 @@ struct EgoRequests {
   std::string ego_model;  // --ego-model / EgoModel given: its name ("sumo", "r157"); "" not given
   bool reference_driver = false;  // the run's model is the R157 reference driver (--ego-model r157, --reference-run)
   bool plugin = false;            // --ego-port
+  bool controllers_off = false;   // --controllers off: nothing but the storyboard drives (wins)
 };
 
 // Whether the chosen ego is driven (by SUMO, the reference driver or a plug-in) or follows the

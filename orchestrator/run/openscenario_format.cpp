@@ -1,8 +1,10 @@
 #include "run/openscenario_format.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <algorithm>
+#include <map>
 #include <optional>
 #include <set>
 
@@ -106,6 +108,20 @@ void check_external_ego(const openscenario::Scenario& scenario, const std::strin
 }
 
 // The ego's model: --ego-model, or the reference driver when the ego's controller is named so.
+// --controllers off leaves the ego to the storyboard: whatever asks for something to drive it
+// contradicts it (the command line's options, or an evaluation file's EgoModel / ReferenceRun /
+// no_preventable_collision criterion). --ego NAME does not: it only names the ego then.
+void check_controllers_off(const RunRequest& req) {
+  std::vector<std::string> drivers;
+  if (req.ego_link) drivers.emplace_back("--ego-port (a plug-in drives the ego)");
+  if (req.ego_model_given) drivers.push_back("--ego-model " + req.ego_model.name + " (or the evaluation file's EgoModel)");
+  if (req.reference_run)
+    drivers.emplace_back("--reference-run (or the evaluation file's ReferenceRun / a no_preventable_collision criterion)");
+  if (drivers.empty()) return;
+  throw OrchError(fmt::format("--controllers off: every entity follows the storyboard, nothing drives the ego; it "
+                              "contradicts {}: give one or the other", fmt::join(drivers, " and ")));
+}
+
 EgoModelChoice ego_model_of(const RunRequest& req, const openscenario::Scenario& scenario, const std::string& ego) {
   EgoModelChoice model = req.ego_model;
   const openscenario::Entity* e = ego.empty() ? nullptr : scenario.entity(ego);
@@ -295,6 +311,21 @@ class OpenScenarioFormat : public RunFormat {
     ego_summary_ += "; " + what;
   }
 
+  // --controllers off: an entity's controller activated (or another one activated later) is
+  // said once in run.log; it changes nothing.
+  void note_controllers_off(double t, RunLog& log) {
+    if (actors_->controllers_enabled()) return;
+    for (const auto& [name, state] : runtime_->entities()) {
+      const std::string active = state.controller_active ? state.controller : "";
+      auto& noted = controllers_noted_[name];
+      if (active == noted) continue;
+      if (!active.empty())
+        log.at(t, fmt::format("{}: its controller {} was activated; --controllers off: it goes on following the "
+                              "storyboard", name, active));
+      noted = active;
+    }
+  }
+
   const RunRequest& req_;
   // Declared in this order: the runtime and the actors refer to the roads and lanes.
   std::optional<openscenario::Scenario> scenario_;
@@ -316,6 +347,7 @@ class OpenScenarioFormat : public RunFormat {
   std::string ego_;
   bool ego_driven_ = false;  // SUMO, the reference driver or a plug-in drives the ego (else the storyboard)
   bool ego_handed_ = false;  // a storyboard ego was handed to SUMO's driver by its activated controller
+  std::map<std::string, std::string> controllers_noted_;  // --controllers off: the active controller said per entity
   std::string ego_summary_;  // who drives the ego and why, for run.log and the report
   const char* ego_label_ = "sumo";  // the ego's trace `driver` this step
   std::size_t logged_ = 0;          // storyboard transitions already in the log
@@ -367,11 +399,17 @@ void OpenScenarioFormat::open(RunResult& result, RunLog& log, SimulatorConfig& c
   if (req_.ego_link && ego_model_.own_model())
     throw OrchError("--ego-port: an external ego drives the ego; the orchestrator's own model (--ego-model " +
                     ego_model_.name + " or an R157ReferenceDriver controller) cannot drive it too");
+  if (req_.controllers_off) check_controllers_off(req_);
   const EgoDriving driving = ego_driving(chosen, {req_.ego_model_given ? req_.ego_model.name : "",
-                                                  req_.ego_model.r157(), req_.ego_link != nullptr});
+                                                  req_.ego_model.r157(), req_.ego_link != nullptr,
+                                                  req_.controllers_off});
   ego_driven_ = driving.driven;
   if (!ego_driven_) ego_model_ = EgoModelChoice{};  // nothing drives it: no reference driver either
   result.ego_model = ego_.empty() || ego_driven_ ? ego_model_.name : "storyboard";
+  result.controllers = req_.controllers_off ? "off" : "on";
+  if (req_.controllers_off)
+    log.note("--controllers off: no controller runs, every entity follows the storyboard (the file's controllers are "
+             "read and checked; Activate/AssignControllerActions run and are logged, and hand nobody to SUMO)");
   ego_summary_ = ego_.empty() ? ""
                  : !ego_driven_ ? fmt::format("follows the storyboard ({})", driving.why)
                  : req_.ego_link ? fmt::format("driven by SUMO's car-following model until an ActivateControllerAction "
@@ -388,6 +426,7 @@ void OpenScenarioFormat::open(RunResult& result, RunLog& log, SimulatorConfig& c
   runtime_.emplace(*scenario_, *roads_);
   actors_.emplace(*scenario_, *lanes_, ego_,
                   !ego_driven_ ? EgoDrive::Storyboard : req_.ego_link ? EgoDrive::External : EgoDrive::Sumo);
+  if (req_.controllers_off) actors_->disable_controllers();
   sumo_lanes_.emplace(LaneMap::build(net.net_file.string(), WaypointFile{}));
   observed_.emplace(*scenario_, *roads_, *actors_);
 
@@ -412,6 +451,7 @@ double OpenScenarioFormat::take_step(const sim::WorldSnapshot& snap, RunResult& 
                : !ego_driven_ && !ego_.empty() && actors_->is_sumo_driven(ego_) ? "sumo"  // an activated controller
                                                                                : OpenScenarioEgo::label(ego_driver);
   note_ego_hand_over(t, log);
+  note_controllers_off(t, log);
   observed_->update(snap, t, runtime_->entities(), runtime_->finished());
   // Entities SUMO (or the external ego) drove are what the storyboard's conditions see of
   // them from now on; while the storyboard moves the ego laterally, its own state stands.

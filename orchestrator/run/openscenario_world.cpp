@@ -146,8 +146,8 @@ std::vector<sim::Command> OpenScenarioActors::place(const std::map<std::string, 
     }
     // SUMO's driver drives on lanes: an entity on no road (a scenario without one) stays the
     // storyboard's when its controller is activated (docs/openscenario.md, "Without a road").
-    const bool hand_over = !body.driven && !is_ego && state.controller_active && !state.controller.empty() &&
-                           !state.road_id.empty();
+    const bool hand_over = controllers_ && !body.driven && !is_ego && state.controller_active &&
+                           !state.controller.empty() && !state.road_id.empty();
     if (is_ego || hand_over) body.driven = true;
     const bool first = !body.spawned;
     if (first) {

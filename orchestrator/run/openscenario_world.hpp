@@ -42,6 +42,10 @@ class OpenScenarioActors {
   // entity whose controller is activated (Assign/ActivateControllerAction) is handed to
   // SUMO's driver like the ego. Throws MapError when an entity first appears where SUMO has no lane.
   std::vector<sim::Command> place(const std::map<std::string, openscenario::EntityState>& entities);
+  // --controllers off: an activated controller hands nobody to SUMO's driver (every entity
+  // but a driven ego stays the storyboard's).
+  void disable_controllers() { controllers_ = false; }
+  [[nodiscard]] bool controllers_enabled() const { return controllers_; }
   // Entities SUMO drives (the ego, activated controllers): the storyboard observes them.
   [[nodiscard]] std::vector<std::string> sumo_driven() const;
   [[nodiscard]] bool is_sumo_driven(const std::string& name) const;
@@ -81,6 +85,7 @@ class OpenScenarioActors {
   const opendrive::SumoLaneIndex& lanes_;
   std::string ego_;
   bool ego_driven_ = true;
+  bool controllers_ = true;  // false: --controllers off
   OpenScenarioEgo ego_drive_;
   std::map<std::string, Body> bodies_;
   std::vector<std::string> names_;  // by actor id

@@ -191,6 +191,7 @@ std::string to_json(const RunResult& r) {
                              {"at_time", optional_json(c.at_time)},
                              {"success", c.success}});
   j["ego_model"] = r.ego_model;
+  if (!r.controllers.empty()) j["controllers"] = r.controllers;
   auto collision_json = [](const std::optional<CollisionFact>& c) {
     if (!c) return nlohmann::ordered_json(nullptr);
     return nlohmann::ordered_json{{"with", c->with}, {"time", c->time}, {"relative_speed", optional_json(c->relative_speed)}};

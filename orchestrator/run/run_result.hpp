@@ -109,6 +109,7 @@ struct RunResult {
   } timing;
   long long trace_rows = 0;
   std::string ego_model = "sumo";              // what drove the ego (--ego-model)
+  std::string controllers;  // OpenSCENARIO runs: "on", or "off" (--controllers off); "" not written
   std::optional<CollisionFact> collision;      // the ego's first collision
   // OpenSCENARIO runs (no metrics there): the ego's minimum gap (m) and TTC (s) to what is
   // ahead in its lane, through the reference driver's eyes.

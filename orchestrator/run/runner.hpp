@@ -56,6 +56,10 @@ struct RunRequest {
   // Run the scenario again with the R157 reference driver as the ego (into reference/) and
   // judge whether a collision was preventable (docs/reference-driver.md).
   bool reference_run = false;
+  // OpenSCENARIO runs, --controllers off: no controller runs (esmini's --disable_controllers).
+  // Every entity, the ego too, follows the storyboard; controllers are still read and checked,
+  // Activate/AssignControllerAction run (and are logged) but hand nobody to SUMO.
+  bool controllers_off = false;
 };
 
 RunResult run_scenario(const RunRequest& request, Simulator& simulator);

@@ -176,11 +176,15 @@ def compare_positions(ours, drivers, peer, end_time: float):
 
 def compare_transitions(ours: list, peer: list, end_time: float):
     """Pairs the k-th occurrence of each (element, transition) in both runs; a time off by
-    more than one step, or an occurrence in one run only (before end_time), is a difference."""
+    more than one step, or an occurrence in one run only (before end_time), is a difference.
+    An occurrence up to one step after end_time is paired too (and then compared), but not
+    missed when the other run has none: a run that stops at its StopTrigger one step before
+    the other (within the tolerance) ends the comparison there, and the other's stop is one
+    step later."""
     def grouped(items):
         g = collections.defaultdict(list)
         for t, name, transition in items:
-            if t <= end_time + 1e-6:
+            if t <= end_time + STEP + 1e-6:
                 g[(name, transition)].append(t)
         return g
     a, b = grouped(ours), grouped(peer)
@@ -194,6 +198,9 @@ def compare_transitions(ours: list, peer: list, end_time: float):
             y = tb[i] if i < len(tb) else None
             if x is None or y is None:
                 t = x if x is not None else y
+                if t > end_time + 1e-6:  # after the compared end, in one run only: not compared
+                    count -= 1
+                    break
                 differences.append(Difference("transition", subject, t, f"{x:.2f} s" if x is not None else "none",
                                               f"{y:.2f} s" if y is not None else "none"))
                 break
@@ -203,12 +210,16 @@ def compare_transitions(ours: list, peer: list, end_time: float):
     return differences, count
 
 
-def compare_runs(our_folder: pathlib.Path, peer_folder: pathlib.Path, our_end: float, peer_end: float) -> Comparison:
+def compare_runs(our_folder: pathlib.Path, peer_folder: pathlib.Path, our_end: float, peer_end: float,
+                 left_out_actions: frozenset = frozenset()) -> Comparison:
+    """`left_out_actions`: names of our actions whose transitions are not compared (the
+    controller actions esmini drops with --disable_controllers)."""
     ours, drivers = read_our_trace(our_folder / "trace.csv")
     peer = read_peer_trace(peer_folder / "sim.csv")
     end = min(our_end, peer_end)
     pos_diff, compared, not_compared, positions = compare_positions(ours, drivers, peer, end)
-    tr_diff, transitions = compare_transitions(read_our_transitions(our_folder / "result.json"),
+    our_transitions = [tr for tr in read_our_transitions(our_folder / "result.json") if tr[1] not in left_out_actions]
+    tr_diff, transitions = compare_transitions(our_transitions,
                                                read_peer_transitions(peer_folder / "log.txt"), end)
     differences = sorted(pos_diff + tr_diff, key=lambda d: (d.time, d.what, d.subject))
     return Comparison(compared, not_compared, end, positions, transitions, differences)

@@ -10,6 +10,7 @@ What each run leaves for the comparison (compare.py):
 import dataclasses
 import json
 import pathlib
+import re
 import signal
 import subprocess
 import time
@@ -27,6 +28,46 @@ class Run:
     seconds: float = 0.0       # wall-clock time the run took
     timed_out: bool = False
     crashed: bool = False      # ended without writing its result (killed, or a crash)
+
+
+# An element of a controller in a file: an entity's ObjectController, a Controller (inline or
+# in an AssignControllerAction), a ControllerAction (not TrafficSignalController's).
+CONTROLLER_ELEMENT = re.compile(r"<(ObjectController|Controller|ControllerAction|ActivateControllerAction|"
+                                r"AssignControllerAction)[\s>/]")
+# esmini's log when one of its controllers takes over an entity ("Controller interactiveDriver
+# active on domains: Lateral & Longitudinal (mask=0x3)").
+PEER_CONTROLLER_ACTIVE = re.compile(r"\] \[info\] Controller (.+) active on domains: .*\(mask=0x0*[1-9a-f]")
+
+
+def has_controllers(xosc: pathlib.Path) -> bool:
+    """The file has a controller element: its runs may depend on what each player's controllers
+    do (esmini's own models, SUMO's driver standing in, a system under test)."""
+    return bool(CONTROLLER_ELEMENT.search(xosc.read_text(errors="replace")))
+
+
+def controller_action_names(xosc: pathlib.Path) -> set:
+    """The names of the file's storyboard Actions that activate or assign a controller. esmini
+    --disable_controllers drops them from the storyboard when it loads the file ("Skipping
+    ActivateControllerAction for object Ego due to --disable_controllers"): their Events run
+    without them and log no transitions for them, while ours runs them (and logs them)."""
+    import xml.etree.ElementTree as ET
+    names = set()
+    try:
+        root = ET.parse(xosc).getroot()
+    except ET.ParseError:
+        return names
+    for action in root.iter("Action"):
+        if any(e.tag in ("ControllerAction", "ActivateControllerAction", "AssignControllerAction")
+               for e in action.iter()):
+            names.add(action.get("name", ""))
+    return names
+
+
+def peer_ran_controller(peer_folder: pathlib.Path) -> bool:
+    """esmini activated a controller of its own in this run (its log.txt says so)."""
+    log = peer_folder / "log.txt"
+    return log.exists() and any(PEER_CONTROLLER_ACTIVE.search(line)
+                                for line in log.read_text(errors="replace").splitlines())
 
 
 def _first_line(text: str, prefix: str = "") -> str:
@@ -71,15 +112,23 @@ def _write_csv(esmini_bin: pathlib.Path, folder: pathlib.Path, sim: pathlib.Path
     proc.wait()
 
 
+# Each player's option that runs no controller: every entity follows the storyboard.
+PEER_CONTROLLERS_OFF = ["--disable_controllers"]
+OURS_CONTROLLERS_OFF = ["--controllers", "off"]
+
+
 def run_peer(esmini_bin: pathlib.Path, xosc: pathlib.Path, folder: pathlib.Path, timeout: float,
-             max_time: float) -> Run:
+             max_time: float, controllers: bool = True) -> Run:
     """esmini --headless at STEP; its recording converted to sim.csv up to `max_time` s. A
     file whose StopTrigger never fires would run forever: the run is stopped after `timeout` s
-    of wall-clock time (what it recorded until then is compared)."""
+    of wall-clock time (what it recorded until then is compared). `controllers` False: with
+    --disable_controllers."""
     folder.mkdir(parents=True, exist_ok=True)
     start = time.monotonic()
     cmd = [str(esmini_bin / "esmini"), "--headless", "--fixed_timestep", str(STEP), "--osc", str(xosc),
            "--record", "sim.dat", "--disable_stdout", "--logfile_path", "log.txt", "--seed", "1"]
+    if not controllers:
+        cmd += PEER_CONTROLLERS_OFF
     timed_out = False
     proc = subprocess.Popen(cmd, cwd=folder, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
     try:
@@ -109,15 +158,16 @@ def run_peer(esmini_bin: pathlib.Path, xosc: pathlib.Path, folder: pathlib.Path,
 
 
 def run_ours(orchestrator: pathlib.Path, xosc: pathlib.Path, folder: pathlib.Path, max_time: float,
-             timeout: float) -> Run:
+             timeout: float, controllers: bool = True) -> Run:
     """orchestrator run at STEP without background traffic, until the StopTrigger or
     `max_time` s of simulated time. `ok` when it recorded steps (verdict success or failure,
     or an error after the start: the comparison shows how far it went); an error before the
-    first step (the file cannot be read or placed) is `error` with the program's reason."""
+    first step (the file cannot be read or placed) is `error` with the program's reason.
+    `controllers` False: with --controllers off."""
     folder.mkdir(parents=True, exist_ok=True)
     start = time.monotonic()
     cmd = [str(orchestrator), "run", str(xosc), "--out", str(folder), "--step", str(STEP), "--traffic", "none",
-           "--max-time", f"{max_time:g}", "--no-report", "-q"]
+           "--max-time", f"{max_time:g}", "--no-report", "-q"] + ([] if controllers else OURS_CONTROLLERS_OFF)
     try:
         proc = subprocess.run(cmd, capture_output=True, text=True, timeout=timeout)
     except subprocess.TimeoutExpired:

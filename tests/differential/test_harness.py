@@ -3,6 +3,7 @@ small outputs written here, in both players' formats: what is compared, what is 
 difference, and how a file is judged against the table of expected differences."""
 import json
 import pathlib
+import shutil
 import sys
 import tempfile
 import unittest
@@ -114,6 +115,22 @@ class Comparison(unittest.TestCase):
         self.assertEqual([d.text() for d in c.differences], ["GoAction endTransition at 1.55 s: ours none, peer 1.55 s"])
 
 
+    def test_a_stop_one_step_after_the_other_runs_end_is_paired_not_missed(self):
+        # Ours stops at its StopTrigger at 2.00 s (the compared end), the peer one step later.
+        late_stop = PEER_LOG.replace("[2.000] [info] storyBoard", "[2.050] [info] storyBoard")
+        c = Outputs(self.root, ours_events=OUR_EVENTS, peer_log=late_stop).compare()
+        self.assertTrue(c.matches, [d.text() for d in c.differences])
+        self.assertEqual(c.transitions, 4)
+        # The peer's stop one step after the end with none in ours is not compared ...
+        (self.root / "none").mkdir()
+        c = Outputs(self.root / "none", ours_events=OUR_EVENTS[:-1], peer_log=late_stop).compare()
+        self.assertTrue(c.matches, [d.text() for d in c.differences])
+        self.assertEqual(c.transitions, 3)
+        # ... while one missing before the end is a difference, as always.
+        (self.root / "missing").mkdir()
+        c = Outputs(self.root / "missing", ours_events=OUR_EVENTS[:-1], peer_log=PEER_LOG).compare()
+        self.assertEqual([d.text() for d in c.differences], ["Storyboard stopTransition at 2.00 s: ours none, peer 2.00 s"])
+
     def test_an_entity_added_one_step_apart_is_not_a_difference_two_steps_is(self):
         for peer_from, differs in ((1.05, False), (1.1, True)):
             folder = self.root / f"added_{peer_from}"
@@ -161,6 +178,112 @@ class PeerCsv(unittest.TestCase):
             self.assertEqual(sim.read_text().splitlines(),
                              ["time, id, name, x, y", "0.000, 0, A, 1.000, 2.000", "0.050, 0, A, 1.000, 2.000",
                               "0.100, 0, A, 1.000, 2.000"])
+
+
+class ControllersOff(unittest.TestCase):
+    """A file where either player may run a controller is compared again with controllers off
+    in both; the file's status stays the as-written comparison's."""
+
+    def test_which_files_have_controllers(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            f = pathlib.Path(tmp) / "f.xosc"
+            for text, has in (('<ObjectController><Controller name="c"/></ObjectController>', True),
+                              ("<ObjectController>\n<CatalogReference/></ObjectController>", True),
+                              ("<PrivateAction><ControllerAction><ActivateControllerAction/>", True),
+                              ('<GlobalAction><InfrastructureAction><TrafficSignalAction><TrafficSignalControllerAction '
+                               'trafficSignalControllerRef="x" phase="go"/>', False),
+                              ('<TrafficSignalController name="x">', False)):
+                f.write_text(text)
+                self.assertEqual(players.has_controllers(f), has, text)
+
+    def test_the_peers_log_says_when_a_controller_of_its_own_took_over(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            folder = pathlib.Path(tmp)
+            for line, ran in (("[0.000] [info] Controller interactiveDriver active on domains: Lateral & "
+                               "Longitudinal (mask=0x3)", True),
+                              ("[0.000] [info] Controller ACCController active on domains: Longitudinal (mask=0x1)", True),
+                              ("[] [info] Skipping ActivateControllerAction for object Ego due to --disable_controllers",
+                               False)):
+                (folder / "log.txt").write_text(PEER_LOG + line + "\n")
+                self.assertEqual(players.peer_ran_controller(folder), ran, line)
+
+    def test_controller_actions_are_left_out_of_the_controllers_off_transitions(self):
+        # esmini --disable_controllers drops them from its storyboard: no transitions there.
+        with tempfile.TemporaryDirectory() as tmp:
+            root = pathlib.Path(tmp)
+            f = root / "f.xosc"
+            f.write_text('<OpenSCENARIO><Storyboard><Action name="Go"><PrivateAction><LongitudinalAction/>'
+                         '</PrivateAction></Action><Action name="HandOver"><PrivateAction><ControllerAction>'
+                         '<ActivateControllerAction longitudinal="true"/></ControllerAction></PrivateAction></Action>'
+                         '<Action name="Old"><PrivateAction><ActivateControllerAction/></PrivateAction></Action>'
+                         '<Action name="Light"><GlobalAction><InfrastructureAction><TrafficSignalAction>'
+                         '<TrafficSignalControllerAction/></TrafficSignalAction></InfrastructureAction></GlobalAction>'
+                         '</Action></Storyboard></OpenSCENARIO>')
+            self.assertEqual(players.controller_action_names(f), {"HandOver", "Old"})
+            events = OUR_EVENTS + [(1.0, "action", "action HandOver startTransition"),
+                                   (1.0, "action", "action HandOver endTransition")]
+            o = Outputs(root / "run", ours_events=events, peer_log=PEER_LOG) if (root / "run").mkdir() is None else None
+            self.assertFalse(o.compare().matches)
+            c = compare.compare_runs(o.ours, o.peer, 2.0, 2.0, frozenset({"HandOver"}))
+            self.assertTrue(c.matches, [d.text() for d in c.differences])
+
+    def fake_players(self, root, calls, shift_when_controllers):
+        """run_peer / run_ours that write Outputs-like folders: our car A is 0.5 m off the
+        peer's while controllers run, on it without them."""
+        def peer(esmini, xosc, folder, timeout, max_time, controllers=True):
+            calls.append(("peer", controllers))
+            return players.Run(folder, True, end_time=2.0)
+
+        def ours(orchestrator, xosc, folder, max_time, timeout, controllers=True):
+            calls.append(("ours", controllers))
+            pair = folder.parent
+            shutil.rmtree(pair, ignore_errors=True)
+            pair.mkdir(parents=True)
+            Outputs(pair, shift=lambda t: shift_when_controllers if controllers else 0.0,
+                    ours_events=OUR_EVENTS, peer_log=PEER_LOG)
+            return players.Run(folder, True, end_time=2.0)
+        return peer, ours
+
+    def run_file(self, text, shift=0.5):
+        calls = []
+        with tempfile.TemporaryDirectory() as tmp:
+            root = pathlib.Path(tmp)
+            xosc = root / "f.xosc"
+            xosc.write_text(text)
+            peer, ours = self.fake_players(root, calls, shift)
+            saved = players.run_peer, players.run_ours
+            players.run_peer, players.run_ours = peer, ours
+            try:
+                r = osc_differential.run_file(xosc, root / "work", root / "orchestrator", root / "esmini")
+            finally:
+                players.run_peer, players.run_ours = saved
+        return r, calls
+
+    def test_a_file_with_a_controller_runs_again_without_and_keeps_its_status(self):
+        r, calls = self.run_file('<ObjectController><Controller name="interactiveDriver"/></ObjectController>')
+        self.assertEqual(calls, [("peer", True), ("ours", True), ("peer", False), ("ours", False)])
+        self.assertEqual(r["status"], "differs")                    # the headline: as written
+        self.assertIn("position A at 0.00 s", r["detail"])
+        self.assertEqual(r["storyboard_only"]["status"], "match")   # the storyboard alone agrees
+        self.assertEqual(osc_differential.storyboard_only_text(r)[:35], "controllers off in both: match (1 e")
+        self.assertEqual(osc_differential.storyboard_only_figure([r, {"storyboard_only": None}]),
+                         "1 of 1 files with controllers match with controllers off in both")
+
+    def test_a_file_without_controllers_runs_once_unless_a_run_shows_one(self):
+        # The Outputs' Ego is SUMO-driven in our trace: a controller ran (a system under test).
+        r, calls = self.run_file("<Entities/>")
+        self.assertEqual(len(calls), 4)
+        self.assertIsNotNone(r["storyboard_only"])
+        saved = players.has_controllers, players.peer_ran_controller
+        players.has_controllers = players.peer_ran_controller = lambda _: False
+        try:
+            pair = {"comparison": compare.Comparison(["A"], {}, 2.0, 5, 0, []), "peer_controller": False}
+            self.assertFalse(osc_differential.runs_controllers(pathlib.Path("f.xosc"), pair))
+            pair["peer_controller"] = True
+            self.assertTrue(osc_differential.runs_controllers(pathlib.Path("f.xosc"), pair))
+        finally:
+            players.has_controllers, players.peer_ran_controller = saved
+        self.assertEqual(osc_differential.storyboard_only_text({"storyboard_only": None}), "")
 
 
 class Judgement(unittest.TestCase):

@@ -142,5 +142,19 @@ TEST(OpenScenarioEgoDriving, OnlyASystemUnderTestControllerOrTheUserMakesTheEgoD
   EXPECT_FALSE(ego_driving(choose_ego(scenario_of({entity("Lead")}), ""), {"r157", true, false}).driven);
 }
 
+// --controllers off (esmini's --disable_controllers): even a system-under-test controller or
+// --ego NAME leaves the ego to the storyboard; it stays the ego of metrics and the report.
+TEST(OpenScenarioEgoDriving, ControllersOffLeaveEveryEgoToTheStoryboard) {
+  const EgoRequests off{"", false, false, true};
+  const EgoChoice sut = choose_ego(scenario_of({entity("Lead"), entity("Ego", "ALKSController")}), "");
+  EXPECT_TRUE(sut.system_under_test);
+  EgoDriving d = ego_driving(sut, off);
+  EXPECT_FALSE(d.driven);
+  EXPECT_EQ(d.why, "--controllers off; controller ALKSController is a system under test");
+  d = ego_driving(choose_ego(scenario_of({entity("Lead"), entity("Ego")}), "Lead"), off);
+  EXPECT_FALSE(d.driven);
+  EXPECT_EQ(d.why, "--controllers off; no controller");
+}
+
 }  // namespace
 }  // namespace orch
