@@ -34,7 +34,15 @@ TransitionDynamics read_dynamics(Element& e, Context& context) {
     d.value = -d.value;
   }
   if (d.value < 0) e.fail_attribute("value", "a transition's time or distance cannot be negative (the standard's range: [0..inf[)");
-  if (e.has("followingMode")) e.fail_attribute("followingMode", "followingMode is not supported");
+  // followingMode (1.2): `position` (the default meaning) follows the shape exactly, which is
+  // what runs here. `follow` asks for a controller-like following that may lag the shape; the
+  // standard gives it no law, so it runs as `position`, with a warning saying so (esmini 2.x
+  // does not read it either). An optional attribute never refuses the file.
+  const auto mode = e.optional_choice<bool>("followingMode", {{"position", false}, {"follow", true}});
+  if (mode.value_or(false))
+    context.warnings.warning(e.source().where(e.node(), "followingMode"),
+                             "followingMode=\"follow\" (a controller-like following of the transition, whose law "
+                             "the standard leaves to the simulator) runs as \"position\": the shape exactly");
   e.finish();
   return d;
 }
@@ -178,13 +186,22 @@ LaneOffsetAction read_lane_offset(Element& e) {
   return a;
 }
 
-ActivateControllerAction read_activate(Element& e) {
+// Activating a controller's animation or lighting domain (1.2) changes nothing a SUMO run
+// shows (no renderer, no lights): accepted, with a warning; the motion domains run as usual.
+void warn_visual_domains(Element& e, Context& context, const char* animation, const char* lighting) {
+  for (const char* domain : {animation, lighting})
+    if (e.optional_boolean(domain).value_or(false))
+      context.warnings.warning(e.source().where(e.node(), domain),
+                               fmt::format("{}=\"true\": the controller's {} domain has no effect here (SUMO runs "
+                                           "render no animations or lights); the motion domains run as usual",
+                                           domain, domain == animation ? "animation" : "lighting"));
+}
+
+ActivateControllerAction read_activate(Element& e, Context& context) {
   ActivateControllerAction a{e.optional_boolean("lateral"), e.optional_boolean("longitudinal"), ""};
   // 1.3: which of the entity's ObjectControllers (controllerRef is 1.3's deprecated name for it).
   a.object_controller = e.optional_text("objectControllerRef").value_or(e.optional_text("controllerRef").value_or(""));
-  for (const char* unsupported : {"animation", "lighting"})
-    if (e.optional_boolean(unsupported).value_or(false))
-      e.fail_attribute(unsupported, fmt::format("activating {} control is not supported", unsupported));
+  warn_visual_domains(e, context, "animation", "lighting");
   e.finish();
   return a;
 }
@@ -193,9 +210,7 @@ AssignControllerAction read_assign_controller(Element& e, Context& context) {
   AssignControllerAction a;
   a.lateral = e.optional_boolean("activateLateral");
   a.longitudinal = e.optional_boolean("activateLongitudinal");
-  for (const char* unsupported : {"activateAnimation", "activateLighting"})
-    if (e.optional_boolean(unsupported).value_or(false))
-      e.fail_attribute(unsupported, fmt::format("{} is not supported", unsupported));
+  warn_visual_domains(e, context, "activateAnimation", "activateLighting");
   Element source = e.one_of({"Controller", "CatalogReference"});
   if (source.name() == "CatalogReference") {
     Element entry = context.resolve(source, {"Controller"});
@@ -249,6 +264,17 @@ SynchronizeAction read_synchronize(Element& e) {
 
 VisibilityAction read_visibility(Element& e) {
   VisibilityAction a{e.boolean("graphics"), e.boolean("traffic"), e.optional_boolean("sensors").value_or(true)};
+  // 1.2: the sensors `sensors` applies to (absent: all). Sensors are not simulated here, so
+  // the names are read and checked only, like `sensors` itself.
+  if (auto set = e.optional_child("SensorReferenceSet")) {
+    std::vector<Element> references = set->children("SensorReference");
+    if (references.empty()) set->fail("a SensorReferenceSet needs at least one SensorReference");
+    for (Element& r : references) {
+      (void)r.text("name");
+      r.finish();
+    }
+    set->finish();
+  }
   e.finish();
   return a;
 }
@@ -275,7 +301,8 @@ const std::vector<ActionEntry> kPrivateActions = {
     {"", "VisibilityAction", [](Element&, Element& e, Context&) -> PrivateAction { return read_visibility(e); }},
     {"", "SynchronizeAction", [](Element&, Element& e, Context&) -> PrivateAction { return read_synchronize(e); }},
     // OpenSCENARIO 1.0 places ActivateControllerAction directly in PrivateAction.
-    {"", "ActivateControllerAction", [](Element&, Element& e, Context&) -> PrivateAction { return read_activate(e); }},
+    {"", "ActivateControllerAction",
+     [](Element&, Element& e, Context& c) -> PrivateAction { return read_activate(e, c); }},
     {"LongitudinalAction", "SpeedAction", [](Element&, Element& e, Context& context) -> PrivateAction { return read_speed(e, context); }},
     {"LongitudinalAction", "SpeedProfileAction",
      [](Element&, Element& e, Context&) -> PrivateAction { return read_speed_profile(e); }},
@@ -288,7 +315,7 @@ const std::vector<ActionEntry> kPrivateActions = {
     {"LateralAction", "LaneOffsetAction",
      [](Element&, Element& e, Context&) -> PrivateAction { return read_lane_offset(e); }},
     {"ControllerAction", "ActivateControllerAction",
-     [](Element&, Element& e, Context&) -> PrivateAction { return read_activate(e); }},
+     [](Element&, Element& e, Context& c) -> PrivateAction { return read_activate(e, c); }},
     {"ControllerAction", "AssignControllerAction",
      [](Element&, Element& e, Context& c) -> PrivateAction { return read_assign_controller(e, c); }},
     {"RoutingAction", "AssignRouteAction",
@@ -302,6 +329,10 @@ const std::vector<ActionEntry> kPrivateActions = {
      [](Element&, Element& e, Context& c) -> PrivateAction { return read_follow_trajectory(e, c); }},
     {"AppearanceAction", "LightStateAction",
      [](Element&, Element& e, Context&) -> PrivateAction { return read_light_state(e); }},
+    {"AppearanceAction", "AnimationAction",
+     [](Element&, Element& e, Context& c) -> PrivateAction { return read_animation(e, c); }},
+    {"ControllerAction", "OverrideControllerValueAction",
+     [](Element&, Element& e, Context& c) -> PrivateAction { return read_controller_override(e, c); }},
     {"TrailerAction", "ConnectTrailerAction",
      [](Element&, Element& e, Context&) -> PrivateAction { return ConnectTrailerAction{e.text("trailerRef")}; }},
     {"TrailerAction", "DisconnectTrailerAction",
@@ -351,6 +382,17 @@ PrivateAction read_from_table(Element& holder, const std::vector<ActionEntry>& t
   std::vector<std::string> inner;
   for (const ActionEntry& entry : table)
     if (entry.wrapper == kind.name()) inner.emplace_back(entry.name);
+  // OpenSCENARIO 1.0's ControllerAction holds an AssignControllerAction and an
+  // OverrideControllerValueAction together (xsd:all, both required; 1.1 made them a choice),
+  // as CARLA ScenarioRunner's files write it: the override is read (no effect on motion) and
+  // the assignment runs.
+  if (kind.name() == "ControllerAction" && kind.node().child("AssignControllerAction") &&
+      kind.node().child("OverrideControllerValueAction")) {
+    Element override_action = kind.child("OverrideControllerValueAction");
+    (void)read_controller_override(override_action, context);
+    override_action.finish();
+    std::erase(inner, "OverrideControllerValueAction");
+  }
   Element action = kind.one_of(inner);
   for (const ActionEntry& entry : table)
     if (entry.wrapper == kind.name() && entry.name == action.name()) {

@@ -415,7 +415,8 @@ std::vector<std::string> start_action(const PrivateAction& action, const std::st
         } else if constexpr (std::is_same_v<T, TrafficStopAction>) {
           ctx.traffic->stop(a.name, ctx.t);  // none running yet (its action not started): nothing to stop
         } else if constexpr (std::is_same_v<T, AppearanceAction> || std::is_same_v<T, EnvironmentAction>) {
-          // No effect on motion: SUMO has no lights or weather here (model.hpp).
+          // No effect on motion: SUMO has no lights, animations or weather here, the entities
+          // no vehicle dynamics for controller overrides, custom commands no meaning (model.hpp).
         } else {
           static_assert(kUnhandled<T>, "an OpenSCENARIO action the reader makes needs its behaviour here");
         }

@@ -103,6 +103,45 @@ AppearanceAction read_light_state(Element& e) {
   return AppearanceAction{"LightStateAction"};
 }
 
+// AnimationAction (1.2): a component's, a pedestrian's, a file's or a user-defined animation.
+// Purely visual: read and checked, run with no effect on motion (no renderer), warned once.
+AppearanceAction read_animation(Element& e, Context& context) {
+  (void)e.optional_boolean("loop");
+  const auto duration = e.optional_number("animationDuration");
+  if (duration && *duration < 0) e.fail_attribute("animationDuration", "a duration cannot be negative");
+  Element holder = e.child("AnimationType");
+  Element type = holder.one_of({"ComponentAnimation", "PedestrianAnimation", "AnimationFile", "UserDefinedAnimation"});
+  holder.finish();
+  if (type.name() == "ComponentAnimation") {
+    Element component = type.one_of({"VehicleComponent", "UserDefinedComponent"});
+    (void)component.text(component.name() == "VehicleComponent" ? "vehicleComponentType" : "userDefinedComponentType");
+    component.finish();
+  } else if (type.name() == "PedestrianAnimation") {
+    (void)type.optional_text("motion");
+    (void)type.optional_text("userDefinedPedestrianMotion");
+    for (Element gesture : type.children("PedestrianGesture")) {
+      (void)gesture.text("gesture");
+      gesture.finish();
+    }
+  } else if (type.name() == "AnimationFile") {
+    Element file = type.child("File");
+    (void)file.text("filepath");
+    file.finish();
+    (void)type.optional_number("timeOffset");
+  } else {
+    (void)type.text("userDefinedAnimationType");
+  }
+  type.finish();
+  if (auto state = e.optional_child("AnimationState")) {
+    (void)state->number("state");
+    state->finish();
+  }
+  context.warnings.warning(e.source().where(e.node()),
+                           "AnimationAction runs with no effect: an animation is visual, and SUMO runs render none; "
+                           "its transitions are recorded");
+  return AppearanceAction{"AnimationAction"};
+}
+
 EnvironmentAction read_environment_action(Element& e, Context& context) {
   Element source = e.one_of({"Environment", "CatalogReference"});
   if (source.name() == "CatalogReference") {

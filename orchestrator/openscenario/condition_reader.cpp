@@ -28,6 +28,15 @@ std::string read_coordinate_system(Element& e) {
                                                                                  {"trajectory", "trajectory"}})
                                  .value_or("entity");
   if (system == "trajectory") e.fail_attribute("coordinateSystem", "trajectory is not supported");
+  // routingAlgorithm (1.2, the four distance conditions): how the route between the two is
+  // found when the distance is measured in road or lane coordinates. Read and checked; the
+  // distance is measured as every road distance here (along the shared road, the difference
+  // of s), which is the route's length whichever algorithm finds it while both are on one road.
+  (void)e.optional_choice<std::string>("routingAlgorithm", {{"assignedRoute", "assignedRoute"},
+                                                            {"fastest", "fastest"},
+                                                            {"leastIntersections", "leastIntersections"},
+                                                            {"shortest", "shortest"},
+                                                            {"undefined", "undefined"}});
   return system;
 }
 
@@ -179,7 +188,6 @@ const std::vector<std::pair<std::string, EntityReader>> kEntityConditions = {
        r.freespace = e.boolean("freespace");
        r.rule = read_rule(e);
        r.value = e.number("value");
-       if (e.has("routingAlgorithm")) e.fail_attribute("routingAlgorithm", "routingAlgorithm is not supported");
        return r;
      }},
     {"TraveledDistanceCondition",

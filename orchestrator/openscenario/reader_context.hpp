@@ -94,6 +94,11 @@ FollowTrajectoryAction read_follow_trajectory(Element& e, Context& context);
 ParameterSetAction read_parameter_set(Element& parameter_action, Element& set);
 ParameterModifyAction read_parameter_modify(Element& parameter_action, Element& modify);
 AppearanceAction read_light_state(Element& light_state_action);
+AppearanceAction read_animation(Element& animation_action, Context& context);
+// override_reader.cpp: ControllerAction/OverrideControllerValueAction, UserDefinedAction
+// (element "CustomCommandAction": no actors). Both run with no effect on motion.
+AppearanceAction read_controller_override(Element& override_action, Context& context);
+AppearanceAction read_user_defined_action(Element& user_defined_action, Context& context);
 EnvironmentAction read_environment_action(Element& environment_action, Context& context);
 VariableSetAction read_variable_set(Element& variable_action, Element& set, const Context& context);
 VariableModifyAction read_variable_modify(Element& variable_action, Element& modify, const Context& context);

@@ -178,8 +178,10 @@ bool StoryboardRuntime::Impl::entity_condition(const ByEntityCondition& c, const
 bool StoryboardRuntime::Impl::by_entity(const ByEntityCondition& c, ConditionMemory& m) {
   bool any = false;
   bool all = true;
+  m.holding.clear();
   for (const std::string& name : c.triggering_entities) {
     const bool holds = entity_condition(c, name, m);
+    if (holds) m.holding.push_back(name);
     any = any || holds;
     all = all && holds;
   }
@@ -210,13 +212,18 @@ bool StoryboardRuntime::Impl::evaluate(const Condition& c) {
   return delayed;
 }
 
-bool StoryboardRuntime::Impl::fires(const std::optional<Trigger>& trigger) {
+bool StoryboardRuntime::Impl::fires(const std::optional<Trigger>& trigger, std::vector<std::string>* triggering) {
   if (!trigger) return true;
   bool any = false;
   for (const auto& group : trigger->groups) {  // every condition is evaluated: edges need history
     bool all = true;
     for (const Condition& c : group) all = evaluate(c) && all;
     any = any || all;
+    if (!all || triggering == nullptr) continue;
+    for (const Condition& c : group)
+      if (std::holds_alternative<ByEntityCondition>(c.kind))
+        for (const std::string& name : memory[&c].holding)
+          if (std::find(triggering->begin(), triggering->end(), name) == triggering->end()) triggering->push_back(name);
   }
   return any;
 }

@@ -84,7 +84,10 @@ class StoryboardReader {
       board.init.push_back({"", read_global_action(g, context_), place});
       check_action_references(board.init.back().action, place);
     }
-    for (Element u : actions.children("UserDefinedAction")) unsupported(u);
+    for (Element u : actions.children("UserDefinedAction")) {  // no actors, like a global action
+      const Place place = u.place();
+      board.init.push_back({"", read_user_defined_action(u, context_), place});
+    }
     actions.finish();
     order_init(board.init);
     for (Element story : storyboard.children("Story")) board.stories.push_back(read_story(story));
@@ -96,8 +99,12 @@ class StoryboardReader {
   }
 
  private:
-  [[noreturn]] static void unsupported(Element& e) {
-    e.fail(fmt::format("{} is an OpenSCENARIO element the orchestrator does not run (not supported)", e.name()));
+  static bool has_entity_condition(const std::optional<Trigger>& t) {
+    if (!t) return false;
+    for (const auto& group : t->groups)
+      for (const Condition& c : group)
+        if (std::holds_alternative<ByEntityCondition>(c.kind)) return true;
+    return false;
   }
 
   std::string entity_ref(Element& e, const char* attribute) {
@@ -168,10 +175,22 @@ class StoryboardReader {
     act.name = e.text("name");
     act.key = declare("act", e, act.name);
     const Nested inside(path_, act.name);
-    for (Element g : e.children("ManeuverGroup")) act.groups.push_back(read_group(g));
+    act_key_ = act.key;
+    std::vector<Element> selecting_alone;  // Actors that name no entity and select the triggering ones
+    for (Element g : e.children("ManeuverGroup")) {
+      act.groups.push_back(read_group(g));
+      if (act.groups.back().select_triggering_entities && act.groups.back().actors.empty())
+        selecting_alone.push_back(Element(g.source(), g.node().child("Actors"), g.scope()));
+    }
     if (act.groups.empty()) e.fail("an Act needs at least one ManeuverGroup");
     const bool has_start_trigger = static_cast<bool>(e.node().child("StartTrigger"));
     act.start_trigger = trigger(e, "StartTrigger");
+    // A group whose only actors are the triggering entities needs an Act started by entities.
+    if (!selecting_alone.empty() && !has_entity_condition(act.start_trigger))
+      selecting_alone.front().fail_attribute(
+          "selectTriggeringEntities",
+          "the actors are the entities that triggered the Act's StartTrigger, which has no ByEntityCondition: "
+          "the ManeuverGroup would have no actors (name them by EntityRef)");
     // Optional since 1.1: an Act without one starts with its Story (the runtime's fires()).
     if (!has_start_trigger && scenario_.rev_minor == 0) e.fail("an Act needs a StartTrigger (OpenSCENARIO 1.0)");
     act.stop_trigger = trigger(e, "StopTrigger");
@@ -187,15 +206,17 @@ class StoryboardReader {
     g.maximum_execution_count = e.integer("maximumExecutionCount");
     if (g.maximum_execution_count < 1) e.fail_attribute("maximumExecutionCount", "must be at least 1");
     Element actors = e.child("Actors");
+    // The standard: "Indicates whether the triggering entities are considered actors": the
+    // entities that made the enclosing Act's StartTrigger fire join the named ones when the
+    // Act starts (storyboard_runtime.cpp; docs/openscenario.md "Actors").
     g.select_triggering_entities = actors.boolean("selectTriggeringEntities");
-    if (g.select_triggering_entities)
-      actors.fail_attribute("selectTriggeringEntities", "selectTriggeringEntities=\"true\" is not supported");
     for (Element ref : actors.children("EntityRef")) {
       g.actors.push_back(entity_ref(ref, "entityRef"));
       ref.finish();
     }
     actors.finish();
     // Maneuvers inline and from a ManeuverCatalog, in the order written.
+    selecting_act_ = g.select_triggering_entities ? act_key_ : std::string();
     for (const pugi::xml_node n : e.node().children()) {
       if (n.type() != pugi::node_element) continue;
       Element m(e.source(), n, e.scope());
@@ -207,6 +228,7 @@ class StoryboardReader {
         catalog_maneuvers_.insert(g.maneuvers.back().key);
       }
     }
+    selecting_act_.clear();
     e.ignore_children({"Maneuver", "CatalogReference"});
     e.finish();
     return g;
@@ -242,12 +264,13 @@ class StoryboardReader {
       action.key = declare("action", a, action.name);
       action.place = a.place();
       Element kind = a.one_of({"PrivateAction", "GlobalAction", "UserDefinedAction"});
-      if (kind.name() == "UserDefinedAction") unsupported(kind);
-      if (kind.name() == "GlobalAction") {
+      if (kind.name() == "UserDefinedAction") {
+        action.action = read_user_defined_action(kind, context_);  // no actors, like a global action
+      } else if (kind.name() == "GlobalAction") {
         action.action = read_global_action(kind, context_);
       } else {
-        if (actors.empty()) a.fail("a private action needs actors in its ManeuverGroup");
-        action.actors = actors;
+        if (actors.empty() && selecting_act_.empty()) a.fail("a private action needs actors in its ManeuverGroup");
+        action.actors = actors;  // with selectTriggeringEntities the runtime adds the triggering ones
         action.action = read_private_action(kind, context_);
       }
       check_action_references(action.action, action.place);
@@ -421,6 +444,8 @@ class StoryboardReader {
   Context& context_;
   std::vector<std::string> entity_names_;
   std::vector<std::string> path_;                              // names of the elements being read
+  std::string act_key_;        // the Act being read
+  std::string selecting_act_;  // while reading a group that selects triggering entities: its Act's key
   std::set<std::pair<std::string, std::string>> keys_;         // (type, key) given out
   std::map<std::string, std::vector<DeclaredElement>> declared_;  // by type, in file order
   std::set<std::string> catalog_maneuvers_;                    // keys of Maneuvers read from a catalog

@@ -49,15 +49,32 @@ void StoryboardRuntime::Impl::transition(const std::string& type, const std::str
   log.push_back({t, type, name == names.end() ? key : name->second, what});
 }
 
-void StoryboardRuntime::Impl::start_event(const Event& e) {
+namespace {
+// A global action, or a UserDefinedAction's custom command (read as an AppearanceAction with
+// no effect; override_reader.cpp): it takes no actors.
+bool runs_without_actors(const PrivateAction& action) {
+  if (const auto* a = std::get_if<AppearanceAction>(&action)) return a->element == "CustomCommandAction";
+  return std::visit([](const auto& k) { return kIsGlobalAction<std::decay_t<decltype(k)>>; }, action);
+}
+}  // namespace
+
+void StoryboardRuntime::Impl::start_event(const Event& e, const std::vector<std::string>* selected) {
   if (!frozen) frozen = entities;  // the conditions still to come this step see the step's world
   Record& r = record("event", e.key);
   ++r.executions;
   transition("event", e.key, "startTransition", ElementState::Running);
   for (const Action& a : e.actions) {
     transition("action", a.key, "startTransition", ElementState::Running);
-    // Global actions have no actors: they run once, for no entity ("").
-    const std::vector<std::string> actors = a.actors.empty() ? std::vector<std::string>{""} : a.actors;
+    // Global actions and custom commands have no actors: they run once, for no entity ("").
+    // A private action of a group that selects the triggering entities has those as actors
+    // besides the named ones (none: it has no actor and ends at once).
+    std::vector<std::string> actors = a.actors;
+    if (runs_without_actors(a.action)) {
+      actors = {""};
+    } else if (selected != nullptr) {
+      for (const std::string& name : *selected)
+        if (std::find(actors.begin(), actors.end(), name) == actors.end()) actors.push_back(name);
+    }
     for (const std::string& actor : actors) {
       ActionContext ctx = context();
       // An action that takes over an entity's motion ends the one it replaces.
@@ -185,7 +202,9 @@ void StoryboardRuntime::Impl::evaluate_storyboard() {
     if (record("story", story.key).state != ElementState::Running) continue;
     for (const Act& act : story.acts) {
       const ElementState state = record("act", act.key).state;
-      if (state == ElementState::Standby && fires(act.start_trigger)) {
+      std::vector<std::string> triggering;
+      if (state == ElementState::Standby && fires(act.start_trigger, &triggering)) {
+        act_triggering_entities[act.key] = std::move(triggering);
         transition("act", act.key, "startTransition", ElementState::Running);
         for (const ManeuverGroup& g : act.groups) start_group(g);
       } else if (state == ElementState::Running && act.stop_trigger && fires(act.stop_trigger)) {
@@ -210,7 +229,7 @@ void StoryboardRuntime::Impl::evaluate_storyboard() {
             if (e.priority == Priority::Overwrite)
               for (const Event& o : m.events)
                 if (&o != &e && record("event", o.key).state == ElementState::Running) stop_event(o);
-            start_event(e);
+            start_event(e, g.select_triggering_entities ? &act_triggering_entities[act.key] : nullptr);
           }
         }
     }

@@ -32,6 +32,7 @@ struct StoryboardRuntime::Impl {
     bool previous = false;
     std::vector<std::pair<double, bool>> history;  // edged value per evaluation, for delays
     long transitions_seen = 0;  // the number of the last transition this condition was true for
+    std::vector<std::string> holding;  // a ByEntityCondition's triggering entities it held for when last evaluated
   };
 
   const Scenario& scenario;
@@ -66,6 +67,9 @@ struct StoryboardRuntime::Impl {
   // actions in document order; Init actions, key "", come before all): the order in which
   // esmini steps running actions within a step (lane_change_motion_order below).
   std::map<std::string, int> action_order;
+  // Per Act (key): the entities that triggered its StartTrigger when it started, the actors
+  // its groups with selectTriggeringEntities add to the named ones.
+  std::map<std::string, std::vector<std::string>> act_triggering_entities;
 
   Impl(const Scenario& s, const opendrive::RoadNetwork& r);
 
@@ -90,8 +94,12 @@ struct StoryboardRuntime::Impl {
   bool entity_condition(const ByEntityCondition& c, const std::string& name, ConditionMemory& m);
   bool by_entity(const ByEntityCondition& c, ConditionMemory& m);
   bool evaluate(const Condition& c);
-  bool fires(const std::optional<Trigger>& trigger);
-  void start_event(const Event& e);
+  // Whether the trigger fires; when it does and `triggering` is given, the triggering entities
+  // of its true condition groups' ByEntityConditions that held (in order, each once).
+  bool fires(const std::optional<Trigger>& trigger, std::vector<std::string>* triggering = nullptr);
+  // `selected`: with Actors selectTriggeringEntities, the entities that triggered the Act,
+  // actors of its private actions besides the named ones (nullptr: none selected).
+  void start_event(const Event& e, const std::vector<std::string>* selected = nullptr);
   void stop_action(const std::string& name);
   void stop_event(const Event& e);
   void start_group(const ManeuverGroup& g);

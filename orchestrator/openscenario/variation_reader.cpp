@@ -241,8 +241,12 @@ Variation load_variation(const std::string& path) {
   Element header = root.child("FileHeader");
   const int major = header.integer("revMajor");
   v.rev_minor = header.integer("revMinor");
-  if (major != 1 || v.rev_minor < 0 || v.rev_minor > 2)
-    header.fail_attribute("revMajor", fmt::format("OpenSCENARIO {}.{} is not supported: this reads 1.0 to 1.2", major, v.rev_minor));
+  // The same revisions as the scenario reader (xosc_reader.cpp): a 1.3 variation file of a 1.3
+  // scenario is as valid as a 1.2 one (ParameterValueDistribution is unchanged in 1.3).
+  if (major != 1)
+    header.fail_attribute("revMajor", fmt::format("OpenSCENARIO {}.{} is not supported: this reads 1.0 to 1.3", major, v.rev_minor));
+  if (v.rev_minor < 0 || v.rev_minor > 3)
+    header.fail_attribute("revMinor", fmt::format("OpenSCENARIO 1.{} is not supported: this reads 1.0 to 1.3", v.rev_minor));
   header.ignore_attributes({"date", "author", "description"});
   header.ignore_children({"License", "Properties"});
   header.finish();

@@ -193,6 +193,22 @@ TEST(OpenScenarioVariation, AnotherMajorRevisionIsAnError) {
   EXPECT_NE(error_of(text).find("OpenSCENARIO 2.2 is not supported"), std::string::npos);
 }
 
+// The scenario reader reads 1.0 to 1.3, and so does the variation reader: a 1.3 variation of
+// the shipped 1.3 sample hill_variables.xosc reads; 1.4 is named as the revision not read.
+TEST(OpenScenarioVariation, ReadsRevision13LikeTheScenarioReader) {
+  std::string text = deterministic(R"(<DeterministicSingleParameterDistribution parameterName="VanSpeed"><DistributionSet><Element value="12"/><Element value="18"/></DistributionSet></DeterministicSingleParameterDistribution>)",
+                                   std::string(ORCH_SOURCE_DIR) + "/scenarios/openscenario/hill_variables.xosc");
+  text.replace(text.find("revMinor=\"2\""), 12, "revMinor=\"3\"");
+  TempDir dir;
+  const Variation v = load_variation(dir.write("hill_variation.xosc", text).string());
+  EXPECT_EQ(v.rev_minor, 3);
+  ASSERT_EQ(v.factors.size(), 1u);
+  EXPECT_EQ(v.factors[0].options, (std::vector<std::vector<std::string>>{{"12"}, {"18"}}));
+  text.replace(text.find("revMinor=\"3\""), 12, "revMinor=\"4\"");
+  const std::string error = error_of(text);
+  EXPECT_NE(error.find("@revMinor: OpenSCENARIO 1.4 is not supported: this reads 1.0 to 1.3"), std::string::npos) << error;
+}
+
 TEST(OpenScenarioVariation, RecognisedByContent) {
   EXPECT_TRUE(is_variation_file(kNightly + "lead_brake_variation.xosc"));
   EXPECT_FALSE(is_variation_file(kNightly + "lead_brake.xosc"));
