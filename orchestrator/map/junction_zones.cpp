@@ -142,6 +142,7 @@ class ZoneFinder {
   JunctionZones run() {
     find_conflicts();
     for (std::size_t r = 0; r < routes_.size(); ++r) normalise(r);
+    add_spread_conflicts();
     link_conflicts();
     split_loops();
     for (int round = 0; round < kMaxAlignRounds && align_round(); ++round) {
@@ -158,13 +159,36 @@ class ZoneFinder {
         const Vec2& p = route.line.point(i);
         for (const auto& n : grid_.near(p, kConflictReach)) {
           if (n.route == r && arc_gap(route, s, n.s) < 3 * kConflictReach) continue;  // itself, here
-          if (relate(route, s, routes_[n.route], n.s, n.distance) != Relation::Conflict) continue;
+          const Relation rel = relate(route, s, routes_[n.route], n.s, n.distance);
+          if (rel == Relation::Same && n.distance > kMaxSameLaneSpread) spread_.push_back({r, s, n.route, n.s});
+          if (rel != Relation::Conflict) continue;
           conflicts_.push_back({r, s, n.route, n.s});
           add_interval(r, s - kZoneMargin, s + kZoneMargin);
           add_interval(n.route, n.s - kZoneMargin, n.s + kZoneMargin);
         }
       }
     }
+  }
+
+  // Routes drawn along one lane, but farther apart than one lane holds within the fit
+  // tolerance (kMaxSameLaneSpread: two routes' turns drawn with radii a little apart, a
+  // route drifting 0.2 m off its neighbour on the shared lane) need paths of their own
+  // there: a junction, in which the second one gets a detour lane (junction_detours.hpp).
+  // Only where neither route is in a junction yet: inside one, each route's path is its own
+  // connection already (and a detour lane where it shares its pair of lanes).
+  void add_spread_conflicts() {
+    std::vector<std::size_t> touched;
+    for (const Conflict& c : spread_) {
+      if (containing(c.r, c.s) || containing(c.q, c.sq)) continue;
+      conflicts_.push_back(c);
+      add_interval(c.r, c.s - kZoneMargin, c.s + kZoneMargin);
+      add_interval(c.q, c.sq - kZoneMargin, c.sq + kZoneMargin);
+      touched.push_back(c.r);
+      touched.push_back(c.q);
+    }
+    std::sort(touched.begin(), touched.end());
+    touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
+    for (const std::size_t r : touched) normalise(r);
   }
 
   void add_interval(std::size_t r, double s0, double s1) { intervals_[r].push_back({s0, s1, comp_.add()}); }
@@ -357,6 +381,7 @@ class ZoneFinder {
   SegmentGrid grid_;
   std::vector<std::vector<Interval>> intervals_;
   std::vector<Conflict> conflicts_;
+  std::vector<Conflict> spread_;  // on one lane but farther apart than one lane holds
   Components comp_;
 };
 
