@@ -175,11 +175,20 @@ class ZoneFinder {
   // route drifting 0.2 m off its neighbour on the shared lane) need paths of their own
   // there: a junction, in which the second one gets a detour lane (junction_detours.hpp).
   // Only where neither route is in a junction yet: inside one, each route's path is its own
-  // connection already (and a detour lane where it shares its pair of lanes).
+  // connection already (and a detour lane where it shares its pair of lanes). And not near
+  // either route's own start or end (within a passage's margin and a piece's length): a route
+  // starting or ending beside another on its lane (seed 107: 0.18 m beside another's last
+  // metres) would start or end inside that junction, with no lane of its own to carry its
+  // first or last waypoints; they stay on the shared lane's best fit.
   void add_spread_conflicts() {
+    const auto near_end = [&](std::size_t r, double s) {
+      const WaypointRoute& route = routes_[r];
+      return !is_closed_route(route) &&
+             (s < kZoneMargin + kMinPieceLength || s > route.line.length() - kZoneMargin - kMinPieceLength);
+    };
     std::vector<std::size_t> touched;
     for (const Conflict& c : spread_) {
-      if (containing(c.r, c.s) || containing(c.q, c.sq)) continue;
+      if (containing(c.r, c.s) || containing(c.q, c.sq) || near_end(c.r, c.s) || near_end(c.q, c.sq)) continue;
       conflicts_.push_back(c);
       add_interval(c.r, c.s - kZoneMargin, c.s + kZoneMargin);
       add_interval(c.q, c.sq - kZoneMargin, c.sq + kZoneMargin);
