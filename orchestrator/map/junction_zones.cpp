@@ -175,17 +175,15 @@ class ZoneFinder {
   // route drifting 0.2 m off its neighbour on the shared lane) need paths of their own
   // there: a junction, in which the second one gets a detour lane (junction_detours.hpp).
   // Only where neither route is in a junction yet: inside one, each route's path is its own
-  // connection already (and a detour lane where it shares its pair of lanes). And not near
-  // either route's own start or end (so near that its passage there would reach it: a
-  // passage's margin and kMinEndPiece): a route starting or ending beside another on its lane
-  // (seed 107: 0.18 m beside another's last metres) would start or end inside that junction,
-  // with no lane of its own to carry its first or last waypoints; they stay on the shared
-  // lane's best fit. (Farther from its end it gets the junction: seed 61, 5 m before a route's end.)
+  // connection already (and a detour lane where it shares its pair of lanes). And not at
+  // either route's own start (so near that its passage there would reach it: a passage's
+  // margin and kMinEndPiece): a route starting beside another on its lane (seed 107: 0.18 m
+  // beside another's last metres) would start inside that junction on the other's path; its
+  // first waypoints stay on the shared lane's best fit. Near a route's end the junction is
+  // made (seed 166: a route ending 1.9 m after, on a dead-end lane of its own; seed 61: 5 m).
   void add_spread_conflicts() {
     const auto near_end = [&](std::size_t r, double s) {
-      const WaypointRoute& route = routes_[r];
-      return !is_closed_route(route) &&
-             (s < kZoneMargin + kMinEndPiece || s > route.line.length() - kZoneMargin - kMinEndPiece);
+      return !is_closed_route(routes_[r]) && s < kZoneMargin + kMinEndPiece;
     };
     std::vector<std::size_t> touched;
     for (const Conflict& c : spread_) {
