@@ -55,7 +55,7 @@ Polyline connection_path(const WaypointRoute& route, const JunctionPassage& p, c
   const Polyline inner = passage_line(route, p);
   for (std::size_t i = 1; i + 1 < inner.size(); ++i) xy.push_back(inner.point(i));
   xy.push_back(after.point(0));
-  return Polyline(std::move(xy));
+  return Polyline(std::move(xy)).simplified(kConnectionSimplify);
 }
 
 // The waypoint of the passage lying farthest from `path` (and from the lanes before and

@@ -23,6 +23,9 @@ constexpr double kContainCos = 0.94;     // cos 20 deg
 constexpr double kMaxEndGap = 3.0;
 // m: the shortest dead-end lane (and connection) made for a route ending inside a junction.
 constexpr double kMinLooseLane = 1.0;
+// m: points of a shared lane's best fit closer than this to the previous one are dropped
+// (netconvert drops them from a lane's shape anyway: POSITION_EPS, 0.1 m).
+constexpr double kSameStation = 0.1;
 
 }  // namespace
 
@@ -73,6 +76,59 @@ bool lies_along(const RoutePiece& inner, const RoutePiece& outer) {
     if (a.tangent_at(s).dot(b.tangent_at(pr.s)) < kContainCos) return false;
   }
   return true;
+}
+
+// The line of a lane shared by `owner` and the pieces drawn along it (`others`): the one that
+// keeps every route's waypoints nearest. At each waypoint of any of them (not only the
+// owner's: on a curve, another route's waypoints lie between the owner's, up to a chord's
+// sagitta off its line) the lane goes through the middle of the routes farthest apart
+// there, measured across the owner's direction (the midrange, which minimises the largest
+// distance; a mean would leave a lone route on one side nearer 2/3 of the spread than 1/2).
+// So routes drawn up to twice the fit tolerance apart "on one lane" all lie within it.
+std::vector<WaypointPoint> shared_lane_points(const WaypointRoute& owner, const std::vector<const Polyline*>& others) {
+  const Polyline& base = owner.line;
+  std::vector<const Polyline*> all{&base};
+  all.insert(all.end(), others.begin(), others.end());
+  std::vector<std::pair<double, Vec2>> stations;  // arc length on the owner, lane point
+  for (const Polyline* line : all)
+    for (std::size_t i = 0; i < line->size(); ++i) {
+      const Vec2& q = line->point(i);
+      double s = base.s_at_index(std::min(i, base.size() - 1));
+      if (line != &base) {
+        const Polyline::Projection pr = base.project(q);
+        // (The owner's first and last points stay the lane's ends.)
+        if (pr.before_start || pr.after_end || pr.distance > kContainDistance || pr.s < kSameStation ||
+            pr.s > base.length() - kSameStation)
+          continue;
+        s = pr.s;
+      }
+      const Vec2 n = left_normal(base.tangent_at(s));
+      double lo = 0;  // offsets across, from q, of the routes there (q's own: 0)
+      double hi = 0;
+      for (const Polyline* other : all) {
+        if (other == line) continue;
+        // Short of its start (past its end, within kContainSlack: routes cut at one passage
+        // end a few centimetres apart) its first (last) point counts, across the lane only.
+        const Polyline::Projection po = other->project(q);
+        if (po.distance > kContainDistance + (po.before_start || po.after_end ? kContainSlack : 0.0)) continue;
+        const double o = (other->point_at(po.s) - q).dot(n);
+        lo = std::min(lo, o);
+        hi = std::max(hi, o);
+      }
+      stations.emplace_back(s, q + (lo + hi) / 2 * n);
+    }
+  std::stable_sort(stations.begin(), stations.end(),
+                   [](const auto& a, const auto& b) { return a.first < b.first; });
+  std::vector<WaypointPoint> pts;
+  for (std::size_t k = 0; k < stations.size(); ++k) {
+    const auto& [s, p] = stations[k];
+    if (!pts.empty() && std::hypot(pts.back().x - p.x(), pts.back().y - p.y()) < kSameStation) {
+      if (k + 1 < stations.size() || pts.size() < 2) continue;
+      pts.pop_back();  // the lane's last point stays
+    }
+    pts.push_back({p.x(), p.y(), 0.0, owner.speed_at(s)});
+  }
+  return pts;
 }
 
 // A route that ends inside a junction (its passage reaches its last waypoint) has no lane
@@ -295,7 +351,11 @@ JunctionPieces cut_into_pieces(const WaypointFile& wf, const JunctionZones& zone
   }
   // A shared lane lies in the middle of the routes drawn along it: each point of the
   // longest one averaged with the feet on the others, so that routes drawn a few
-  // centimetres apart "on one lane" are each only half as far from it.
+  // centimetres apart "on one lane" are each only half as far from it. Where that leaves a
+  // waypoint farther than kPlannedLaneMiss from it (routes drawn 0.1-0.15 m apart: on a
+  // curve another route's waypoints lie between the longest one's, a chord's sagitta off
+  // its line; three routes, one of them on its own on one side), the lane is the best fit
+  // of them all instead (shared_lane_points), denser than the drawing.
   for (std::size_t p = 0; p < out.pieces.size(); ++p) {
     if (owner[p] != static_cast<int>(p)) continue;
     std::vector<const Polyline*> others;
@@ -315,7 +375,15 @@ JunctionPieces cut_into_pieces(const WaypointFile& wf, const JunctionZones& zone
       pt.x = sum.x() / n;
       pt.y = sum.y() / n;
     }
-    out.pieces[p].line = make_line(out.pieces[p].line.id, std::move(pts));
+    WaypointRoute averaged = make_line(out.pieces[p].line.id, std::move(pts));
+    const auto fits = [&](const Polyline& line) {
+      return std::all_of(line.points().begin(), line.points().end(),
+                         [&](const Vec2& q) { return averaged.line.project(q).distance <= kPlannedLaneMiss; });
+    };
+    const bool all_fit = fits(out.pieces[p].line.line) &&
+                         std::all_of(others.begin(), others.end(), [&](const Polyline* o) { return fits(*o); });
+    out.pieces[p].line = all_fit ? std::move(averaged)
+                                 : make_line(out.pieces[p].line.id, shared_lane_points(out.pieces[p].line, others));
   }
   // Renumber: only owners remain.
   std::vector<int> index(out.pieces.size(), -1);

@@ -18,7 +18,6 @@ namespace orch {
 
 namespace {
 
-constexpr double kConnectionSimplify = 0.02;  // m, as the lane shapes
 constexpr int kOverridePriority = 100;
 constexpr double kParallelCos = 0.9848;  // cos 10 deg
 

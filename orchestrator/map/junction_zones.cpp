@@ -142,6 +142,7 @@ class ZoneFinder {
   JunctionZones run() {
     find_conflicts();
     for (std::size_t r = 0; r < routes_.size(); ++r) normalise(r);
+    add_spread_conflicts();
     link_conflicts();
     split_loops();
     for (int round = 0; round < kMaxAlignRounds && align_round(); ++round) {
@@ -158,13 +159,44 @@ class ZoneFinder {
         const Vec2& p = route.line.point(i);
         for (const auto& n : grid_.near(p, kConflictReach)) {
           if (n.route == r && arc_gap(route, s, n.s) < 3 * kConflictReach) continue;  // itself, here
-          if (relate(route, s, routes_[n.route], n.s, n.distance) != Relation::Conflict) continue;
+          const Relation rel = relate(route, s, routes_[n.route], n.s, n.distance);
+          if (rel == Relation::Same && n.distance > kMaxSameLaneSpread) spread_.push_back({r, s, n.route, n.s});
+          if (rel != Relation::Conflict) continue;
           conflicts_.push_back({r, s, n.route, n.s});
           add_interval(r, s - kZoneMargin, s + kZoneMargin);
           add_interval(n.route, n.s - kZoneMargin, n.s + kZoneMargin);
         }
       }
     }
+  }
+
+  // Routes drawn along one lane, but farther apart than one lane holds within the fit
+  // tolerance (kMaxSameLaneSpread: two routes' turns drawn with radii a little apart, a
+  // route drifting 0.2 m off its neighbour on the shared lane) need paths of their own
+  // there: a junction, in which the second one gets a detour lane (junction_detours.hpp).
+  // Only where neither route is in a junction yet: inside one, each route's path is its own
+  // connection already (and a detour lane where it shares its pair of lanes). And not at
+  // either route's own start (so near that its passage there would reach it: a passage's
+  // margin and kMinEndPiece): a route starting beside another on its lane (seed 107: 0.18 m
+  // beside another's last metres) would start inside that junction on the other's path; its
+  // first waypoints stay on the shared lane's best fit. Near a route's end the junction is
+  // made (seed 166: a route ending 1.9 m after, on a dead-end lane of its own; seed 61: 5 m).
+  void add_spread_conflicts() {
+    const auto near_end = [&](std::size_t r, double s) {
+      return !is_closed_route(routes_[r]) && s < kZoneMargin + kMinEndPiece;
+    };
+    std::vector<std::size_t> touched;
+    for (const Conflict& c : spread_) {
+      if (containing(c.r, c.s) || containing(c.q, c.sq) || near_end(c.r, c.s) || near_end(c.q, c.sq)) continue;
+      conflicts_.push_back(c);
+      add_interval(c.r, c.s - kZoneMargin, c.s + kZoneMargin);
+      add_interval(c.q, c.sq - kZoneMargin, c.sq + kZoneMargin);
+      touched.push_back(c.r);
+      touched.push_back(c.q);
+    }
+    std::sort(touched.begin(), touched.end());
+    touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
+    for (const std::size_t r : touched) normalise(r);
   }
 
   void add_interval(std::size_t r, double s0, double s1) { intervals_[r].push_back({s0, s1, comp_.add()}); }
@@ -357,6 +389,7 @@ class ZoneFinder {
   SegmentGrid grid_;
   std::vector<std::vector<Interval>> intervals_;
   std::vector<Conflict> conflicts_;
+  std::vector<Conflict> spread_;  // on one lane but farther apart than one lane holds
   Components comp_;
 };
 

@@ -15,6 +15,14 @@
 namespace orch {
 
 inline constexpr double kSameLaneDistance = 0.35;  // m; closer and aligned: one lane
+// m: the farthest a waypoint may lie from the lane planned for it, so that it lies within
+// `map check`'s 0.10 m of that lane in the net: lane shapes are simplified by 0.02 m and
+// written to the net in centimetres (up to 0.005 m): 0.075 + 0.02 + 0.005 = 0.10.
+inline constexpr double kPlannedLaneMiss = 0.075;
+// m: routes on one lane lying farther apart than this cannot all lie within kPlannedLaneMiss
+// of one lane (their best fit lies in the middle, half of this from each): they get paths
+// of their own there (junction_zones.cpp, add_spread_conflicts).
+inline constexpr double kMaxSameLaneSpread = 2 * kPlannedLaneMiss;
 inline constexpr double kConflictReach = 3.5;      // m; closer at an angle: a junction
 inline constexpr double kZoneMargin = 1.5;         // m of a passage before/after each conflict
 inline constexpr double kMinPieceLength = 6.0;     // m; shorter stretches between passages join them

@@ -252,3 +252,60 @@ TEST(JunctionPlan, ARouteLeaningOffASharedLaneAndBackGetsADetourLane) {
   for (const WaypointRoute& r : wf.routes) EXPECT_LE(max_distance_to_plan(plan, r), 0.10) << r.id;  // `map check`'s tolerance
   for (const auto& n : plan.notes) EXPECT_EQ(n.find("along different paths"), std::string::npos) << n;
 }
+
+namespace {
+
+// East along y = 0 to a right turn of radius `radius` about the corner (0, 0), then south,
+// points `spacing` metres apart from x = -60 + `phase` (two routes with different phases lie
+// between each other's points).
+std::vector<Vec2> sparse_right_turn(double radius, double spacing, double phase) {
+  std::vector<Vec2> pts;
+  const double arc = radius * M_PI / 2;
+  const double straight = 60 - radius;
+  for (double s = phase; s <= 2 * straight + arc + 1e-9; s += spacing) {
+    if (s < straight) {
+      pts.emplace_back(-60 + s, 0);
+    } else if (s < straight + arc) {
+      const double a = (s - straight) / radius;
+      pts.emplace_back(-radius + radius * std::sin(a), -radius + radius * std::cos(a));
+    } else {
+      pts.emplace_back(0, -radius - (s - straight - arc));
+    }
+  }
+  return pts;
+}
+
+}  // namespace
+
+TEST(JunctionPlan, RoutesDrawnALittleApartAlongOneLaneShareItsBestFit) {
+  // The same turn of 6 m drawn twice along one lane, 2 m between points, 1 m out of step:
+  // between two points of one, the other lies a chord's sagitta (0.08 m) off its line, and a
+  // lane through the first one's points (averaged with the feet on the other) left the second
+  // 0.12 m off. The shared lane is the best fit of both: every waypoint within
+  // kPlannedLaneMiss of it, and no junction.
+  std::vector<Vec2> again = sparse_right_turn(6.0, 2.0, 1.0);
+  again.pop_back();  // ends before the first one's end, so that it lies along it
+  const std::vector<test::SyntheticRoute> routes = {{"first", sparse_right_turn(6.0, 2.0, 0.0)}, {"again", again}};
+  test::TempDir dir("junction_best_fit");
+  const WaypointFile wf = load_waypoint_file(test::write_waypoint_file(dir.path(), "best_fit", routes).string());
+  const NetPlan plan = plan_net(wf, NetPlanSettings{});
+  EXPECT_EQ(plan.junctions, 0);
+  EXPECT_NE(lane_of_routes(plan, {"first", "again"}), nullptr);
+  for (const WaypointRoute& r : wf.routes) EXPECT_LE(max_distance_to_plan(plan, r), kPlannedLaneMiss) << r.id;
+}
+
+TEST(JunctionPlan, RoutesDrawnTooFarApartForOneLaneGetPathsOfTheirOwnThere) {
+  // The same turn drawn with radii 10 and 10.6 m: 0.25 m apart at its middle (drawn "on one
+  // lane", closer than kSameLaneDistance), so one lane in the middle left each 0.125 m off.
+  // Farther apart than kMaxSameLaneSpread, the turn is a junction in which the second gets a
+  // detour lane; the straights before and after stay one shared lane.
+  const std::vector<test::SyntheticRoute> routes = {{"tight", sparse_right_turn(10.0, 1.0, 0.0)},
+                                                    {"wide", sparse_right_turn(10.6, 1.0, 0.5)}};
+  test::TempDir dir("junction_spread");
+  const WaypointFile wf = load_waypoint_file(test::write_waypoint_file(dir.path(), "spread", routes).string());
+  const NetPlan plan = plan_net(wf, NetPlanSettings{});
+  EXPECT_EQ(plan.junctions, 1);
+  EXPECT_NE(lane_of_routes(plan, {"tight", "wide"}), nullptr);
+  EXPECT_NE(lane_of_routes(plan, {"wide"}), nullptr);  // its detour lane
+  for (const WaypointRoute& r : wf.routes) EXPECT_LE(max_distance_to_plan(plan, r), kPlannedLaneMiss) << r.id;
+}
