@@ -23,6 +23,10 @@ constexpr double kContainCos = 0.94;     // cos 20 deg
 constexpr double kMaxEndGap = 3.0;
 // m: the shortest dead-end lane (and connection) made for a route ending inside a junction.
 constexpr double kMinLooseLane = 1.0;
+// m: `map check`'s tolerance. A route ending (starting) inside a junction whose waypoints on
+// the lane it would continue on (come from) lie farther from it gets a dead-end lane of its own
+// instead, where its passage is long enough for one.
+constexpr double kLaneFit = 0.10;
 
 }  // namespace
 
@@ -75,6 +79,19 @@ bool lies_along(const RoutePiece& inner, const RoutePiece& outer) {
   return true;
 }
 
+// The largest distance from lane `l` of the route's waypoints in passage jp that lie along
+// it (past its start where the route ends on it, before its end where the route starts).
+double farthest_on(const WaypointRoute& route, const JunctionPassage& jp, const Polyline& l, bool at_end) {
+  double worst = 0;
+  for (std::size_t i = 0; i < route.points.size(); ++i) {
+    const double s = route.line.s_at_index(i);
+    if (s < jp.s0 || s > jp.s1) continue;
+    const Polyline::Projection pr = l.project(route.line.point(i));
+    if (at_end ? !pr.before_start : !pr.after_end) worst = std::max(worst, pr.distance);
+  }
+  return worst;
+}
+
 // A route that ends inside a junction (its passage reaches its last waypoint) has no lane
 // after it, so no connection carries its waypoints there and SUMO cannot drive it: it
 // continues on the lane leaving that junction which its last waypoint lies on, or lies just
@@ -111,6 +128,9 @@ void attach_loose_ends(const WaypointFile& wf, JunctionPieces& out) {
         } else if (pr.distance > kContainDistance || pr.before_start || pr.after_end) {
           continue;
         }
+        // Drawn beside that lane (seed 5: a route ending 0.20 m beside the lane of one that made
+        // the same turn) it would lie off it: a dead-end lane of its own fits it exactly.
+        if (jp.s1 - jp.s0 >= 2 * kMinLooseLane && farthest_on(route, jp, l, at_end) > kLaneFit) continue;
         if (gap < best_gap || (best < 0 && gap <= best_gap)) {
           best = static_cast<int>(k);
           best_gap = gap;
