@@ -53,7 +53,18 @@ Polyline connection_path(const WaypointRoute& route, const JunctionPassage& p, c
                          const Polyline& after) {
   std::vector<Vec2> xy{before.points().back()};
   const Polyline inner = passage_line(route, p);
+  // Through the route's own first (last) waypoint where it starts (ends) inside the junction
+  // past the lane's end, as junction_plan.cpp's connection shape does.
+  const bool open = !is_closed_route(route);
+  const auto own_end = [&](bool start) {
+    const Vec2& lane_end = start ? before.points().back() : after.point(0);
+    const Polyline::Projection pr = route.line.project_near(lane_end, start ? p.s0 : p.s1, 5.0);
+    return open && (start ? p.s0 <= 0 && pr.s <= 1e-6 : p.s1 >= route.line.length() && pr.s >= route.line.length() - 1e-6) &&
+           ((start ? inner.point(0) : inner.points().back()) - lane_end).norm() > 0.05;
+  };
+  if (own_end(true)) xy.push_back(inner.point(0));
   for (std::size_t i = 1; i + 1 < inner.size(); ++i) xy.push_back(inner.point(i));
+  if (own_end(false)) xy.push_back(inner.points().back());
   xy.push_back(after.point(0));
   return Polyline(std::move(xy)).simplified(kConnectionSimplify);
 }

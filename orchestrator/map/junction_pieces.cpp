@@ -26,6 +26,10 @@ constexpr double kMinLooseLane = 1.0;
 // m: points of a shared lane's best fit closer than this to the previous one are dropped
 // (netconvert drops them from a lane's shape anyway: POSITION_EPS, 0.1 m).
 constexpr double kSameStation = 0.1;
+// m: `map check`'s tolerance. A route ending (starting) inside a junction whose waypoints on
+// the lane it would continue on (come from) lie farther from it gets a dead-end lane of its own
+// instead, where its passage is long enough for one.
+constexpr double kLaneFit = 0.10;
 
 }  // namespace
 
@@ -129,6 +133,17 @@ std::vector<WaypointPoint> shared_lane_points(const WaypointRoute& owner, const 
     pts.push_back({p.x(), p.y(), 0.0, owner.speed_at(s)});
   }
   return pts;
+// The largest distance from lane `l` of the route's waypoints in passage jp that lie along
+// it (past its start where the route ends on it, before its end where the route starts).
+double farthest_on(const WaypointRoute& route, const JunctionPassage& jp, const Polyline& l, bool at_end) {
+  double worst = 0;
+  for (std::size_t i = 0; i < route.points.size(); ++i) {
+    const double s = route.line.s_at_index(i);
+    if (s < jp.s0 || s > jp.s1) continue;
+    const Polyline::Projection pr = l.project(route.line.point(i));
+    if (at_end ? !pr.before_start : !pr.after_end) worst = std::max(worst, pr.distance);
+  }
+  return worst;
 }
 
 // A route that ends inside a junction (its passage reaches its last waypoint) has no lane
@@ -167,6 +182,9 @@ void attach_loose_ends(const WaypointFile& wf, JunctionPieces& out) {
         } else if (pr.distance > kContainDistance || pr.before_start || pr.after_end) {
           continue;
         }
+        // Drawn beside that lane (seed 5: a route ending 0.20 m beside the lane of one that made
+        // the same turn) it would lie off it: a dead-end lane of its own fits it exactly.
+        if (jp.s1 - jp.s0 >= 2 * kMinLooseLane && farthest_on(route, jp, l, at_end) > kLaneFit) continue;
         if (gap < best_gap || (best < 0 && gap <= best_gap)) {
           best = static_cast<int>(k);
           best_gap = gap;

@@ -9,6 +9,7 @@
 #include <map>
 
 #include "core/errors.hpp"
+#include "map/corridor_cut_error.hpp"
 #include "map/junction_detours.hpp"
 #include "map/junction_pieces.hpp"
 #include "map/junction_shape.hpp"
@@ -43,12 +44,21 @@ std::vector<Vec2> passage_shape(const WaypointRoute& route, const JunctionPassag
   const double a = near(from, p.s0);
   double b = near(to, p.s1);
   if (b < a) b += length;  // across a closed route's first point
+  // A route starting (ending) inside the junction, attached to the lane before (after) it,
+  // begins at its first waypoint, which lies past that lane's end: the path goes through it
+  // (a chord from the lane end to the second waypoint missed it by 0.42 m on a curve, seed 130).
+  const bool open = !is_closed_route(route);
+  const auto own_end = [&](std::size_t i, const Vec2& lane_end) {
+    return open && (route.line.point(i) - lane_end).norm() > 0.05;
+  };
   std::vector<Vec2> pts{from};
+  if (p.s0 <= 0 && a <= 1e-6 && own_end(0, from)) pts.push_back(route.line.point(0));
   for (int lap = 0; lap < 2; ++lap)
     for (std::size_t i = 0; i < route.line.size(); ++i) {
       const double s = route.line.s_at_index(i) + lap * length;
       if (s > a + 0.05 && s < b - 0.05) pts.push_back(route.line.point(i));
     }
+  if (p.s1 >= length && b >= length - 1e-6 && own_end(route.line.size() - 1, to)) pts.push_back(route.line.points().back());
   pts.push_back(to);
   return Polyline(std::move(pts)).simplified(kConnectionSimplify).points();
 }
@@ -326,7 +336,11 @@ NetPlan plan_net(const WaypointFile& waypoints, const NetPlanSettings& settings,
   const JunctionPieces pieces = cut_into_pieces(waypoints, zones);
   if (zones.empty() && pieces.merged == 0) {
     if (!junctions.overrides.empty()) throw MapError("map.json sets junctions, but the routes form none");
-    plan_corridors(waypoints, nullptr, settings, plan);  // roads only: corridors as they are
+    try {
+      plan_corridors(waypoints, nullptr, settings, plan);  // roads only: corridors as they are
+    } catch (const CorridorCutError& e) {
+      throw name_waypoint(e, waypoints.routes[e.line()]);
+    }
     return plan;
   }
   WaypointFile lines;
@@ -340,7 +354,11 @@ NetPlan plan_net(const WaypointFile& waypoints, const NetPlanSettings& settings,
                     p.to_zone >= 0 ? -1.0 : free_extension(waypoints, p, false, settings.lane_extension),
                     p.loose_end || p.detour});
   }
-  plan_corridors(lines, &info, settings, plan);
+  try {
+    plan_corridors(lines, &info, settings, plan);
+  } catch (const CorridorCutError& e) {
+    throw name_waypoint(e, waypoints.routes[pieces.pieces[e.line()].route]);
+  }
   JunctionPlanner(waypoints, pieces, zones.count, junctions).plan(plan);
   if (pieces.merged > 0)
     plan.notes.push_back(fmt::format("{} stretches of routes drawn along another route's lane share its lane",

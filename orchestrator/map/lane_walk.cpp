@@ -152,8 +152,24 @@ RouteLanes LaneMap::walk(const WaypointRoute& route, const std::string& net_file
   }
   // A route that starts a metre or two inside a junction, along the connection of routes
   // that come through it onto its first lane, starts on that connection's internal lane.
-  if (place_on_lane(lane, route.line.point(0)).distance > kOffLane)
-    if (const int start = starting_lane(*this, lane, route); start >= 0) lane = start;
+  if (place_on_lane(lane, route.line.point(0)).distance > kOffLane) {
+    if (const int start = starting_lane(*this, lane, route); start >= 0) {
+      lane = start;
+    } else {
+      // Not into the nearest of its lanes: a route starting inside a junction that its own
+      // later lap passes (seed 130) lies nearest to that lap's detour lane, but starts on the
+      // connection into another of its lanes.
+      double best = place_on_lane(lane, route.line.point(0)).distance;
+      for (const int l : own)
+        if (const int st = starting_lane(*this, l, route); st >= 0) {
+          const double d = place_on_lane(st, route.line.point(0)).distance;
+          if (d < best) {
+            best = d;
+            lane = st;
+          }
+        }
+    }
+  }
   rl.lanes.push_back(lane);
   for (std::size_t i = 0; i < route.points.size(); ++i) {
     const Vec2& p = route.line.point(i);

@@ -10,6 +10,7 @@
 
 #include "core/checked_numeric.hpp"
 #include "core/errors.hpp"
+#include "map/corridor_cut_error.hpp"
 #include "map/corridor_geometry.hpp"
 #include "map/junction_shape.hpp"
 #include "map/route_corridors.hpp"
@@ -24,6 +25,9 @@ using namespace corridor;
 constexpr double kMaxContinuationOverlap = 2.0;  // m
 
 constexpr std::size_t kMaxNameLength = 60;
+
+// m a lane ending at a junction may reach straight beyond its route's end to the junction's cut.
+constexpr double kMaxJunctionExtension = 0.5;
 
 // One route of a corridor, extended so that every cut lies on it.
 struct Member {
@@ -289,12 +293,29 @@ class CorridorPlanner {
         if (cut.member == i) s = cut.at_start ? m.lane_start : m.lane_end;
         s = std::clamp(s, 0.0, m.line.length());
         if (!m.cut_s.empty() && s <= m.cut_s.back() + 0.5)
-          throw MapError(fmt::format("cannot cut route \"{}\" consistently with its neighbouring routes near "
-                                     "({:.1f}, {:.1f}): its neighbours start or end out of order along it",
-                                     m.route->id, cut.point.x(), cut.point.y()));
+          throw CorridorCutError(fmt::format("cannot cut route \"{}\" consistently with its neighbouring routes near "
+                                             "({:.1f}, {:.1f}): its neighbours start or end out of order along it",
+                                             m.route->id, cut.point.x(), cut.point.y()),
+                                 m.index, cut.point);
         m.cut_s.push_back(s);
       }
+      keep_junction_ends_drawn(m);
     }
+  }
+
+  // A lane ending at a junction whose cut lies beyond its end (the cut placed at a neighbour's
+  // lane end further out) would reach there along its straight extension, off the route where
+  // the route curves into the junction (seed 9: 1.6 m straight, 0.14 m beside the route). It
+  // ends at its own end instead; the junction's internal lane follows the route's points from
+  // there. Extensions up to kMaxJunctionExtension (at most 2.5 cm off a 5 m radius) stay.
+  static void keep_junction_ends_drawn(Member& m) {
+    if (m.cut_s.size() < 2) return;
+    if (!m.end_node(true).empty() && m.cut_s.front() < m.lane_start - kMaxJunctionExtension &&
+        m.lane_start < m.cut_s[1] - 0.5)
+      m.cut_s.front() = m.lane_start;
+    if (!m.end_node(false).empty() && m.cut_s.back() > m.lane_end + kMaxJunctionExtension &&
+        m.lane_end > m.cut_s[m.cut_s.size() - 2] + 0.5)
+      m.cut_s.back() = m.lane_end;
   }
 
   [[nodiscard]] PlannedEdge plan_edge(std::size_t seg, std::vector<std::string>& notes) const {
