@@ -133,6 +133,8 @@ std::vector<WaypointPoint> shared_lane_points(const WaypointRoute& owner, const 
     pts.push_back({p.x(), p.y(), 0.0, owner.speed_at(s)});
   }
   return pts;
+}
+
 // The largest distance from lane `l` of the route's waypoints in passage jp that lie along
 // it (past its start where the route ends on it, before its end where the route starts).
 double farthest_on(const WaypointRoute& route, const JunctionPassage& jp, const Polyline& l, bool at_end) {
