@@ -18,9 +18,11 @@
 namespace orch {
 
 // A run ends here when no --max-time is given and nothing else ended it (a StopTrigger that
-// never fires, a scene never left): an hour of simulated time, far beyond a test scenario,
-// but a batch never hangs on one run and a trace never grows without bound.
-inline constexpr double kDefaultMaxTimeS = 3600.0;
+// never fires, a scene never left): two hours of simulated time, beyond the "never" limits
+// real files write themselves (the shared ScenarioExecutor files end at simulation_time >
+// 3600, esmini's examples at 1200 s), but a batch never hangs on one run and a trace never
+// grows without bound.
+inline constexpr double kDefaultMaxTimeS = 7200.0;
 
 struct RunRequest {
   std::string scenario_file;

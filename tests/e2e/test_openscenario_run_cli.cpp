@@ -87,7 +87,7 @@ TEST(OpenScenarioRunCli, AMisspeltAttributeIsAnErrorNamingTheFileAndLine) {
 
 // A StopTrigger that never fires (esmini's cut-in_cr.xosc waits for a continuous action to
 // end) ran for ever: 58,835 s simulated and a 3.5-million-line trace before it was killed.
-// Without --max-time a run now ends at kDefaultMaxTimeS (3,600 s), with a reason that says so.
+// Without --max-time a run now ends at kDefaultMaxTimeS (7,200 s), with a reason that says so.
 TEST(OpenScenarioRunCli, AStopTriggerThatNeverFiresEndsAtTheDefaultLimit) {
   TempDir dir;
   const auto file = dir.write("never_stops.xosc", R"(<?xml version="1.0"?><OpenSCENARIO>
@@ -103,14 +103,14 @@ TEST(OpenScenarioRunCli, AStopTriggerThatNeverFiresEndsAtTheDefaultLimit) {
 <PrivateAction><TeleportAction><Position><WorldPosition x="1.8" y="-358" z="0" h="1.5707963"/></Position></TeleportAction></PrivateAction>
 </Private></Actions></Init>
 <StopTrigger><ConditionGroup><Condition name="Stop" delay="0" conditionEdge="none"><ByValueCondition>
-<SimulationTimeCondition value="5000" rule="greaterOrEqual"/></ByValueCondition></Condition></ConditionGroup></StopTrigger>
+<SimulationTimeCondition value="9000" rule="greaterOrEqual"/></ByValueCondition></Condition></ConditionGroup></StopTrigger>
 </Storyboard></OpenSCENARIO>)");
   TempDir out;
   const auto r = run_cli({"run", file.string(), "--out", out.path().string(), "-q", "--no-report", "--step", "1"});
   EXPECT_EQ(r.exit_code, 1) << r.output;
   const auto result = read_json(out / "result.json");
   EXPECT_EQ(result["verdict"], "failure");
-  EXPECT_NEAR(result["sim_time"].get<double>(), 3600.0, 1e-6);
+  EXPECT_NEAR(result["sim_time"].get<double>(), 7200.0, 1e-6);
   const std::string reason = result["reason"];
   EXPECT_NE(reason.find("the limit without --max-time"), std::string::npos) << reason;
   EXPECT_TRUE(result["max_time"].is_null());  // the user gave none
