@@ -14,6 +14,14 @@ using namespace orch::test;
 
 namespace {
 
+// The car of the inline scenarios: 5 m long, its reference point on the rear axle.
+const std::string kCar = R"(<Vehicle name="car" vehicleCategory="car">
+<BoundingBox><Center x="1.5" y="0" z="0.9"/><Dimensions width="2" length="5" height="1.8"/></BoundingBox>
+<Performance maxSpeed="70" maxDeceleration="10" maxAcceleration="10"/>
+<Axles><FrontAxle maxSteering="0.5" wheelDiameter="0.8" trackWidth="1.68" positionX="3" positionZ="0.4"/>
+<RearAxle maxSteering="0" wheelDiameter="0.8" trackWidth="1.68" positionX="0" positionZ="0.4"/></Axles>
+</Vehicle>)";
+
 const std::string kOvertaking = std::string(ORCH_SOURCE_DIR) + "/scenarios/openscenario/overtaking.xosc";
 
 TEST(OpenScenarioRunCli, OvertakingRunsToItsStopTriggerWithEveryEntityTraced) {
@@ -93,12 +101,7 @@ TEST(OpenScenarioRunCli, AStopTriggerThatNeverFiresEndsAtTheDefaultLimit) {
   const auto file = dir.write("never_stops.xosc", R"(<?xml version="1.0"?><OpenSCENARIO>
 <FileHeader revMajor="1" revMinor="3" date="2024-01-01T00:00:00" author="t" description="never stops"/>
 <RoadNetwork/>
-<Entities><ScenarioObject name="Car"><Vehicle name="car" vehicleCategory="car">
-<BoundingBox><Center x="1.5" y="0" z="0.9"/><Dimensions width="2" length="5" height="1.8"/></BoundingBox>
-<Performance maxSpeed="70" maxDeceleration="10" maxAcceleration="10"/>
-<Axles><FrontAxle maxSteering="0.5" wheelDiameter="0.8" trackWidth="1.68" positionX="3" positionZ="0.4"/>
-<RearAxle maxSteering="0" wheelDiameter="0.8" trackWidth="1.68" positionX="0" positionZ="0.4"/></Axles>
-</Vehicle></ScenarioObject></Entities>
+<Entities><ScenarioObject name="Car">)" + kCar + R"(</ScenarioObject></Entities>
 <Storyboard><Init><Actions><Private entityRef="Car">
 <PrivateAction><TeleportAction><Position><WorldPosition x="1.8" y="-358" z="0" h="1.5707963"/></Position></TeleportAction></PrivateAction>
 </Private></Actions></Init>
@@ -123,11 +126,7 @@ TEST(OpenScenarioRunCli, AStopTriggerThatNeverFiresEndsAtTheDefaultLimit) {
 TEST(OpenScenarioRunCli, AnEntityOffEveryLaneOfTheRoadsStandsWhereItIsPlaced) {
   TempDir dir;
   const std::string road = std::string(ORCH_SOURCE_DIR) + "/scenarios/openscenario/roads/rural_2_lanes_600m.xodr";
-  const char* car = R"(<Vehicle name="car" vehicleCategory="car">
-<BoundingBox><Center x="1.5" y="0" z="0.9"/><Dimensions width="2" length="5" height="1.8"/></BoundingBox>
-<Performance maxSpeed="70" maxDeceleration="10" maxAcceleration="10"/>
-<Axles><FrontAxle maxSteering="0.5" wheelDiameter="0.8" trackWidth="1.68" positionX="3" positionZ="0.4"/>
-<RearAxle maxSteering="0" wheelDiameter="0.8" trackWidth="1.68" positionX="0" positionZ="0.4"/></Axles></Vehicle>)";
+  const std::string car = kCar;
   const auto off_road_event = [](const std::string& entity) {
     return "<Event name=\"Off" + entity + "\" priority=\"parallel\"><Action name=\"Set" + entity +
            "\"><GlobalAction><ParameterAction parameterRef=\"p\"><SetAction value=\"1\"/></ParameterAction></GlobalAction>"
@@ -179,12 +178,7 @@ TEST(OpenScenarioRunCli, AScenarioWithoutARoadRunsWithEntitiesAtTheirWorldPositi
   const auto file = dir.write("no_road.xosc", R"(<?xml version="1.0"?><OpenSCENARIO>
 <FileHeader revMajor="1" revMinor="3" date="2024-01-01T00:00:00" author="t" description="no road"/>
 <RoadNetwork/>
-<Entities><ScenarioObject name="Car"><Vehicle name="car" vehicleCategory="car">
-<BoundingBox><Center x="1.5" y="0" z="0.9"/><Dimensions width="2" length="5" height="1.8"/></BoundingBox>
-<Performance maxSpeed="70" maxDeceleration="10" maxAcceleration="10"/>
-<Axles><FrontAxle maxSteering="0.5" wheelDiameter="0.8" trackWidth="1.68" positionX="3" positionZ="0.4"/>
-<RearAxle maxSteering="0" wheelDiameter="0.8" trackWidth="1.68" positionX="0" positionZ="0.4"/></Axles>
-</Vehicle></ScenarioObject></Entities>
+<Entities><ScenarioObject name="Car">)" + kCar + R"(</ScenarioObject></Entities>
 <Storyboard><Init><Actions><Private entityRef="Car">
 <PrivateAction><TeleportAction><Position><WorldPosition x="1.8" y="-358" z="0" h="1.5707963"/></Position></TeleportAction></PrivateAction>
 <PrivateAction><LongitudinalAction><SpeedAction><SpeedActionDynamics dynamicsShape="step" dynamicsDimension="time" value="0"/>
