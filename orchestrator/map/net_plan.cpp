@@ -12,6 +12,7 @@
 #include "core/errors.hpp"
 #include "map/corridor_cut_error.hpp"
 #include "map/corridor_geometry.hpp"
+#include "map/corridor_names.hpp"
 #include "map/junction_shape.hpp"
 #include "map/route_corridors.hpp"
 
@@ -23,8 +24,6 @@ using namespace corridor;
 
 // Consecutive routes of one lane may share up to this much road (a repeated point or two).
 constexpr double kMaxContinuationOverlap = 2.0;  // m
-
-constexpr std::size_t kMaxNameLength = 60;
 
 // m a lane ending at a junction may reach straight beyond its route's end to the junction's cut.
 constexpr double kMaxJunctionExtension = 0.5;
@@ -89,27 +88,6 @@ struct Event {
   std::string node;  // the junction this lane end lies at ("" = a free end)
 };
 
-std::string corridor_name(const std::vector<Member>& members, std::set<std::string>& used) {
-  std::vector<const Member*> order;
-  for (const Member& m : members) order.push_back(&m);
-  std::stable_sort(order.begin(), order.end(), [](const Member* a, const Member* b) { return a->lateral < b->lateral; });
-  // Pieces of one lane (consecutive routes) keep their file order.
-  for (auto run = order.begin(); run != order.end();) {
-    auto end = run + 1;
-    while (end != order.end() && (*end)->lateral - (*(end - 1))->lateral < kMinLaneSpacing / 2) ++end;
-    std::sort(run, end, [](const Member* a, const Member* b) { return a->index < b->index; });
-    run = end;
-  }
-  std::string name;
-  for (const Member* m : order) name += (name.empty() ? "" : "+") + sumo_safe_id(m->route->id);
-  if (name.size() > kMaxNameLength)
-    name = sumo_safe_id(order.front()->route->id) + ".." + sumo_safe_id(order.back()->route->id);
-  std::string unique = name;
-  for (int k = 2; used.count(unique); ++k) unique = fmt::format("{}~{}", name, k);
-  used.insert(unique);
-  return unique;
-}
-
 double lane_speed(const Member& m, double s0, double s1, std::vector<std::string>& notes) {
   const WaypointRoute& r = *m.route;
   double best = 0;
@@ -160,7 +138,9 @@ class CorridorPlanner {
   void plan(std::set<std::string>& used_names, NetPlan& out) {
     const std::size_t first_edge = out.edges.size();
     build_axis();
-    name_ = corridor_name(members_, used_names);
+    std::vector<NamedRoute> named;
+    for (const Member& m : members_) named.push_back({m.lateral, m.index, m.route->id});
+    name_ = corridor_name(std::move(named), used_names);
     link_continuations(out.notes);
     place_cuts();
     cut_members();
@@ -484,14 +464,6 @@ class CorridorPlanner {
 };
 
 }  // namespace
-
-std::string sumo_safe_id(const std::string& id) {
-  std::string out = id.empty() ? std::string("route") : id;
-  for (char& c : out)
-    if (std::string_view(" \t\n\r|\\'\";,<>&").find(c) != std::string_view::npos) c = '_';
-  if (out.front() == ':') out.front() = '_';  // a leading ':' marks SUMO's internal edges
-  return out;
-}
 
 void plan_corridors(const WaypointFile& lines, const std::vector<CorridorLine>* info, const NetPlanSettings& settings,
                     NetPlan& out) {

@@ -30,6 +30,7 @@
 #include <string>
 #include <vector>
 
+#include "map/corridor_names.hpp"  // sumo_safe_id, used with the plan
 #include "core/polyline.hpp"
 #include "map/waypoint_file.hpp"
 
@@ -129,7 +130,5 @@ struct CorridorLine {
 void plan_corridors(const WaypointFile& lines, const std::vector<CorridorLine>* info, const NetPlanSettings& settings,
                     NetPlan& out);
 
-// `id` with the characters SUMO does not accept in ids replaced by '_'.
-std::string sumo_safe_id(const std::string& id);
 
 }  // namespace orch

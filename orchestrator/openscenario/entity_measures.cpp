@@ -33,29 +33,6 @@ sim::Box box_of(const Body& body) {
           b.width};
 }
 
-// The smallest distance from point p to the segment a-b.
-double to_segment(const Vec2& p, const Vec2& a, const Vec2& b) {
-  const Vec2 ab = b - a;
-  const double len2 = ab.squaredNorm();
-  const double k = len2 > 0 ? std::clamp((p - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
-  return (p - (a + k * ab)).norm();
-}
-
-// The smallest distance between two oriented rectangles (0 when they touch or overlap):
-// between convex polygons that do not overlap it is reached at a corner of one of them.
-double box_distance(const sim::Box& a, const sim::Box& b) {
-  if (sim::boxes_touch(a, b)) return 0.0;
-  const auto ca = sim::box_corners(a), cb = sim::box_corners(b);
-  double best = std::numeric_limits<double>::infinity();
-  for (int side = 0; side < 2; ++side) {
-    const auto& points = side == 0 ? ca : cb;
-    const auto& edges = side == 0 ? cb : ca;
-    for (const Vec2& p : points)
-      for (std::size_t i = 0; i < edges.size(); ++i) best = std::min(best, to_segment(p, edges[i], edges[(i + 1) % 4]));
-  }
-  return best;
-}
-
 // Freespace distance in the frame of `from` (coordinateSystem entity): `to`'s box as it is
 // turned, its corners projected on from's axes (a box turned against from's heading reaches
 // further along and across than its unturned extents), the gap between the extents along
@@ -63,7 +40,7 @@ double box_distance(const sim::Box& a, const sim::Box& b) {
 // "distance is measured between closest bounding box points").
 double freespace_in_entity_frame(const Body& from, const Body& to, const std::string& distance_type) {
   const sim::Box a = box_of(from), b = box_of(to);
-  if (distance_type != "longitudinal" && distance_type != "lateral") return box_distance(a, b);
+  if (distance_type != "longitudinal" && distance_type != "lateral") return sim::box_distance(a, b);
   const double h = from.state->pose.heading;
   const Vec2 axis = distance_type == "longitudinal" ? Vec2(std::cos(h), std::sin(h)) : Vec2(-std::sin(h), std::cos(h));
   const Vec2 origin(from.state->pose.x, from.state->pose.y);

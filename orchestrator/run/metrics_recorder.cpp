@@ -8,7 +8,7 @@
 #include <limits>
 
 #include "core/errors.hpp"
-#include "metrics/box_distance.hpp"
+#include "sim/box.hpp"
 #include "metrics/lane_keeping.hpp"
 #include "metrics/metric_table.hpp"
 #include "run/run_result.hpp"
@@ -126,7 +126,7 @@ void MetricsRecorder::step(const StepView& view) {
       // Centres farther apart than the best distance plus both half-diagonals cannot beat it.
       const double reach = own_reach + std::hypot(b.body.length, b.body.width) / 2;
       if ((b.body.centre - a.position).norm() - reach > best) continue;
-      const double d = box_distance(own, b.box);
+      const double d = sim::box_distance(own, b.box);
       if (d < best) {
         best = d;
         m.min_dist_to = b.body.id;

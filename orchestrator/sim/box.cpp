@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace orch::sim {
 
@@ -41,6 +42,30 @@ bool boxes_touch(const Box& a, const Box& b) {
     if (separated_on(f, ca, cb) || separated_on(Vec2(-f.y(), f.x()), ca, cb)) return false;
   }
   return true;
+}
+
+namespace {
+double point_segment(const Vec2& p, const Vec2& a, const Vec2& b) {
+  const Vec2 d = b - a;
+  const double len2 = d.squaredNorm();
+  const double f = len2 > 0 ? std::clamp((p - a).dot(d) / len2, 0.0, 1.0) : 0.0;
+  return (p - (a + f * d)).norm();
+}
+}  // namespace
+
+double box_distance(const sim::Box& a, const sim::Box& b) {
+  if (boxes_touch(a, b)) return 0.0;
+  // Two convex polygons apart: the shortest distance joins a corner of one to an edge of
+  // the other.
+  const auto ca = box_corners(a);
+  const auto cb = box_corners(b);
+  double best = std::numeric_limits<double>::infinity();
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j) {
+      best = std::min(best, point_segment(ca[i], cb[j], cb[(j + 1) % 4]));
+      best = std::min(best, point_segment(cb[i], ca[j], ca[(j + 1) % 4]));
+    }
+  return best;
 }
 
 }  // namespace orch::sim

@@ -18,5 +18,8 @@ struct Box {
 bool boxes_touch(const Box& a, const Box& b);
 // The four corners, front-left, front-right, rear-right, rear-left.
 std::array<Vec2, 4> box_corners(const Box& b);
+// The shortest distance between the two rectangles, 0 when they touch (the metrics' minimum
+// distance, docs/evaluation.md; OpenSCENARIO's freespace distance between bounding boxes).
+double box_distance(const Box& a, const Box& b);
 
 }  // namespace orch::sim

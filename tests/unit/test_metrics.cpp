@@ -6,7 +6,7 @@
 #include <numbers>
 
 #include "metrics/actor_metrics.hpp"
-#include "metrics/box_distance.hpp"
+#include "sim/box.hpp"
 #include "metrics/following.hpp"
 #include "metrics/kinematics.hpp"
 #include "metrics/lane_keeping.hpp"
@@ -143,10 +143,10 @@ TEST(LaneKeeping, BodyBeyondTheMarking) {
 
 TEST(BoxDistance, AxisAlignedDiagonalRotatedTouching) {
   const sim::Box a{{0, 0}, 0, 4, 2};
-  EXPECT_NEAR(box_distance(a, {{10, 0}, 0, 4, 2}), 6, 1e-9);                // 10 - 2 - 2
-  EXPECT_NEAR(box_distance(a, {{10, 5}, 0, 4, 2}), std::sqrt(45.0), 1e-9);  // corners (2,1)-(8,4)
-  EXPECT_NEAR(box_distance(a, {{5, 0}, std::numbers::pi / 2, 4, 2}), 2, 1e-9);  // x from 4: 4 - 2
-  EXPECT_DOUBLE_EQ(box_distance(a, {{3.9, 0}, 0, 4, 2}), 0);
+  EXPECT_NEAR(sim::box_distance(a, {{10, 0}, 0, 4, 2}), 6, 1e-9);                // 10 - 2 - 2
+  EXPECT_NEAR(sim::box_distance(a, {{10, 5}, 0, 4, 2}), std::sqrt(45.0), 1e-9);  // corners (2,1)-(8,4)
+  EXPECT_NEAR(sim::box_distance(a, {{5, 0}, std::numbers::pi / 2, 4, 2}), 2, 1e-9);  // x from 4: 4 - 2
+  EXPECT_DOUBLE_EQ(sim::box_distance(a, {{3.9, 0}, 0, 4, 2}), 0);
 }
 
 std::vector<TrajectorySample> drive(Vec2 from, Vec2 velocity, double t0, double t1, double heading) {
