@@ -26,6 +26,8 @@ struct ValueRange {
 struct DeterministicFactor {
   std::vector<std::string> parameters;
   std::vector<std::vector<std::string>> options;  // options[i][j]: value of parameters[j]
+  // (option, parameter) pairs a ParameterValueSet does not assign: the scenario's default.
+  std::vector<std::pair<std::size_t, std::size_t>> scenario_defaults;
   Place where;
 };
 

@@ -93,30 +93,45 @@ DeterministicFactor read_multi(Element& e) {
   std::vector<Element> sets = set_distribution.children("ParameterValueSet");
   set_distribution.finish();
   if (sets.empty()) set_distribution.fail("a ValueSetDistribution needs at least one ParameterValueSet");
-  for (std::size_t i = 0; i < sets.size(); ++i) {
-    Element& set = sets[i];
+  // A set may assign only some of the distribution's parameters (the standard: "Set of
+  // parameter values that have to be assigned for a single concrete scenario"; esmini's
+  // cut-in_parameter_set.xosc does): the parameters are every set's, in order of first
+  // appearance, and a set that leaves one out runs it at the scenario's default
+  // (filled in by fill_scenario_defaults once the scenario is read).
+  std::vector<std::vector<std::pair<std::string, std::string>>> assigned;
+  for (Element& set : sets) {
     std::vector<std::pair<std::string, std::string>> assignments;
     for (Element a : set.children("ParameterAssignment")) {
-      assignments.emplace_back(a.text("parameterRef"), a.text("value"));
+      std::string name = a.text("parameterRef");
+      for (const auto& [earlier, value] : assignments)
+        if (earlier == name) a.fail_attribute("parameterRef", fmt::format("parameter \"{}\" is assigned twice in this ParameterValueSet", name));
+      assignments.emplace_back(std::move(name), a.text("value"));
       a.finish();
     }
     set.finish();
     if (assignments.empty()) set.fail("a ParameterValueSet needs at least one ParameterAssignment");
-    std::vector<std::string> names;
-    for (const auto& [name, value] : assignments) names.push_back(name);
-    if (i == 0) {
-      f.parameters = names;
-    } else if (names != f.parameters) {
-      // Every set of one distribution must give the same parameters, or the product would
-      // leave some of them at their defaults in some runs only.
-      set.fail(fmt::format("this ParameterValueSet assigns {}, the first one of its ValueSetDistribution {}",
-                           quoted_list(names), quoted_list(f.parameters)));
+    for (const auto& [name, value] : assignments)
+      if (std::find(f.parameters.begin(), f.parameters.end(), name) == f.parameters.end()) f.parameters.push_back(name);
+    assigned.push_back(std::move(assignments));
+  }
+  for (std::size_t i = 0; i < assigned.size(); ++i) {
+    std::vector<std::string> option(f.parameters.size());
+    for (std::size_t j = 0; j < f.parameters.size(); ++j) {
+      const auto given = std::find_if(assigned[i].begin(), assigned[i].end(),
+                                      [&](const auto& a) { return a.first == f.parameters[j]; });
+      if (given == assigned[i].end()) f.scenario_defaults.emplace_back(i, j);
+      else option[j] = given->second;
     }
-    std::vector<std::string> option;
-    for (auto& [name, value] : assignments) option.push_back(std::move(value));
     f.options.push_back(std::move(option));
   }
   return f;
+}
+
+// The values a ParameterValueSet leaves out: the scenario's declared defaults.
+void fill_scenario_defaults(Variation& v) {
+  for (DeterministicFactor& f : v.factors)
+    for (const auto& [option, parameter] : f.scenario_defaults)
+      if (const Parameter* p = v.declaration(f.parameters[parameter])) f.options[option][parameter] = p->value;
 }
 
 StochasticParameter read_stochastic(Element& e) {
@@ -285,6 +300,7 @@ Variation load_variation(const std::string& path) {
   const Scenario scenario = load_scenario(v.scenario_file);
   v.declared = scenario.parameters;
   v.road_file = scenario.road_file;
+  fill_scenario_defaults(v);
   check_against_scenario(v, source);
   return v;
 }

@@ -155,14 +155,34 @@ TEST(OpenScenarioVariation, ParameterVariedTwiceIsAnError) {
   EXPECT_NE(e.find("parameter \"Gap_m\" is varied twice"), std::string::npos) << e;
 }
 
-TEST(OpenScenarioVariation, ValueSetsMustAssignTheSameParameters) {
+// A set may leave out parameters another set assigns (esmini's cut-in_parameter_set.xosc):
+// that run keeps the scenario's declared default.
+TEST(OpenScenarioVariation, ValueSetLeavingOutAParameterRunsItAtTheScenarioDefault) {
+  TempDir dir;
+  const auto file = dir.write("x_variation.xosc", deterministic(R"(
+      <DeterministicMultiParameterDistribution><ValueSetDistribution>
+        <ParameterValueSet><ParameterAssignment parameterRef="Gap_m" value="4"/>
+                           <ParameterAssignment parameterRef="Decel_mps2" value="7"/></ParameterValueSet>
+        <ParameterValueSet><ParameterAssignment parameterRef="Decel_mps2" value="9"/></ParameterValueSet>
+        <ParameterValueSet><ParameterAssignment parameterRef="BrakeTime_s" value="3"/></ParameterValueSet>
+      </ValueSetDistribution></DeterministicMultiParameterDistribution>)"));
+  const Variation v = load_variation(file.string());
+  ASSERT_EQ(v.factors.size(), 1u);
+  EXPECT_EQ(v.factors[0].parameters, (std::vector<std::string>{"Gap_m", "Decel_mps2", "BrakeTime_s"}));
+  const std::string gap = v.declaration("Gap_m")->value, decel = v.declaration("Decel_mps2")->value,
+                    brake = v.declaration("BrakeTime_s")->value;
+  EXPECT_EQ(v.factors[0].options,
+            (std::vector<std::vector<std::string>>{{"4", "7", brake}, {gap, "9", brake}, {gap, decel, "3"}}));
+}
+
+TEST(OpenScenarioVariation, ParameterAssignedTwiceInOneSetIsAnError) {
   const std::string e = error_of(deterministic(R"(
       <DeterministicMultiParameterDistribution><ValueSetDistribution>
-        <ParameterValueSet><ParameterAssignment parameterRef="Gap_m" value="4"/></ParameterValueSet>
-        <ParameterValueSet><ParameterAssignment parameterRef="Decel_mps2" value="4"/></ParameterValueSet>
+        <ParameterValueSet><ParameterAssignment parameterRef="Gap_m" value="4"/>
+                           <ParameterAssignment parameterRef="Gap_m" value="5"/></ParameterValueSet>
       </ValueSetDistribution></DeterministicMultiParameterDistribution>)"));
   EXPECT_NE(e.find("FILE:10: error:"), std::string::npos) << e;
-  EXPECT_NE(e.find("assigns \"Decel_mps2\", the first one of its ValueSetDistribution \"Gap_m\""), std::string::npos) << e;
+  EXPECT_NE(e.find("parameter \"Gap_m\" is assigned twice in this ParameterValueSet"), std::string::npos) << e;
 }
 
 TEST(OpenScenarioVariation, UserDefinedDistributionIsNotSupported) {
