@@ -3,11 +3,13 @@
 #include <dlfcn.h>
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <mutex>
 #include <utility>
+#include <vector>
 
 #include "core/errors.hpp"
 #include "libsumo_build_stamp.hpp"
@@ -20,6 +22,7 @@ namespace {
 namespace fs = std::filesystem;
 
 constexpr const char* kModuleName = "orchestrator-libsumo.so";
+constexpr const char* kStandInFolder = "libsumo-stubs";
 
 // ORCH_LIBSUMO_MODULE names another file (an installed program whose module lives
 // elsewhere); otherwise the module sits beside the program.
@@ -30,13 +33,43 @@ fs::path module_path() {
   return ec ? fs::path(kModuleName) : self.parent_path() / kModuleName;
 }
 
+// Debian's libsumocpp.so is built from SUMO's GUI sources too and names FFmpeg, GDAL and
+// OpenSceneGraph: with their own dependencies ~140 of the ~220 libraries it would load, and
+// most of the symbol relocations that made loading it the larger part of a short run's time
+// (docs/performance.md, "Start-up of a libsumo run"). A run starts libsumo without a GUI and
+// never calls them. The build writes stand-ins of the same sonames beside the module
+// (cmake/libsumo_stubs.py: exactly the symbols libsumocpp.so takes from each, every function
+// aborting with its name); loaded first, they take those libraries' place, since the dynamic
+// loader matches a needed library by soname against the ones already loaded.
+// ORCH_LIBSUMO_ALL_LIBRARIES=1 loads the real ones.
+std::vector<void*> load_stand_ins(const fs::path& module) {
+  std::vector<void*> handles;
+  if (const char* all = std::getenv("ORCH_LIBSUMO_ALL_LIBRARIES"); all && *all && std::strcmp(all, "0") != 0)
+    return handles;
+  std::error_code ec;
+  std::vector<fs::path> files;
+  for (const auto& entry : fs::directory_iterator(module.parent_path() / kStandInFolder, ec))
+    if (entry.is_regular_file(ec) && entry.path().filename().string().rfind("lib", 0) == 0) files.push_back(entry.path());
+  std::sort(files.begin(), files.end());
+  for (const fs::path& file : files)
+    if (void* h = dlopen(file.c_str(), RTLD_NOW | RTLD_LOCAL)) handles.push_back(h);
+  return handles;
+}
+
 const LibsumoModule& load_module() {
   static const LibsumoModule* module = nullptr;
   static std::once_flag once;
   std::call_once(once, [] {
     const fs::path path = module_path();
     // RTLD_NOW: a symbol the program lacks is an error here, not a crash mid-run.
+    std::vector<void*> stand_ins = load_stand_ins(path);
     void* handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
+    if (!handle && !stand_ins.empty()) {
+      // Stand-ins that no longer fit this libsumocpp.so (a newer SUMO names other symbols):
+      // load the real libraries instead.
+      for (void* h : stand_ins) dlclose(h);
+      handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
+    }
     if (!handle)
       throw SimulationError(fmt::format("the libsumo backend could not be loaded from {}: {} (build the target "
                                         "orchestrator-libsumo, or choose --backend traci)",

@@ -20,7 +20,26 @@ namespace fs = std::filesystem;
 namespace {
 
 // Bump when the conversion changes, so that old cache entries are not reused.
-constexpr std::string_view kConversionVersion = "opendrive-sumo-net 2";
+constexpr std::string_view kConversionVersion = "opendrive-sumo-net 3";
+
+// netconvert copies the road's geoReference into the net's <location projParameter>, and
+// SUMO then builds a PROJ transformation whenever it loads the net: PROJ opens and queries
+// its SQLite database, ~5 % of the CPU time of a short run (docs/performance.md). Nothing of
+// a run converts to longitude and latitude through SUMO, so the cached net carries none
+// ("!", SUMO's "no projection"); the simulation is the same.
+std::string without_projection(std::string net) {
+  const std::size_t location = net.find("<location ");
+  if (location == std::string::npos) return net;
+  const std::string key = " projParameter=\"";
+  const std::size_t start = net.find(key, location);
+  const std::size_t element_end = net.find('>', location);
+  if (start == std::string::npos || start > element_end) return net;
+  const std::size_t value = start + key.size();
+  const std::size_t end = net.find('"', value);
+  if (end == std::string::npos) return net;
+  net.replace(value, end - value, "!");
+  return net;
+}
 
 bool carries_traffic(std::string_view lane_type) {
   for (const std::string_view t : {"driving", "entry", "exit", "onRamp", "offRamp", "mwyEntry", "mwyExit"})
@@ -156,7 +175,8 @@ SumoNet convert_to_sumo_net(const fs::path& xodr_file, const fs::path& cache_roo
     throw MapError(fmt::format("netconvert could not convert {} (exit status {}):\n{}", xodr_file.string(),
                                result.exit_code, result.output));
   }
-  write_file_atomically(work / "net.net.xml", without_generation_date(read_file(work / "net.net.xml")));
+  write_file_atomically(work / "net.net.xml",
+                        without_projection(without_generation_date(read_file(work / "net.net.xml"))));
   fs::rename(work, dir, ec);
   if (ec) {
     fs::remove_all(work, ec);  // another process finished first; its entry is the same bytes

@@ -87,6 +87,28 @@ TEST(OpenDriveSumoNet, CachedPerContentAndByteIdentical) {
   EXPECT_NE(convert_to_sumo_net(dir.write("changed.xodr", changed), dir / "cache_a").key, first.key);
 }
 
+// netconvert copies a road's geoReference into the net's projection, which SUMO would turn
+// into a PROJ transformation on every load; the cached net carries none, and the same lanes.
+TEST(OpenDriveSumoNet, TheNetCarriesNoProjection) {
+  TempDir dir;
+  std::string geo = kRoad;
+  const std::string header = "<header revMajor=\"1\" revMinor=\"6\"/>";
+  geo.replace(geo.find(header), header.size(),
+              "<header revMajor=\"1\" revMinor=\"6\"><geoReference><![CDATA[+proj=utm +zone=32 +ellps=WGS84 "
+              "+units=m +no_defs]]></geoReference></header>");
+  const SumoNet with_geo = convert_to_sumo_net(dir.write("geo.xodr", geo), dir / "cache");
+  const SumoNet plain = convert_to_sumo_net(dir.write("road.xodr", kRoad), dir / "cache");
+  pugi::xml_document doc;
+  ASSERT_TRUE(doc.load_file(with_geo.net_file.c_str()));
+  EXPECT_STREQ(doc.child("net").child("location").attribute("projParameter").value(), "!");
+  EXPECT_EQ(orch::read_file(with_geo.net_file).find("+proj"), std::string::npos);
+  for (const std::string edge : {"-0", "0"}) {
+    const auto a = lanes_of(with_geo.net_file, edge), b = lanes_of(plain.net_file, edge);
+    ASSERT_EQ(a.size(), b.size()) << edge;
+    for (std::size_t i = 0; i < a.size(); ++i) EXPECT_EQ(a[i].speed, b[i].speed) << edge << " " << i;
+  }
+}
+
 TEST(OpenDriveSumoNet, BrokenFileIsAnErrorNamingItAndLeavesNoCacheEntry) {
   TempDir dir;
   const auto road = dir.write("broken.xodr", std::string(kRoad).substr(0, 300));

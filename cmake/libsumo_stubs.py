@@ -1,0 +1,172 @@
+#!/usr/bin/python3
+"""Stand-ins for the libraries of SUMO's GUI, video and image code that Debian's
+libsumocpp.so names but that a libsumo run never calls (docs/performance.md, "Start-up of a
+libsumo run").
+
+libsumocpp.so is built from SUMO's GUI sources too, so it names FFmpeg (video recording),
+GDAL (background images) and OpenSceneGraph with gl2ps (the 3D view and printing): with
+their own dependencies ~140 of the 221 shared libraries a libsumo process loads, and ~70,000
+of the symbol relocations the dynamic loader resolves at start (BIND_NOW). A run never
+reaches that code: the orchestrator starts libsumo as `sumo`, without a GUI. For each such
+library this writes a small shared library of the same soname that defines exactly the
+symbols libsumocpp.so takes from it (same symbol versions), each function aborting with a
+message naming itself. The program loads them before the libsumo module
+(adapters/sumo/libsumo_loader.cpp), so the loader finds them in the libraries' place.
+
+A library is left out only when nothing else that libsumocpp.so keeps needs it, and only
+when every symbol libsumocpp.so takes from the left-out libraries can be given a stand-in;
+otherwise nothing is written (and the libraries load as before).
+
+Usage: libsumo_stubs.py --libsumo PATH --out DIR --cxx COMPILER
+"""
+import argparse
+import os
+import re
+import shutil
+import subprocess
+import sys
+
+# Sonames (by prefix) of the GUI, video and image libraries a run does not use.
+LEAVE_OUT = ("libavformat.", "libavcodec.", "libavutil.", "libswscale.", "libswresample.", "libgdal.",
+             "libosg", "libOpenThreads.", "libgl2ps.")
+
+
+def run(cmd):
+    return subprocess.run(cmd, capture_output=True, text=True, check=True).stdout
+
+
+def needed(path):
+    return re.findall(r"\(NEEDED\)\s+Shared library: \[([^\]]+)\]", run(["readelf", "-d", "-W", path]))
+
+
+def closure(path):
+    """soname -> path of every library the dynamic loader loads for `path`."""
+    libs = {}
+    for line in run(["ldd", path]).splitlines():
+        m = re.match(r"\s*(\S+) => (/\S+)", line)
+        if m:
+            libs[m.group(1)] = m.group(2)
+    return libs
+
+
+def symbols(path, flag):
+    """[(name, version or '', type letter, size)] of nm -D."""
+    out = []
+    for line in run(["nm", "-D", "-S", flag, path]).splitlines():
+        f = line.split()
+        if not f:
+            continue
+        name, typ = f[-1], f[-2]
+        size = int(f[1], 16) if len(f) == 4 else 0
+        base, _, version = name.partition("@")
+        out.append((base, version.lstrip("@"), typ, size))
+    return out
+
+
+def verneed_files(path):
+    """version name -> the file libsumocpp.so wants it from."""
+    files, current = {}, None
+    for line in run(["readelf", "-V", "-W", path]).splitlines():
+        m = re.search(r"File: (\S+)", line)
+        if m:
+            current = m.group(1)
+        m = re.search(r"Name: (\S+)", line)
+        if m and current:
+            files[m.group(1)] = current
+    return files
+
+
+def plan(libsumo):
+    """{soname: [(symbol, version, is_function, size)]} or None when it cannot be done safely."""
+    everything = closure(libsumo)
+    direct = needed(libsumo)
+    out = [n for n in direct if n.startswith(LEAVE_OUT)]
+    kept = {}
+    for n in direct:
+        if n not in out:
+            kept[n] = everything[n]
+            kept.update(closure(everything[n]))
+    out = [n for n in out if n not in kept]  # something libsumocpp keeps needs it itself
+    if not out:
+        return None
+    defined_kept = set()
+    for path in set(kept.values()):
+        defined_kept.update(s[0] for s in symbols(path, "--defined-only"))
+    gone = {n: p for n, p in everything.items() if n not in kept}
+    defined_gone = {}
+    for n, p in gone.items():
+        for base, _, typ, size in symbols(p, "--defined-only"):
+            defined_gone.setdefault(base, (n, typ, size))
+    files = verneed_files(libsumo)
+    stubs = {n: [] for n in out}
+    for base, version, typ, _ in symbols(libsumo, "--undefined-only"):
+        if base in defined_kept or base not in defined_gone:
+            continue  # found as before, or a weak reference that may stay unresolved
+        owner, otyp, size = defined_gone[base]
+        want = files.get(version, owner) if version else owner
+        if want not in stubs:
+            return None  # a symbol only a library we keep out could give under its name
+        stubs[want].append((base, version, otyp in "TtWwi", max(size, 8)))
+    return stubs
+
+
+def write(out_dir, cxx, stubs):
+    os.makedirs(out_dir, exist_ok=True)
+    src_dir = os.path.join(out_dir, "src")
+    os.makedirs(src_dir, exist_ok=True)
+    for soname, syms in sorted(stubs.items()):
+        tail = (" of %s, which the orchestrator's libsumo runs leave out (SUMO's GUI, video and image code); "
+                "set ORCH_LIBSUMO_ALL_LIBRARIES=1 or use --backend traci\\n" % soname)
+        lines = ["// Generated by cmake/libsumo_stubs.py: stands in for %s (never called in a run)." % soname,
+                 "#include <cstdlib>", "#include <cstring>", "#include <initializer_list>", "#include <unistd.h>",
+                 "[[noreturn]] static void called(const char* symbol) {",
+                 '  for (const char* part : {"orchestrator: SUMO called ", symbol, "%s"})' % tail,
+                 "    (void)!::write(2, part, std::strlen(part));", "  std::abort();", "}", 'extern "C" {']
+        for base, _, is_function, size in sorted(syms):
+            if is_function:
+                lines.append('void %s() { called("%s"); }' % (base, base))
+            else:
+                lines.append("alignas(16) char %s[%d];" % (base, size))
+        lines.append("}")
+        source = os.path.join(src_dir, soname + ".cpp")
+        with open(source, "w") as f:
+            f.write("\n".join(lines) + "\n")
+        by_version = {}
+        for base, version, _, _ in syms:
+            by_version.setdefault(version, set()).add(base)
+        script = os.path.join(src_dir, soname + ".map")
+        with open(script, "w") as f:
+            if set(by_version) == {""}:
+                f.write("{ global: %s; local: *; };\n" % "; ".join(sorted(by_version[""])))
+            else:
+                # Each symbol under the version libsumocpp.so asks for (an unversioned one under the first).
+                named = sorted(v for v in by_version if v)
+                for i, v in enumerate(named):
+                    names = by_version[v] | (by_version.get("", set()) if i == 0 else set())
+                    f.write("%s { global: %s;%s };\n" % (v, "; ".join(sorted(names)), " local: *;" if i == 0 else ""))
+        subprocess.run([cxx, "-shared", "-fPIC", "-O1", "-w", "-o", os.path.join(out_dir, soname), source,
+                        "-Wl,-soname," + soname, "-Wl,--version-script=" + script], check=True)
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--libsumo", required=True)
+    ap.add_argument("--out", required=True)
+    ap.add_argument("--cxx", required=True)
+    a = ap.parse_args()
+    shutil.rmtree(a.out, ignore_errors=True)
+    os.makedirs(a.out)
+    try:
+        stubs = plan(os.path.realpath(a.libsumo))
+    except (OSError, subprocess.CalledProcessError) as e:
+        print("libsumo_stubs.py: %s; the libsumo module loads every library libsumocpp.so names" % e, file=sys.stderr)
+        stubs = None
+    if stubs:
+        write(a.out, a.cxx, stubs)
+        print("libsumo_stubs.py: stand-ins for %s" % ", ".join(sorted(stubs)))
+    else:
+        print("libsumo_stubs.py: no stand-ins; the libsumo module loads every library libsumocpp.so names")
+
+
+if __name__ == "__main__":
+    main()
