@@ -25,7 +25,10 @@ struct RouteTarget {
 // targets[state.route_passed], then on to each later target; `closed`: also from the last
 // target back to the first, and the plan repeats from the first target on. A leg that the
 // entity's lane cannot drive is planned from another lane of its road in the same direction
-// (the storyboard's lane changes take it there); when none can, MapError naming the target.
+// (the storyboard's lane changes take it there), and for an entity standing across its road
+// (more than 60 degrees off it: parked, esmini's parking_demo.xosc) also from a lane driving
+// the other way, nearest first (esmini starts a route from wherever the entity is); when none
+// can, MapError naming the target.
 void plan_entity_route(EntityState& state, const opendrive::RoadNetwork& roads,
                        const std::vector<RouteTarget>& targets, bool closed);
 

@@ -149,6 +149,28 @@ TEST(RoutePlan, ClosedRoutesLoopAndLanesAheadContinueStraightOn) {
   }
 }
 
+TEST(RoutePlan, AnEntityParkedAcrossItsRoadStartsItsRouteFromTheNearestLaneGoingThere) {
+  // One road along +x, lane 1 (driving against s, to the road's start) and lane -1.
+  const auto roads = opendrive::read_xodr_text(R"(<OpenDRIVE><header revMajor="1" revMinor="6"/>
+<road id="0" length="100" junction="-1"><planView><geometry s="0" x="0" y="0" hdg="0" length="100"><line/></geometry></planView>
+<lanes><laneSection s="0"><left><lane id="1" type="driving"><width sOffset="0" a="3.5" b="0" c="0" d="0"/></lane></left>
+<right><lane id="-1" type="driving"><width sOffset="0" a="3.5" b="0" c="0" d="0"/></lane></right></laneSection></lanes></road></OpenDRIVE>)",
+                                               "one.xodr");
+  const auto plan = [&](double heading) {
+    EntityState car = on_lane(roads, "0", 1, 50, 0);
+    car.pose.heading = heading;
+    car.route = {{"0", 80, -1}};
+    plan_entity_route(car, roads, {{car.route[0], opendrive::RouteStrategy::Shortest, "waypoint 1"}}, false);
+    return car.route_plan;
+  };
+  // Facing along its lane (against s), s = 80 is behind it: no route.
+  EXPECT_THROW(plan(kPi), MapError);
+  EXPECT_THROW(plan(kPi / 4), MapError);  // 45 degrees off the road: still driving its lane's way
+  // Parked across the road (esmini's parking_demo.xosc): planned from lane -1, the nearest lane going there.
+  EXPECT_NO_THROW(plan(kPi / 2));
+  EXPECT_NO_THROW(plan(-kPi / 2));
+}
+
 TEST(RoutePlan, AClosedRouteRepeatsItsLoop) {
   // A ring: road 1 -> road 2 -> road 1 (both ends linked).
   const std::string ring = test::xodr_file(test::xodr_road({"1", 0, 0, 0, 100, "road 2 end", "road 2 start"}) +
