@@ -149,16 +149,17 @@ TEST(RoutePlan, ClosedRoutesLoopAndLanesAheadContinueStraightOn) {
   }
 }
 
-TEST(RoutePlan, AnEntityParkedAcrossItsRoadStartsItsRouteFromTheNearestLaneGoingThere) {
+TEST(RoutePlan, AParkedEntityOrOneInTheOncomingLaneStartsItsRouteFromALaneGoingThere) {
   // One road along +x, lane 1 (driving against s, to the road's start) and lane -1.
   const auto roads = opendrive::read_xodr_text(R"(<OpenDRIVE><header revMajor="1" revMinor="6"/>
 <road id="0" length="100" junction="-1"><planView><geometry s="0" x="0" y="0" hdg="0" length="100"><line/></geometry></planView>
 <lanes><laneSection s="0"><left><lane id="1" type="driving"><width sOffset="0" a="3.5" b="0" c="0" d="0"/></lane></left>
 <right><lane id="-1" type="driving"><width sOffset="0" a="3.5" b="0" c="0" d="0"/></lane></right></laneSection></lanes></road></OpenDRIVE>)",
                                                "one.xodr");
-  const auto plan = [&](double heading) {
+  const auto plan = [&](double heading, int direction = 0) {
     EntityState car = on_lane(roads, "0", 1, 50, 0);
     car.pose.heading = heading;
+    car.direction = direction;
     car.route = {{"0", 80, -1}};
     plan_entity_route(car, roads, {{car.route[0], opendrive::RouteStrategy::Shortest, "waypoint 1"}}, false);
     return car.route_plan;
@@ -169,6 +170,8 @@ TEST(RoutePlan, AnEntityParkedAcrossItsRoadStartsItsRouteFromTheNearestLaneGoing
   // Parked across the road (esmini's parking_demo.xosc): planned from lane -1, the nearest lane going there.
   EXPECT_NO_THROW(plan(kPi / 2));
   EXPECT_NO_THROW(plan(-kPi / 2));
+  // In the oncoming lane but driving along s (it keeps its way): from a lane driving its way.
+  EXPECT_NO_THROW(plan(0, 1));
 }
 
 TEST(RoutePlan, AClosedRouteRepeatsItsLoop) {
