@@ -61,6 +61,18 @@ TEST(RoadFollowing, DrivesOnAcrossARoadEndWithTheRemainingDistance) {
   EXPECT_NEAR(car.odometer, 10.0, 1e-9);
 }
 
+TEST(RoadFollowing, AStandingEntityKeepsTheHeadingItWasPlacedWithUntilItDrivesOff) {
+  const auto roads = opendrive::read_xodr_text(test::xodr_two_in_a_row(), "row.xodr");
+  EntityState car = on_lane(roads, "1", -1, 50, 0);
+  car.pose.heading = kPi / 2;  // parked across its lane (a position's Orientation)
+  drive(car, roads, 1.0);
+  EXPECT_NEAR(car.pose.heading, kPi / 2, 1e-12);
+  EXPECT_NEAR(car.pose.x, 50.0, 1e-9);
+  car.speed = 5;  // drives off: along its lane
+  drive(car, roads, 0.05);
+  EXPECT_NEAR(car.pose.heading, 0.0, 1e-9);
+}
+
 TEST(RoadFollowing, AContactPointEndFlipsTheDirectionAndThePoseStaysContinuous) {
   const auto roads = opendrive::read_xodr_text(test::xodr_contact_end(), "flip.xodr");
   EntityState car = on_lane(roads, "1", -1, 95, 10);
