@@ -172,7 +172,7 @@ PathMotion trajectory_path(const FollowTrajectoryAction& a, ActionContext& ctx, 
   if (const auto* polyline = std::get_if<PolylineShape>(&a.trajectory.shape)) {
     for (const TrajectoryVertex& v : polyline->vertices) {
       const opendrive::Pose2 p = ctx.resolver.resolve(v.position, poses(ctx)).pose;
-      points.push_back({p.x, p.y, 0.0, due(v.time)});
+      points.push_back({p.x, p.y, 0.0, due(v.time), std::nullopt});
     }
   } else if (const auto* nurbs = std::get_if<NurbsShape>(&a.trajectory.shape)) {
     std::vector<NurbsControl> controls;
