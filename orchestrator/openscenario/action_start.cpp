@@ -172,7 +172,7 @@ PathMotion trajectory_path(const FollowTrajectoryAction& a, ActionContext& ctx, 
   if (const auto* polyline = std::get_if<PolylineShape>(&a.trajectory.shape)) {
     for (const TrajectoryVertex& v : polyline->vertices) {
       const opendrive::Pose2 p = ctx.resolver.resolve(v.position, poses(ctx)).pose;
-      points.push_back({p.x, p.y, 0.0, due(v.time)});
+      points.push_back({p.x, p.y, 0.0, due(v.time), std::nullopt});
     }
   } else if (const auto* nurbs = std::get_if<NurbsShape>(&a.trajectory.shape)) {
     std::vector<NurbsControl> controls;
@@ -244,7 +244,15 @@ std::vector<std::string> start_action(const PrivateAction& action, const std::st
         ++it;
       }
     }
-    if (takes_time || continuous) running.push_back({action_name, entity, domain, continuous, &action, std::nullopt, std::nullopt, std::nullopt});
+    if (takes_time || continuous) {
+      RunningAction r;
+      r.action = action_name;
+      r.entity = entity;
+      r.domain = domain;
+      r.continuous = continuous;
+      r.spec = &action;
+      running.push_back(std::move(r));
+    }
   };
   std::visit(
       [&](const auto& a) {
@@ -399,11 +407,11 @@ std::vector<std::string> start_action(const PrivateAction& action, const std::st
           running.back().synchronize = std::move(run);
         } else if constexpr (std::is_same_v<T, LateralDistanceAction>) {
           // Kept by the storyboard's motion (lateral_distance.hpp), also for an entity SUMO does not drive.
-          std::optional<double> kept;
-          const bool reached = keep_lateral_distance(a, state, ctx, entity, kept, true);
+          LateralDistanceRun run;
+          const bool reached = keep_lateral_distance(a, state, ctx, entity, run, true);
           take_over(MotionDomain::Lateral, !reached, a.continuous);
           if (!running.empty() && running.back().entity == entity && running.back().spec == &action)
-            running.back().lateral_distance = kept;
+            running.back().lateral_distance = run;
         } else if constexpr (std::is_same_v<T, TrafficSignalStateAction>) {
           ctx.signals->set_state(a.signal, a.state);
         } else if constexpr (std::is_same_v<T, TrafficSignalControllerAction>) {

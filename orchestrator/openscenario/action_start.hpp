@@ -2,6 +2,7 @@
 // What each private action does to an entity when it starts, and, for actions that take
 // time, each step until it ends (internal to the storyboard runtime).
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -39,6 +40,13 @@ struct ActionContext {
 // Route: an AcquirePositionAction waiting for its entity to reach the position.
 enum class MotionDomain { Longitudinal, Lateral, Route };
 
+// What a running LateralDistanceAction carries from step to step (lateral_distance.hpp).
+struct LateralDistanceRun {
+  std::optional<double> kept;  // the distance to keep (set on the first call when the action gives none)
+  double speed = 0;            // its lateral speed (the entity's own is reset by each step's move)
+  bool waited = false;         // the step after its start passed (it moves from the second step on)
+};
+
 // An action still shaping one entity's motion.
 struct RunningAction {
   std::string action;  // storyboard name; "" for Init actions
@@ -48,7 +56,7 @@ struct RunningAction {
   const PrivateAction* spec = nullptr;
   std::optional<SynchronizeRun> synchronize;  // a SynchronizeAction's targets and phase
   std::optional<SpeedProfileRun> speed_profile;  // a SpeedProfileAction's segments and progress
-  std::optional<double> lateral_distance;        // a LateralDistanceAction's distance kept
+  LateralDistanceRun lateral_distance;            // a LateralDistanceAction's distance kept, its speed
   double distance_acceleration = 0;              // a LongitudinalDistanceAction's last acceleration (its jerk limits)
   bool synchronized = false;  // a SynchronizeAction done (steer_synchronize, before the step's move)
 };

@@ -153,6 +153,10 @@ void advance(EntityState& state, const opendrive::RoadNetwork& roads, double t, 
     state.offset = state.lateral_profile->at(clock);
     state.lateral_rate = state.lateral_profile->rate(clock);
   }
+  // Standing still, nothing moves it: it keeps its pose, also a heading across its lane that
+  // its position's Orientation gave it (a parked car, esmini's parking_demo.xosc, faces the
+  // kerb until it drives off; esmini leaves a standing entity where it is).
+  if (previous_speed == 0 && state.speed == 0 && !state.lateral_profile) return;
   if (state.road_id.empty()) {  // on no road (a scenario without one): straight on along its heading
     state.pose.x += state.speed * dt * std::cos(state.pose.heading);
     state.pose.y += state.speed * dt * std::sin(state.pose.heading);

@@ -40,7 +40,7 @@ double lateral_speed_step(double error, double speed, double dt, std::optional<d
 }
 
 bool keep_lateral_distance(const LateralDistanceAction& a, EntityState& state, ActionContext& ctx,
-                           const std::string& entity, std::optional<double>& kept, bool starts) {
+                           const std::string& entity, LateralDistanceRun& run, bool starts) {
   const auto other_it = ctx.entities.find(a.entity);
   if (!state.placed || state.road_id.empty() || other_it == ctx.entities.end() || !other_it->second.placed)
     throw MapError(fmt::format("LateralDistanceAction of \"{}\": both it and \"{}\" need a place on a road", entity,
@@ -60,6 +60,7 @@ bool keep_lateral_distance(const LateralDistanceAction& a, EntityState& state, A
   const int other_direction = other.road_id == state.road_id ? travel_direction(other, road) : travel_direction(state, road);
   const double left = road_frame ? other_direction : 1.0;
   const double freespace = a.freespace ? half_width(ctx.scenario, entity) + half_width(ctx.scenario, a.entity) : 0.0;
+  std::optional<double>& kept = run.kept;
   if (!kept) kept = a.distance ? *a.distance : std::max(std::abs(self - others) - freespace, 0.0);
   double side = a.displacement == "leftToReferencedEntity"    ? left
                 : a.displacement == "rightToReferencedEntity" ? -left
@@ -67,15 +68,31 @@ bool keep_lateral_distance(const LateralDistanceAction& a, EntityState& state, A
                                                               : -left;
   const double target = others + side * (*kept + freespace);
   const double error = target - self;
-  const double rate = lateral_speed_step(error, state.lateral_rate, ctx.dt, a.max_speed, a.max_acceleration,
-                                         a.max_deceleration);
   const bool at_once = ctx.dt <= 0 || (!a.max_speed && !a.max_acceleration && !a.max_deceleration);
   if (starts && !at_once) return false;
+  if (!at_once && !run.waited) {  // the step after its start: still where it was
+    run.waited = true;
+    return false;
+  }
+  const double rate = at_once ? 0.0
+                              : lateral_speed_step(error, run.speed, ctx.dt, a.max_speed, a.max_acceleration,
+                                                   a.max_deceleration);
   const double move = at_once ? error : rate * ctx.dt;
+  run.speed = rate;
   // Along the axis; in the road frame that is the entity's t.
   state.lateral_profile.reset();
   state.path.reset();
   if (road_frame) {
+    // The step's move along the lane went at the full speed: back by what the sideways
+    // motion takes (ds = sqrt(v^2 - v_lat^2) dt, over the path's stretch at t on a curve).
+    if (!at_once && rate != 0) {
+      const double along = std::sqrt(std::max(state.speed * state.speed - rate * rate, 0.0));
+      const double s_now = std::clamp(state.s, 0.0, road.length);
+      const double stretch = 1.0 - road.plan_view.curvature(s_now) * state.t;
+      state.s = std::clamp(state.s - travel_direction(state, road) * (std::abs(state.speed) - along) * ctx.dt /
+                                         (stretch > 0.1 ? stretch : 0.1),
+                           0.0, road.length);
+    }
     state.offset += move;
     state.lateral_rate = at_once ? 0.0 : rate;
     update_pose(state, ctx.roads);
@@ -91,8 +108,8 @@ bool keep_lateral_distance(const LateralDistanceAction& a, EntityState& state, A
     state.offset = state.t - road.lane_center_t(*lane, std::clamp(state.s, 0.0, road.length));
     state.lane = *lane;
   }
-  const bool reached = std::abs(error - move) < kOnTarget && (at_once || std::abs(state.lateral_rate) < 0.05);
-  if (reached) state.lateral_rate = 0;
+  const bool reached = std::abs(error - move) < kOnTarget && (at_once || std::abs(run.speed) < 0.05);
+  if (reached) state.lateral_rate = run.speed = 0;
   return reached;
 }
 

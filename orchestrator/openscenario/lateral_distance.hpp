@@ -25,11 +25,15 @@ namespace orch::openscenario {
 double lateral_speed_step(double error, double speed, double dt, std::optional<double> max_speed,
                           std::optional<double> max_acceleration, std::optional<double> max_deceleration);
 
-// One step of the action for `entity`. `kept` holds the distance to keep (set on the first
-// call when the action gives none). When it `starts`, an entity with DynamicConstraints only
-// measures (it moves from the next step on); one without is put on the target at once. True once the entity
-// is on its target (within 1 cm, at rest sideways). Throws MapError unless both are placed on a road.
+// One step of the action for `entity`, after the step's move along the lane. When it
+// `starts`, an entity with DynamicConstraints only measures and moves from the second step
+// after its start on, as esmini moves it (like a lane offset, LateralProfile::lane_offset;
+// the standard gives the constraints, not how a player steps them); one without is put on
+// the target at once. A step that moves it sideways at v_lat takes back what the lane's
+// move gave beyond sqrt(v^2 - v_lat^2) along s (the speed is along its path, as a lane
+// change's). True once the entity is on its target (within 1 cm, at rest sideways). Throws
+// MapError unless both are placed on a road.
 bool keep_lateral_distance(const LateralDistanceAction& a, EntityState& state, ActionContext& ctx,
-                           const std::string& entity, std::optional<double>& kept, bool starts = false);
+                           const std::string& entity, LateralDistanceRun& run, bool starts = false);
 
 }  // namespace orch::openscenario

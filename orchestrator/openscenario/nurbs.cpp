@@ -71,7 +71,7 @@ std::vector<PathPoint> nurbs_points(const std::vector<NurbsControl>& controls, c
       x += weights[i] * controls[i].weight * controls[i].x / total;
       y += weights[i] * controls[i].weight * controls[i].y / total;
     }
-    points.push_back({x, y, 0.0, std::nullopt});
+    points.push_back({x, y, 0.0, std::nullopt, std::nullopt});
     params.push_back(u);
   }
   if (controls.front().time && n >= 2) {

@@ -29,27 +29,49 @@ int lane_further_on(const opendrive::Road& road, int lane, double entry_s, doubl
   return lane;
 }
 
-// The entity's own lane first, then the other lanes of its road driving its way, nearest first.
-std::vector<int> start_lanes(const opendrive::Road& road, double s, int lane) {
+// The entity's own lane first, then the other lanes of its road driving its way (`way`: +1
+// along s, -1 against; an entity changed into the oncoming lane keeps going its way),
+// nearest first; for an entity standing `across` its road (parked), after those the lanes
+// driving the other way, nearest to it first: its heading gives it no direction of travel.
+std::vector<int> start_lanes(const opendrive::Road& road, double s, int lane, double t, int way, bool across) {
   std::vector<int> lanes{lane};
   const opendrive::LaneSection& section = road.section_at(s);
-  std::vector<int> others;
+  std::vector<int> others, opposite;
   for (const auto* side : {&section.left, &section.right})
     for (const opendrive::Lane& l : *side)
-      if (l.id != lane && opendrive::lane_direction(road, l.id) == opendrive::lane_direction(road, lane))
-        others.push_back(l.id);
-  std::stable_sort(others.begin(), others.end(),
-                   [&](int a, int b) { return std::abs(a - lane) < std::abs(b - lane); });
+      if (l.id != lane) {
+        if (opendrive::lane_direction(road, l.id) == way) others.push_back(l.id);
+        else if (across) opposite.push_back(l.id);
+      }
+  const auto nearest = [&](int a, int b) {
+    return std::abs(road.lane_center_t(a, s) - t) < std::abs(road.lane_center_t(b, s) - t);
+  };
+  if (opendrive::lane_direction(road, lane) == way)  // beside its own lane: by lane id, as ever
+    std::stable_sort(others.begin(), others.end(),
+                     [&](int a, int b) { return std::abs(a - lane) < std::abs(b - lane); });
+  else
+    std::stable_sort(others.begin(), others.end(), nearest);
+  std::stable_sort(opposite.begin(), opposite.end(), nearest);
   lanes.insert(lanes.end(), others.begin(), others.end());
+  lanes.insert(lanes.end(), opposite.begin(), opposite.end());
   return lanes;
 }
 
+// Whether a heading is across the road at s: more than 60 degrees off its reference line, either way.
+bool across_road(const opendrive::Road& road, double s, double heading) {
+  return std::abs(std::cos(heading - road.plan_view.pose(s).heading)) < 0.5;
+}
+
 // One leg; returns the plan and the lane the entity arrives on at the target's s.
+// `t`, `way` and `across`: where the entity stands on its road, the way it drives (0: its
+// lane's) and whether it stands across it (the first leg only; a later leg starts on the
+// lane the one before arrived on, its way).
 std::pair<std::vector<LaneEntry>, int> plan_leg(const opendrive::RoadNetwork& roads, const RoutePoint& from,
-                                                const RouteTarget& to) {
+                                                const RouteTarget& to, double t = 0, int way = 0, bool across = false) {
   const opendrive::Road& road = roads.road(from.road_id);
   const RoutePoint goal{to.at.road_id, to.at.s, to.at.lane};
-  for (const int lane : start_lanes(road, from.s, from.lane)) {
+  if (way == 0) way = opendrive::lane_direction(road, from.lane);
+  for (const int lane : start_lanes(road, from.s, from.lane, t, way, across)) {
     auto plan = opendrive::plan_route(roads, {from.road_id, from.s, lane}, goal, to.strategy);
     if (!plan) continue;
     const opendrive::Road& arrival = roads.road(goal.road_id);
@@ -79,9 +101,14 @@ void plan_entity_route(EntityState& state, const opendrive::RoadNetwork& roads,
   state.route_plan_loop.reset();
   ++state.route_version;
   if (!state.placed || targets.empty()) return;
-  RoutePoint from{state.road_id, std::clamp(state.s, 0.0, roads.road(state.road_id).length), state.lane};
+  const opendrive::Road& road = roads.road(state.road_id);
+  RoutePoint from{state.road_id, std::clamp(state.s, 0.0, road.length), state.lane};
+  bool first_leg = true;
   const auto append = [&](const RouteTarget& to) {
-    auto [plan, arriving] = plan_leg(roads, from, to);
+    const bool across = first_leg && across_road(road, from.s, state.pose.heading);
+    const int way = first_leg ? travel_direction(state, road) : 0;
+    first_leg = false;
+    auto [plan, arriving] = plan_leg(roads, from, to, state.t, way, across);
     state.route_plan.insert(state.route_plan.end(), plan.begin(), plan.end());
     from = {to.at.road_id, to.at.s, arriving};
   };

@@ -24,8 +24,11 @@ struct RouteTarget {
 // Fills state.route_plan (route_plan_next = 0) with the legs from the entity's position to
 // targets[state.route_passed], then on to each later target; `closed`: also from the last
 // target back to the first, and the plan repeats from the first target on. A leg that the
-// entity's lane cannot drive is planned from another lane of its road in the same direction
-// (the storyboard's lane changes take it there); when none can, MapError naming the target.
+// entity's lane cannot drive is planned from another lane of its road driving the entity's
+// way (the storyboard's lane changes take it there), and for an entity standing across its road
+// (more than 60 degrees off it: parked, esmini's parking_demo.xosc) also from a lane driving
+// the other way, nearest first (esmini starts a route from wherever the entity is); when none
+// can, MapError naming the target.
 void plan_entity_route(EntityState& state, const opendrive::RoadNetwork& roads,
                        const std::vector<RouteTarget>& targets, bool closed);
 

@@ -14,7 +14,7 @@ std::vector<PathPoint> clothoid_points(const opendrive::Pose2& start, double k0,
   std::vector<PathPoint> points;
   for (int i = 0; i <= pieces; ++i) {
     const opendrive::Pose2 p = opendrive::evaluate(geometry, length * i / pieces);
-    points.push_back({p.x, p.y, 0.0, std::nullopt});
+    points.push_back({p.x, p.y, 0.0, std::nullopt, p.heading});
   }
   return points;
 }
@@ -54,7 +54,7 @@ void close_path(std::vector<PathPoint>& points) {
   const PathPoint first = points.front(), last = points.back();
   const double gap = std::hypot(first.x - last.x, first.y - last.y);
   if (gap < 1e-3) return;
-  PathPoint closing{first.x, first.y, 0.0, std::nullopt};
+  PathPoint closing{first.x, first.y, 0.0, std::nullopt, std::nullopt};
   if (last.due) {
     double speed = 0;
     for (std::size_t i = points.size() - 1; i > 0 && speed <= 0; --i) {
@@ -98,7 +98,10 @@ opendrive::Pose2 PathMotion::pose_at(double d) const {
   const PathPoint& b = *next;
   const PathPoint& a = *(next - 1);
   const double f = (d - a.distance) / (b.distance - a.distance);
-  return {a.x + f * (b.x - a.x), a.y + f * (b.y - a.y), std::atan2(b.y - a.y, b.x - a.x)};
+  double heading = std::atan2(b.y - a.y, b.x - a.x);
+  if (a.heading && b.heading)  // along the curve's tangent, the short way round
+    heading = *a.heading + f * std::remainder(*b.heading - *a.heading, 2 * M_PI);
+  return {a.x + f * (b.x - a.x), a.y + f * (b.y - a.y), heading};
 }
 
 double PathMotion::distance_at(double t) const {

@@ -16,6 +16,12 @@ struct PathPoint {
   double x = 0, y = 0;
   double distance = 0;          // along the path from its first point
   std::optional<double> due;    // simulation time (s) the entity is here (timed paths)
+  // The curve's own heading here (a clothoid's tangent), when the points sample a curve: the
+  // entity's heading between two such points goes from one to the other, not along the
+  // chord (a chord's heading is half a piece's turn off at the path's end, 0.01 rad on
+  // trailer_connect.xosc's reversing quarter circle, and a trajectory relative to the
+  // entity's pose after it inherits that).
+  std::optional<double> heading;
 };
 
 // followingMode "follow": the entity's own limits and the tracking state (trajectory_follow.hpp).

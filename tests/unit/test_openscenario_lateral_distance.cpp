@@ -83,16 +83,39 @@ TEST_F(LateralDistance, WithoutConstraintsTheEntityIsPutThereAtOnceAndTheActionE
 TEST_F(LateralDistance, WithMaxSpeedTheEntityMovesThereNoFasterAndTheActionEndsThere) {
   load(R"(<LateralDistanceAction entityRef="B" distance="3" freespace="false" continuous="false" coordinateSystem="road">
           <DynamicConstraints maxSpeed="1.0"/></LateralDistanceAction>)");
-  run_until(*runtime_, 1);
-  EXPECT_NEAR(t_of("A"), -8.75, 1e-9);  // starts measuring at t = 1, moves from the next step
+  run_until(*runtime_, 1.05);
+  // Starts measuring at t = 1 and moves from the second step after it, as esmini.
+  EXPECT_NEAR(t_of("A"), -8.75, 1e-9);
   run_until(*runtime_, 2);
-  EXPECT_NEAR(t_of("A"), -8.75 + 1.0, 1e-9);  // "any": stays to B's right, 1 m/s towards it
+  EXPECT_NEAR(t_of("A"), -8.75 + 0.95, 1e-9);  // "any": stays to B's right, 1 m/s towards it
   EXPECT_TRUE(transition_times(*runtime_, "KeepAction", "endTransition").empty());
   run_until(*runtime_, 6);
   EXPECT_NEAR(t_of("A"), -1.75 - 3, 1e-9);
   const auto ended = transition_times(*runtime_, "KeepAction", "endTransition");
   ASSERT_EQ(ended.size(), 1u);
-  EXPECT_NEAR(ended[0], 1 + 4.0, 0.051);  // 4 m at 1 m/s
+  EXPECT_NEAR(ended[0], 1.05 + 4.0, 0.051);  // 4 m at 1 m/s
+}
+
+TEST_F(LateralDistance, TheLateralSpeedBuildsUpStepByStepWithinMaxAcceleration) {
+  load(R"(<LateralDistanceAction entityRef="B" distance="3" freespace="false" continuous="false" coordinateSystem="road">
+          <DynamicConstraints maxSpeed="3.0" maxAcceleration="2.0" maxDeceleration="2.0"/></LateralDistanceAction>)");
+  run_until(*runtime_, 1.05);
+  const double before = t_of("A");
+  // Moving from 1.10 s: after 0.5 s at 2 m/s^2 (10 steps, each 0.1 m/s faster) it has gone
+  // 0.005 (1 + 2 + ... + 10) = 0.275 m; a speed lost between the steps would give 10 x 0.005 m.
+  run_until(*runtime_, 1.55);
+  EXPECT_NEAR(t_of("A") - before, 0.275, 1e-9);
+}
+
+TEST_F(LateralDistance, MovingSidewaysTakesItsShareOfTheSpeedAlongTheLane) {
+  load(R"(<LateralDistanceAction entityRef="B" distance="3" freespace="false" continuous="false" coordinateSystem="road">
+          <DynamicConstraints maxSpeed="6.0"/></LateralDistanceAction>)");
+  run_until(*runtime_, 1.0);  // it starts
+  const double s_before = runtime_->entities().at("A").s;
+  run_until(*runtime_, 1.05);  // its first step still along the lane only
+  EXPECT_NEAR(runtime_->entities().at("A").s - s_before, 10 * 0.05, 1e-9);
+  run_until(*runtime_, 1.10);  // 6 m/s sideways of its 10: 8 m/s along the lane
+  EXPECT_NEAR(runtime_->entities().at("A").s - s_before, 10 * 0.05 + 8 * 0.05, 1e-9);
 }
 
 TEST_F(LateralDistance, AContinuousOneKeepsTheDistanceWhileTheOtherMoves) {

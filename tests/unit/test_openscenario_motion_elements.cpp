@@ -161,6 +161,14 @@ TEST(ClothoidSpline, SegmentsJoinEndToStartAndTurnByTheirOffsets) {
   EXPECT_NEAR(points.back().y, y, 1e-6);
   for (std::size_t i = 1; i < points.size(); ++i)  // no repeated joint point
     EXPECT_GT(std::hypot(points[i].x - points[i - 1].x, points[i].y - points[i - 1].y), 1e-3);
+  // An entity on it faces along the curve's tangent, not a chord's: at the arc's end, 0.15
+  // rad (a chord of the last piece is half that piece's turn short of it).
+  const PathMotion path = make_path(points, false);
+  EXPECT_NEAR(path.pose_at(15.0).heading, turn, 1e-9);
+  EXPECT_NEAR(path.pose_at(path.length()).heading, turn, 1e-9);
+  EXPECT_NEAR(path.pose_at(7.5).heading, 0.075, 1e-4);
+  const PathMotion arc = make_path(clothoid_points({0, 0, 0}, 0.01, 0, 15), false);
+  EXPECT_NEAR(arc.pose_at(arc.length()).heading, turn, 1e-9);  // where the entity leaves it
 
   // A PositionStart places its segment; hOffset turns it.
   spline.segments[1].heading_offset = 0.5;
@@ -190,19 +198,20 @@ TEST_F(MotionElements, ClothoidSplineTrajectoryIsFollowedFromTheEntity) {
 
 TEST(ClosedTrajectory, ReturnsToItsStartAtItsLastPiecesSpeed) {
   // Untimed: a segment back to the first point is added.
-  std::vector<PathPoint> square{{0, 0, 0, std::nullopt}, {10, 0, 0, std::nullopt}, {10, 10, 0, std::nullopt}};
+  std::vector<PathPoint> square{{0, 0, 0, std::nullopt, std::nullopt}, {10, 0, 0, std::nullopt, std::nullopt},
+                                {10, 10, 0, std::nullopt, std::nullopt}};
   close_path(square);
   ASSERT_EQ(square.size(), 4u);
   EXPECT_EQ(square.back().x, 0.0);
   EXPECT_EQ(square.back().y, 0.0);
   EXPECT_FALSE(square.back().due);
   // Timed: the last piece runs at 10 m/s, so the 10 m back take 1 s.
-  std::vector<PathPoint> timed{{0, 0, 0, 2.0}, {10, 0, 0, 3.0}};
+  std::vector<PathPoint> timed{{0, 0, 0, 2.0, std::nullopt}, {10, 0, 0, 3.0, std::nullopt}};
   close_path(timed);
   ASSERT_EQ(timed.size(), 3u);
   EXPECT_DOUBLE_EQ(*timed.back().due, 4.0);
   // Already closed: nothing added.
-  std::vector<PathPoint> loop{{0, 0, 0, std::nullopt}, {10, 0, 0, std::nullopt}, {0, 0, 0, std::nullopt}};
+  std::vector<PathPoint> loop{{0, 0, 0, std::nullopt, std::nullopt}, {10, 0, 0, std::nullopt, std::nullopt}, {0, 0, 0, std::nullopt, std::nullopt}};
   close_path(loop);
   EXPECT_EQ(loop.size(), 3u);
 }

@@ -61,6 +61,18 @@ TEST(RoadFollowing, DrivesOnAcrossARoadEndWithTheRemainingDistance) {
   EXPECT_NEAR(car.odometer, 10.0, 1e-9);
 }
 
+TEST(RoadFollowing, AStandingEntityKeepsTheHeadingItWasPlacedWithUntilItDrivesOff) {
+  const auto roads = opendrive::read_xodr_text(test::xodr_two_in_a_row(), "row.xodr");
+  EntityState car = on_lane(roads, "1", -1, 50, 0);
+  car.pose.heading = kPi / 2;  // parked across its lane (a position's Orientation)
+  drive(car, roads, 1.0);
+  EXPECT_NEAR(car.pose.heading, kPi / 2, 1e-12);
+  EXPECT_NEAR(car.pose.x, 50.0, 1e-9);
+  car.speed = 5;  // drives off: along its lane
+  drive(car, roads, 0.05);
+  EXPECT_NEAR(car.pose.heading, 0.0, 1e-9);
+}
+
 TEST(RoadFollowing, AContactPointEndFlipsTheDirectionAndThePoseStaysContinuous) {
   const auto roads = opendrive::read_xodr_text(test::xodr_contact_end(), "flip.xodr");
   EntityState car = on_lane(roads, "1", -1, 95, 10);
@@ -147,6 +159,31 @@ TEST(RoutePlan, ClosedRoutesLoopAndLanesAheadContinueStraightOn) {
               std::string::npos)
         << what;
   }
+}
+
+TEST(RoutePlan, AParkedEntityOrOneInTheOncomingLaneStartsItsRouteFromALaneGoingThere) {
+  // One road along +x, lane 1 (driving against s, to the road's start) and lane -1.
+  const auto roads = opendrive::read_xodr_text(R"(<OpenDRIVE><header revMajor="1" revMinor="6"/>
+<road id="0" length="100" junction="-1"><planView><geometry s="0" x="0" y="0" hdg="0" length="100"><line/></geometry></planView>
+<lanes><laneSection s="0"><left><lane id="1" type="driving"><width sOffset="0" a="3.5" b="0" c="0" d="0"/></lane></left>
+<right><lane id="-1" type="driving"><width sOffset="0" a="3.5" b="0" c="0" d="0"/></lane></right></laneSection></lanes></road></OpenDRIVE>)",
+                                               "one.xodr");
+  const auto plan = [&](double heading, int direction = 0) {
+    EntityState car = on_lane(roads, "0", 1, 50, 0);
+    car.pose.heading = heading;
+    car.direction = direction;
+    car.route = {{"0", 80, -1}};
+    plan_entity_route(car, roads, {{car.route[0], opendrive::RouteStrategy::Shortest, "waypoint 1"}}, false);
+    return car.route_plan;
+  };
+  // Facing along its lane (against s), s = 80 is behind it: no route.
+  EXPECT_THROW(plan(kPi), MapError);
+  EXPECT_THROW(plan(kPi / 4), MapError);  // 45 degrees off the road: still driving its lane's way
+  // Parked across the road (esmini's parking_demo.xosc): planned from lane -1, the nearest lane going there.
+  EXPECT_NO_THROW(plan(kPi / 2));
+  EXPECT_NO_THROW(plan(-kPi / 2));
+  // In the oncoming lane but driving along s (it keeps its way): from a lane driving its way.
+  EXPECT_NO_THROW(plan(0, 1));
 }
 
 TEST(RoutePlan, AClosedRouteRepeatsItsLoop) {

@@ -27,7 +27,7 @@ PathMotion timed_path(const std::vector<std::pair<double, double>>& corners, dou
   double along = 0;
   for (std::size_t i = 0; i < corners.size(); ++i) {
     if (i > 0) along += std::hypot(corners[i].first - corners[i - 1].first, corners[i].second - corners[i - 1].second);
-    points.push_back({corners[i].first, corners[i].second, 0.0, along / speed});
+    points.push_back({corners[i].first, corners[i].second, 0.0, along / speed, std::nullopt});
   }
   return make_path(points, true);
 }
@@ -126,7 +126,7 @@ TEST(TrajectoryFollow, AccelerationLimitMakesItLate) {
 }
 
 TEST(TrajectoryFollow, UntimedPathAtTheStoryboardsSpeed) {
-  std::vector<PathPoint> points{{0, 0, 0, std::nullopt}, {100, 0, 0, std::nullopt}};
+  std::vector<PathPoint> points{{0, 0, 0, std::nullopt, std::nullopt}, {100, 0, 0, std::nullopt, std::nullopt}};
   PathMotion path = make_path(points, false);
   opendrive::Pose2 pose{0, 0, 0};
   double speed = 5;
@@ -147,7 +147,7 @@ TEST(TrajectoryFollow, UntimedPathAtTheStoryboardsSpeed) {
 // 2 sin(alpha) / L is 0. It walked away from the path for ever; now it turns round and
 // follows it to the end.
 TEST(TrajectoryFollow, FacingAwayFromThePathItTurnsRound) {
-  std::vector<PathPoint> points{{0, 0, 0, std::nullopt}, {-10, 0, 0, std::nullopt}};
+  std::vector<PathPoint> points{{0, 0, 0, std::nullopt, std::nullopt}, {-10, 0, 0, std::nullopt, std::nullopt}};
   PathMotion path = make_path(points, false);
   const FollowLimits pedestrian = follow_limits(Entity{});
   const FollowRun run = follow(path, {0, 0, 0}, 1.5, pedestrian, 30);
