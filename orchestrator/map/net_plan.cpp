@@ -271,6 +271,13 @@ class CorridorPlanner {
         const Cut& cut = cuts_[c];
         double s = m.line.project_near(cut.point, m.s_of_key(cut.key), kTrackWindow).s;
         if (cut.member == i) s = cut.at_start ? m.lane_start : m.lane_end;
+        // A lane never ends before its route's last waypoint (nor starts after its first).
+        // The foot of a neighbour's lane end 3-7 m across lands on this route's last
+        // segment, and that segment may be drawing noise tilted 2-12 degrees: the foot
+        // then lies 0.2-0.3 m short of the route's end (seeds 171, 257: routes ending
+        // together at the map's edge, the lane 0.18 m short of the last waypoint).
+        if (c == m.end_cut) s = std::max(s, m.last_wp_s());
+        if (c == m.start_cut) s = std::min(s, m.first_wp_s);
         s = std::clamp(s, 0.0, m.line.length());
         if (!m.cut_s.empty() && s <= m.cut_s.back() + 0.5)
           throw CorridorCutError(fmt::format("cannot cut route \"{}\" consistently with its neighbouring routes near "
