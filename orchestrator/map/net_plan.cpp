@@ -143,7 +143,16 @@ class CorridorPlanner {
     name_ = corridor_name(std::move(named), used_names);
     link_continuations(out.notes);
     place_cuts();
-    cut_members();
+    while (const std::size_t c = cut_members()) {
+      // A free end's straight extension that leaves its neighbours (a route ending in the
+      // middle of a turn beside another: seed 190) has its foot on them out of order with
+      // their own lane ends. That lane ends at its route's last (first) waypoint instead,
+      // and the cuts are placed again; anything else is refused.
+      if (!drop_free_extension(c)) cut_members(true);
+      for (Member& m : members_) m.cut_s.clear();
+      cuts_.clear();
+      place_cuts();
+    }
     std::vector<std::ptrdiff_t> edge_of_segment(cuts_.size() - 1, -1);
     std::vector<bool> node_used(cuts_.size(), false);
     int edge_number = 0;
@@ -261,8 +270,9 @@ class CorridorPlanner {
   }
 
   // Where each member crosses each cut it spans: exactly at its own lane ends, elsewhere
-  // the foot of the cut point on it, searched near where the tracking predicts it.
-  void cut_members() {
+  // the foot of the cut point on it, searched near where the tracking predicts it. Returns
+  // 0, or the cut that would cut a member out of order (refused when `refuse`).
+  std::size_t cut_members(bool refuse = false) {
     for (std::size_t i = 0; i < members_.size(); ++i) {
       Member& m = members_[i];
       if (m.end_cut <= m.start_cut)
@@ -279,15 +289,35 @@ class CorridorPlanner {
         if (c == m.end_cut) s = std::max(s, m.last_wp_s());
         if (c == m.start_cut) s = std::min(s, m.first_wp_s);
         s = std::clamp(s, 0.0, m.line.length());
-        if (!m.cut_s.empty() && s <= m.cut_s.back() + 0.5)
+        if (!m.cut_s.empty() && s <= m.cut_s.back() + 0.5) {
+          if (!refuse) return c;
           throw CorridorCutError(fmt::format("cannot cut route \"{}\" consistently with its neighbouring routes near "
                                              "({:.1f}, {:.1f}): its neighbours start or end out of order along it",
                                              m.route->id, cut.point.x(), cut.point.y()),
                                  m.index, cut.point);
+        }
         m.cut_s.push_back(s);
       }
       keep_junction_ends_drawn(m);
     }
+    return 0;
+  }
+
+  // The member lane end that placed cut c, or the one before it, when it is a free end
+  // extended straight past its route's waypoint: that extension goes. Whether one went.
+  bool drop_free_extension(std::size_t c) {
+    for (const std::size_t k : {c, c - 1}) {
+      if (k >= cuts_.size() || cuts_[k].member == kNoMember) continue;
+      Member& m = members_[cuts_[k].member];
+      const bool start = cuts_[k].at_start;
+      if (!m.end_node(start).empty()) continue;
+      double& lane = start ? m.lane_start : m.lane_end;
+      const double wp = start ? m.first_wp_s : m.last_wp_s();
+      if (std::abs(lane - wp) < 1e-9) continue;
+      lane = wp;
+      return true;
+    }
+    return false;
   }
 
   // A lane ending at a junction whose cut lies beyond its end (the cut placed at a neighbour's
