@@ -26,7 +26,12 @@ using namespace corridor;
 constexpr double kMaxContinuationOverlap = 2.0;  // m
 
 // m a lane ending at a junction may reach straight beyond its route's end to the junction's cut.
-constexpr double kMaxJunctionExtension = 0.5;
+// A shared lane's best fit leaves its routes up to kPlannedLaneMiss (0.075 m) of `map check`'s
+// 0.10 m, so a straight reach must stay within the 0.02 m left: 0.2 m is 0.004 m off a 5 m
+// radius and 0.017 m off a best fit's end direction 5 degrees askew. It was 0.5 m: seed 239's
+// shared lane of three routes reached 0.45 m back to its neighbour's cut, 0.108 m beside the
+// third route's waypoint (since the best fit, commit 86697b3, turned its first metres).
+constexpr double kMaxJunctionExtension = 0.2;
 
 // One route of a corridor, extended so that every cut lies on it.
 struct Member {
@@ -324,7 +329,7 @@ class CorridorPlanner {
   // lane end further out) would reach there along its straight extension, off the route where
   // the route curves into the junction (seed 9: 1.6 m straight, 0.14 m beside the route). It
   // ends at its own end instead; the junction's internal lane follows the route's points from
-  // there. Extensions up to kMaxJunctionExtension (at most 2.5 cm off a 5 m radius) stay.
+  // there. Extensions up to kMaxJunctionExtension stay.
   static void keep_junction_ends_drawn(Member& m) {
     if (m.cut_s.size() < 2) return;
     if (!m.end_node(true).empty() && m.cut_s.front() < m.lane_start - kMaxJunctionExtension &&
