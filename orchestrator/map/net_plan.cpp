@@ -30,8 +30,8 @@ constexpr double kMaxContinuationOverlap = 2.0;  // m
 // fits its routes within kPlannedLaneMiss where it runs, not before its start, where they are
 // still converging into it: seed 239's lane of three routes reached 0.46 m back to its
 // neighbour's cut, 0.108 m beside the third route's waypoint there (the best fit had moved the
-// lane's start). 0.3 m, not less: at 0.2 m seed 114's junction J4 took another shape, which
-// netconvert cut a lane at.
+// lane's start). 0.3 m, not less: at 0.2 m seed 114's junction J4 took another shape and a
+// route broke there (not traced further).
 constexpr double kMaxJunctionExtension = 0.3;
 
 // One route of a corridor, extended so that every cut lies on it.
