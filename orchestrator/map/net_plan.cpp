@@ -12,6 +12,7 @@
 #include "core/errors.hpp"
 #include "map/corridor_cut_error.hpp"
 #include "map/corridor_geometry.hpp"
+#include "map/corridor_member.hpp"
 #include "map/corridor_names.hpp"
 #include "map/junction_shape.hpp"
 #include "map/route_corridors.hpp"
@@ -34,47 +35,6 @@ constexpr double kMaxContinuationOverlap = 2.0;  // m
 // route broke there (not traced further).
 constexpr double kMaxJunctionExtension = 0.3;
 
-// One route of a corridor, extended so that every cut lies on it.
-struct Member {
-  const WaypointRoute* route = nullptr;
-  std::size_t index = 0;    // of the route in the waypoint file
-  Polyline line;            // route + straight extensions (lane_extension + slack)
-  double first_wp_s = 0;    // arc length of waypoint 0 on `line`
-  double lane_start = 0;    // where its lane begins: lane_extension before waypoint 0,
-  double lane_end = 0;      // ... and ends: past the last one (less for continuations)
-  double lateral = 0;       // m left of the corridor's reference route (naming order)
-  std::vector<double> keys; // position along the corridor every kTrackStep of `line`
-  std::size_t start_cut = 0;
-  std::size_t end_cut = 0;
-  std::vector<double> cut_s;  // arc length on `line` of cuts start_cut..end_cut
-  const CorridorLine* info = nullptr;  // junction maps: routes and the junctions at its ends
-  [[nodiscard]] const std::string& end_node(bool start) const {
-    static const std::string none;
-    return info ? (start ? info->start_node : info->end_node) : none;
-  }
-  [[nodiscard]] double cut_at(std::size_t cut) const { return cut_s[cut - start_cut]; }
-  [[nodiscard]] bool active_in(std::size_t segment) const { return start_cut <= segment && segment < end_cut; }
-
-  // Position along the corridor of arc length s on `line`, and the reverse (keys[i]
-  // belongs to s = i * kTrackStep, the last one to the end of the line).
-  [[nodiscard]] double sample_s(std::size_t i) const { return std::min(static_cast<double>(i) * kTrackStep, line.length()); }
-  [[nodiscard]] double key_of(double s) const {
-    const auto i = std::min(static_cast<std::size_t>(std::max(s, 0.0) / kTrackStep), keys.size() - 2);
-    const double f = std::clamp((s - sample_s(i)) / (sample_s(i + 1) - sample_s(i)), 0.0, 1.0);
-    return keys[i] + f * (keys[i + 1] - keys[i]);
-  }
-  [[nodiscard]] double s_of_key(double key) const {
-    const auto it = std::lower_bound(keys.begin(), keys.end(), key);
-    if (it == keys.begin()) return 0.0;
-    if (it == keys.end()) return line.length();
-    const auto i = static_cast<std::size_t>(it - keys.begin()) - 1;
-    const double span = keys[i + 1] - keys[i];
-    const double f = span > 1e-9 ? (key - keys[i]) / span : 0.0;
-    return sample_s(i) + f * (sample_s(i + 1) - sample_s(i));
-  }
-  [[nodiscard]] double last_wp_s() const { return first_wp_s + route->line.length(); }
-};
-
 // Cut::member of a cut that only limits the length of edges (no lane ends there).
 constexpr std::size_t kNoMember = std::numeric_limits<std::size_t>::max();
 
@@ -93,24 +53,6 @@ struct Event {
   bool is_start = false;
   std::string node;  // the junction this lane end lies at ("" = a free end)
 };
-
-double lane_speed(const Member& m, double s0, double s1, std::vector<std::string>& notes) {
-  const WaypointRoute& r = *m.route;
-  double best = 0;
-  bool any = false;
-  for (std::size_t i = 0; i < r.points.size(); ++i) {
-    const double s = m.first_wp_s + r.line.s_at_index(i);
-    if (s < s0 || s > s1) continue;
-    best = std::max(best, r.points[i].v);
-    any = true;
-  }
-  // A stretch that lies wholly in the straight extension takes the speed of the end it extends.
-  if (!any) best = (s1 <= m.first_wp_s) ? r.points.front().v : r.points.back().v;
-  if (best > 0) return best;
-  notes.push_back(fmt::format("route \"{}\" has no positive target speed v between its waypoints; its lane gets "
-                              "{:.2f} m/s", r.id, kFallbackLaneSpeed));
-  return kFallbackLaneSpeed;
-}
 
 class CorridorPlanner {
  public:
