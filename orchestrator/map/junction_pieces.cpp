@@ -22,7 +22,9 @@ constexpr double kContainCos = 0.94;     // cos 20 deg
 // of a lane it is drawn along continues on (comes from) that lane.
 constexpr double kMaxEndGap = 3.0;
 // m: the shortest dead-end lane (and connection) made for a route ending inside a junction.
-constexpr double kMinLooseLane = 1.0;
+// It was 1.0 m: routes ending 1.5-1.8 m into a junction (seeds 225, 286) then drove the
+// connection of their lane's other route (or of their own earlier lap), 0.16-0.25 m off it.
+constexpr double kMinLooseLane = 0.7;
 // m: points of a shared lane's best fit closer than this to the previous one are dropped
 // (netconvert drops them from a lane's shape anyway: POSITION_EPS, 0.1 m).
 constexpr double kSameStation = 0.1;

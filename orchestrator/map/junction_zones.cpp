@@ -175,19 +175,15 @@ class ZoneFinder {
   // route drifting 0.2 m off its neighbour on the shared lane) need paths of their own
   // there: a junction, in which the second one gets a detour lane (junction_detours.hpp).
   // Only where neither route is in a junction yet: inside one, each route's path is its own
-  // connection already (and a detour lane where it shares its pair of lanes). And not at
-  // either route's own start (so near that its passage there would reach it: a passage's
-  // margin and kMinEndPiece): a route starting beside another on its lane (seed 107: 0.18 m
-  // beside another's last metres) would start inside that junction on the other's path; its
-  // first waypoints stay on the shared lane's best fit. Near a route's end the junction is
-  // made (seed 166: a route ending 1.9 m after, on a dead-end lane of its own; seed 61: 5 m).
+  // connection already (and a detour lane where it shares its pair of lanes). Also at a
+  // route's own start or end (seed 278: a route starting 0.22 m beside another's lane lay
+  // 0.11 m off their best fit): it starts (ends) inside that junction, on a lane of its own
+  // there (junction_pieces.cpp; seed 107, 0.18 m beside another's last metres, left out of
+  // the junction before that, builds either way; seed 166 ends 1.9 m after one).
   void add_spread_conflicts() {
-    const auto near_end = [&](std::size_t r, double s) {
-      return !is_closed_route(routes_[r]) && s < kZoneMargin + kMinEndPiece;
-    };
     std::vector<std::size_t> touched;
     for (const Conflict& c : spread_) {
-      if (containing(c.r, c.s) || containing(c.q, c.sq) || near_end(c.r, c.s) || near_end(c.q, c.sq)) continue;
+      if (containing(c.r, c.s) || containing(c.q, c.sq)) continue;
       conflicts_.push_back(c);
       add_interval(c.r, c.s - kZoneMargin, c.s + kZoneMargin);
       add_interval(c.q, c.sq - kZoneMargin, c.sq + kZoneMargin);

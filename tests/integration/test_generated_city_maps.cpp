@@ -58,13 +58,22 @@ namespace {
 // Then (the kinds other than routes drawn apart on one shared lane): 5: a route ending 0.20 m
 // beside the lane it would join gets a dead-end lane of its own; 9: a lane ending at a junction
 // is not extended straight 1.6 m to its neighbour's cut on a curve; 116: was 0.61 m off.
+// Then (the 13 failures left of 1-300): 92, 171, 257: a lane never ends before its route's last
+// waypoint (routes ending together, a noisy last segment); 190: a free end whose extension
+// cuts a neighbour out of order is not extended (was refused); 239: a lane ending at a
+// junction reaches at most 0.3 m straight to the cut (regressed with the best fit); 62: a
+// route ending inside a junction ends on the connection its last waypoints lie on; 225, 286:
+// dead-end lanes from a 1.4 m passage; 278: routes drawn too far apart for one lane get their
+// junction at a route's own start too.
 // To keep the set's time (~70 s), three of the 42 first seeds tied to no fix left it (26, 36,
-// 43: 9.6 s; scripts/map_soak.py --seeds 1-150 still runs them).
-constexpr int kCiSeeds[] = {7,  10, 11, 12, 13, 14, 16, 17, 20, 21, 27, 28, 30, 33, 34, 38, 40, 48,
-                            49, 50, 55, 57, 59, 60, 63, 64, 65, 66, 69, 70, 72, 75, 76, 77, 79, 81, 82, 84, 85,
+// 43: 9.6 s), and for the nine above eight more (17, 20, 30, 59, 63, 72, 79, 81);
+// scripts/map_soak.py --seeds 1-300 still runs them.
+constexpr int kCiSeeds[] = {7,  10, 11, 12, 13, 14, 16, 21, 27, 28, 33, 34, 38, 40, 48,
+                            49, 50, 55, 57, 60, 64, 65, 66, 69, 70, 75, 76, 77, 82, 84, 85,
                             3,  6,  8,  15, 24, 32, 41, 56, 58, 118, 138, 151, 152, 155, 158, 184, 195, 205,
                             207, 218, 23, 35, 113, 127, 90, 133, 143, 150, 165, 208, 229, 246, 263,
-                            1,  19, 42, 46, 5, 9, 116};
+                            1,  19, 42, 46, 5, 9, 116,
+                            92, 171, 257, 190, 239, 62, 225, 286, 278};
 
 constexpr double kTolerance = 0.10;  // m, as `map check`
 
