@@ -8,6 +8,7 @@
 #include "openscenario/date_time.hpp"
 #include "openscenario/storyboard_runtime.hpp"
 #include "openscenario/xosc_reader.hpp"
+#include "run/run_result.hpp"
 #include "support/cli_runner.hpp"
 #include "unit/openscenario_snippets.hpp"
 
@@ -160,6 +161,18 @@ TEST_F(TimeAndMonitors, MonitorsAreCheckedAtLoad) {
                        R"(<MonitorDeclarations><MonitorDeclaration name="M" value="true"/><MonitorDeclaration name="M" value="false"/></MonitorDeclarations>)")
                 .find("declared twice"),
             std::string::npos);
+}
+
+TEST(MonitorResults, ResultJsonHasEachMonitorsFinalValueOrNull) {
+  test::TempDir dir;
+  RunResult r;
+  write_result(dir.path(), r);
+  EXPECT_TRUE(test::read_json(dir / "result.json")["monitors"].is_null());
+  r.monitors = {{"KeepsDistance", false}, {"Reached", true}};
+  write_result(dir.path(), r);
+  const auto j = test::read_json(dir / "result.json");
+  EXPECT_FALSE(j["monitors"]["KeepsDistance"].get<bool>());
+  EXPECT_TRUE(j["monitors"]["Reached"].get<bool>());
 }
 
 }  // namespace
