@@ -23,6 +23,12 @@ using test::transition_times;
 using test::vehicle;
 
 constexpr double kCurvature = 0.01;  // the arc below: heading = kCurvature * s
+// A car in lane -1 (centre 1.75 m outside the reference line) driving at v covers
+// v * kAlongS metres of s a second.
+constexpr double kAlongS = 1 / (1 + kCurvature * 1.75);
+
+// When a car starting at s = 10 in lane -1 at 20 m/s reaches the heading `h`.
+double time_to_heading(double h) { return (h / kCurvature - 10) / (20 * kAlongS); }
 const std::string kArcRoad = R"(<OpenDRIVE><header revMajor="1" revMinor="6"/>
 <road id="0" length="300" junction="-1"><planView><geometry s="0" x="0" y="0" hdg="0" length="300"><arc curvature="0.01"/></geometry></planView>
 <lanes><laneSection s="0"><right>
@@ -79,12 +85,13 @@ double started(const StoryboardRuntime& runtime, const std::string& event) {
 
 TEST_F(AngleConditions, WorldHeadingTriggersWhereTheArcTurnsTheEntityThatFar) {
   // A drives at 20 m/s from s = 10 on the arc: its heading is kCurvature * s, so 0.6 rad
-  // (within 0.01) first holds at s = 59, (59 - 10) / 20 s after the start.
+  // (within 0.01) first holds at s = 59, in the first step after the car gets there.
   load(place("A", 10, -1, 20) + place("B", 0, -1, 0),
        angle_event("Turned", R"(<AngleCondition angleType="heading" angle="0.6" angleTolerance="0.01" coordinateSystem="world"/>)"));
   run_until(*runtime_, 5);
-  const double expected = ((0.6 - 0.01) / kCurvature - 10) / 20;
-  EXPECT_NEAR(started(*runtime_, "Turned"), expected, 0.05 + 1e-6);
+  const double reached = time_to_heading(0.6 - 0.01);
+  EXPECT_GE(started(*runtime_, "Turned"), reached - 1e-9);
+  EXPECT_LT(started(*runtime_, "Turned"), reached + 0.05);
 }
 
 TEST_F(AngleConditions, WorldIsTheDefaultAndAnglesCompareOnTheCircle) {
@@ -93,7 +100,8 @@ TEST_F(AngleConditions, WorldIsTheDefaultAndAnglesCompareOnTheCircle) {
        angle_event("Turned", R"(<AngleCondition angleType="heading" angle=")" + std::to_string(2 * std::numbers::pi + 0.6) +
                                  R"(" angleTolerance="0.01"/>)"));
   run_until(*runtime_, 5);
-  EXPECT_NEAR(started(*runtime_, "Turned"), ((0.6 - 0.01) / kCurvature - 10) / 20, 0.05 + 1e-6);
+  EXPECT_GE(started(*runtime_, "Turned"), time_to_heading(0.6 - 0.01) - 1e-9);
+  EXPECT_LT(started(*runtime_, "Turned"), time_to_heading(0.6 - 0.01) + 0.05);
 }
 
 TEST_F(AngleConditions, RoadHeadingIsZeroWhileFollowingTheLaneAndTurnsDuringALaneChange) {
@@ -122,7 +130,8 @@ TEST_F(AngleConditions, RelativeHeadingGrowsAsTheEntityDrivesAwayAlongTheArc) {
   load(place("A", 10, -1, 20) + place("B", 0, -1, 0),
        angle_event("Apart", R"(<RelativeAngleCondition entityRef="B" angleType="heading" angle="1.0" angleTolerance="0.01"/>)"));
   run_until(*runtime_, 8);
-  EXPECT_NEAR(started(*runtime_, "Apart"), ((1.0 - 0.01) / kCurvature - 10) / 20, 0.05 + 1e-6);
+  EXPECT_GE(started(*runtime_, "Apart"), time_to_heading(1.0 - 0.01) - 1e-9);
+  EXPECT_LT(started(*runtime_, "Apart"), time_to_heading(1.0 - 0.01) + 0.05);
 }
 
 TEST_F(AngleConditions, RelativeAngleInRoadFrameComparesTheRoadRelativeAngles) {
