@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "core/diagnostics.hpp"
+#include "opendrive/plan_view.hpp"
 #include "opendrive/route_planner.hpp"
 
 namespace orch::position {
@@ -52,11 +53,15 @@ struct LanePosition {
   double s = 0, offset = 0;
   std::optional<Orientation> orientation;
 };
+// ds: along the road's s; ds_lane (OpenSCENARIO 1.1 dsLane, instead of ds): the distance
+// along the centre line of the reference entity's lane (longer than ds on the outside of a
+// curve, shorter on the inside), + in the direction of s.
 struct RelativeLanePosition {
   std::string entity;
   int d_lane = 0;
   double ds = 0, offset = 0;
   std::optional<Orientation> orientation;
+  std::optional<double> ds_lane = std::nullopt;
 };
 
 // RoutePosition: a place on a route (its waypoints, defined below, after Position: a
@@ -77,10 +82,34 @@ struct RoutePosition {
   std::optional<Orientation> orientation;
 };
 
+// TrajectoryPosition (OpenSCENARIO 1.1): `s` metres along a trajectory's path from its
+// start, `t` metres to the left of it; a relative Orientation turns from the path's heading
+// there. The path (TrajectoryPath, below) is built by the scenario language's code: map/
+// knows no trajectory shapes.
+class TrajectoryPath;
+struct TrajectoryPosition {
+  std::shared_ptr<const TrajectoryPath> path;
+  double s = 0, t = 0;
+  std::optional<Orientation> orientation;
+};
+
 // Every position of both languages: each reader produces its own kinds, the resolver
 // resolves any of them given the geometry it needs.
 using Position = std::variant<WaypointRef, RouteDistance, WorldPosition, RelativeWorldPosition, RelativeObjectPosition,
-                              RoadPosition, RelativeRoadPosition, LanePosition, RelativeLanePosition, RoutePosition>;
+                              RoadPosition, RelativeRoadPosition, LanePosition, RelativeLanePosition, RoutePosition,
+                              TrajectoryPosition>;
+
+// A trajectory's path for TrajectoryPosition: the positions its shape holds (vertices, control
+// points, clothoid starts; checked and resolved by the caller) and its inertial points, in
+// order along the path, given those positions resolved (same order). Throws MapError when the
+// shape makes no path.
+class TrajectoryPath {
+ public:
+  virtual ~TrajectoryPath() = default;
+  [[nodiscard]] virtual std::string name() const = 0;
+  [[nodiscard]] virtual std::vector<Position> positions() const = 0;
+  [[nodiscard]] virtual std::vector<opendrive::Pose2> points(const std::vector<opendrive::Pose2>& resolved) const = 0;
+};
 
 struct RouteWaypoint {
   Position position;

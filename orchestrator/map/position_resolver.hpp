@@ -70,6 +70,8 @@ class PositionResolver {
   [[nodiscard]] const opendrive::RoadNetwork& roads() const;
   [[nodiscard]] const WaypointFile& waypoints() const;
   [[nodiscard]] ResolvedPosition resolve_on_route(const RoutePosition& position, const Entities& entities) const;
+  [[nodiscard]] ResolvedPosition resolve_on_trajectory(const TrajectoryPosition& position,
+                                                       const Entities& entities) const;
   const opendrive::RoadNetwork* roads_ = nullptr;
   const WaypointFile* waypoints_ = nullptr;
 };

@@ -5,6 +5,7 @@
 
 #include <fmt/format.h>
 
+#include "core/suggest.hpp"
 #include "openscenario/reader_context.hpp"
 
 namespace orch::openscenario::reading {
@@ -363,6 +364,14 @@ const std::vector<ActionEntry> kGlobalActions = {
     {"TrafficAction", "TrafficStopAction", read_traffic_action},
     {"VariableAction", "ModifyAction",
      [](Element& w, Element& e, Context& c) -> PrivateAction { return read_variable_modify(w, e, c); }},
+    {"", "SetMonitorAction",
+     [](Element&, Element& e, Context& c) -> PrivateAction {
+       const std::string monitor = e.text("monitorRef");
+       if (std::find(c.monitors.begin(), c.monitors.end(), monitor) == c.monitors.end())
+         e.fail_attribute("monitorRef", fmt::format("no monitor named \"{}\" in MonitorDeclarations{}", monitor,
+                                                    did_you_mean(monitor, c.monitors)));
+       return SetMonitorAction{monitor, e.boolean("value")};
+     }},
 };
 
 PrivateAction read_from_table(Element& holder, const std::vector<ActionEntry>& table, Context& context) {

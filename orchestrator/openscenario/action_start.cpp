@@ -422,7 +422,12 @@ std::vector<std::string> start_action(const PrivateAction& action, const std::st
           ctx.traffic->start(Traffic{0, a.name, a, ctx.resolver.resolve(a.position, poses(ctx)), 0, std::nullopt}, ctx.t);
         } else if constexpr (std::is_same_v<T, TrafficStopAction>) {
           ctx.traffic->stop(a.name, ctx.t);  // none running yet (its action not started): nothing to stop
-        } else if constexpr (std::is_same_v<T, AppearanceAction> || std::is_same_v<T, EnvironmentAction>) {
+        } else if constexpr (std::is_same_v<T, SetMonitorAction>) {
+          if (ctx.monitors) ctx.monitors->at(a.monitor) = a.value;  // declared: checked at load
+        } else if constexpr (std::is_same_v<T, EnvironmentAction>) {
+          // Only the time of day matters here (TimeOfDayCondition); SUMO renders no weather.
+          if (a.time_of_day && ctx.time_of_day) *ctx.time_of_day = TimeOfDayClock{*a.time_of_day, ctx.t};
+        } else if constexpr (std::is_same_v<T, AppearanceAction>) {
           // No effect on motion: SUMO has no lights, animations or weather here, the entities
           // no vehicle dynamics for controller overrides, custom commands no meaning (model.hpp).
         } else {

@@ -23,6 +23,17 @@ using position::PositionResolver;
 using position::ResolvedPosition;
 using position::shifted_lane;
 
+// The time of day the last EnvironmentAction set, and when (TimeOfDayCondition). With
+// animation the time of day runs on with the simulation time (the standard: "If true, the
+// timeofday is animated with progressing simulation time"), else it stays.
+struct TimeOfDayClock {
+  TimeOfDaySetting setting;
+  double set_at = 0;  // simulation time
+  [[nodiscard]] double now(double t) const {
+    return setting.animation ? setting.date_time + (t - set_at) : setting.date_time;
+  }
+};
+
 struct ActionContext {
   const Scenario& scenario;
   const opendrive::RoadNetwork& roads;
@@ -35,6 +46,8 @@ struct ActionContext {
   double dt = 0;  // the step that led to t (0 at the start)
   TrafficSignals* signals = nullptr;  // the signals' states and controllers' phases
   TrafficBook* traffic = nullptr;     // the traffic TrafficActions started (traffic_book.hpp)
+  std::optional<TimeOfDayClock>* time_of_day = nullptr;  // set by EnvironmentActions
+  std::map<std::string, bool>* monitors = nullptr;        // MonitorDeclarations, set by SetMonitorActions
 };
 
 // Route: an AcquirePositionAction waiting for its entity to reach the position.

@@ -32,13 +32,16 @@ void read_numbers(Element& e, const std::vector<const char*>& names) {
   for (const char* n : names) (void)e.optional_number(n);
 }
 
-void read_environment(Element& environment) {
+std::optional<TimeOfDaySetting> read_environment(Element& environment) {
   (void)environment.text("name");
   environment.ignore_children({"ParameterDeclarations"});
+  std::optional<TimeOfDaySetting> time_of_day;
   if (auto time = environment.optional_child("TimeOfDay")) {
-    (void)time->boolean("animation");
-    (void)time->text("dateTime");
+    TimeOfDaySetting setting;
+    setting.animation = time->boolean("animation");
+    setting.date_time = read_date_time(*time, "dateTime");
     time->finish();
+    time_of_day = setting;
   }
   if (auto weather = environment.optional_child("Weather")) {
     read_numbers(*weather, {"atmosphericPressure", "temperature"});
@@ -77,6 +80,7 @@ void read_environment(Element& environment) {
     road->finish();
   }
   environment.finish();
+  return time_of_day;
 }
 
 }  // namespace
@@ -147,12 +151,10 @@ EnvironmentAction read_environment_action(Element& e, Context& context) {
   if (source.name() == "CatalogReference") {
     Element entry = context.resolve(source, {"Environment"});
     const std::string name = entry.text("name");
-    read_environment(entry);
-    return EnvironmentAction{name};
+    return EnvironmentAction{name, read_environment(entry)};
   }
   const std::string name = source.text("name");
-  read_environment(source);
-  return EnvironmentAction{name};
+  return EnvironmentAction{name, read_environment(source)};
 }
 
 }  // namespace orch::openscenario::reading

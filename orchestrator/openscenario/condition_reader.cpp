@@ -1,9 +1,20 @@
 // Triggers: ConditionGroups of Conditions, by value or by entity.
 #include <fmt/format.h>
 
+#include "openscenario/date_time.hpp"
 #include "openscenario/reader_context.hpp"
 
 namespace orch::openscenario::reading {
+
+double read_date_time(Element& e, const char* attribute) {
+  const std::string text = e.text(attribute);
+  const std::optional<double> value = parse_date_time(text);
+  if (!value)
+    e.fail_attribute(attribute, fmt::format("\"{}\" is no xsd:dateTime (YYYY-MM-DDThh:mm:ss, optionally with "
+                                            "fractional seconds and a zone such as Z or +01:00)",
+                                            text));
+  return *value;
+}
 
 Rule read_rule(Element& e) {
   return e.choice<Rule>("rule", {{"equalTo", Rule::EqualTo},
@@ -85,6 +96,27 @@ const std::vector<std::pair<std::string, ValueReader>> kValueConditions = {
        if (!problem.empty()) e.fail_attribute("value", fmt::format("{} ({} variable {})", problem, type, name));
        return v;
      }},
+    // UserDefinedValueCondition compares a value the simulation environment supplies from
+    // outside the scenario (the standard: "the current value of an externally defined named
+    // value"); the standard leaves its source to the tool, and the orchestrator has none:
+    // the file needs a source it cannot have here, an error naming the value (never a
+    // condition silently false). Parameters (--param) and variables are the scenario's own
+    // named values a file can compare instead.
+    {"UserDefinedValueCondition",
+     [](Element& e, const Context&) -> decltype(Condition::kind) {
+       const std::string name = e.text("name");
+       (void)read_rule(e);
+       (void)e.text("value");
+       e.fail(fmt::format("UserDefinedValueCondition compares \"{}\", a value from outside the scenario that the "
+                          "simulation environment supplies; the orchestrator has no source of such values. Compare "
+                          "a parameter (ParameterCondition, set with --param {}=VALUE) or a variable "
+                          "(VariableCondition) instead",
+                          name, name));
+     }},
+    {"TimeOfDayCondition",
+     [](Element& e, const Context&) -> decltype(Condition::kind) {
+       return TimeOfDayCondition{read_rule(e), read_date_time(e, "dateTime")};
+     }},
     {"TrafficSignalCondition",
      [](Element& e, const Context&) -> decltype(Condition::kind) { return read_traffic_signal_condition(e); }},
     {"TrafficSignalControllerCondition",
@@ -133,6 +165,43 @@ EntityCondition read_time_to_collision(Element& e) {
   } else {
     c.position = read_position(target);
   }
+  return c;
+}
+
+// AngleCondition / RelativeAngleCondition (1.3). The angle is compared on the circle, so
+// its range is not checked; the tolerance cannot be negative. coordinateSystem "world"
+// (1.3) is the inertial frame. "entity" gives an AngleCondition no meaning (an entity's
+// angle in its own frame is always 0) and "trajectory" is not run (as in the distance
+// conditions): both are errors naming the attribute.
+template <class AngleKind>
+void read_angle(Element& e, AngleKind& c, const std::string& default_system) {
+  c.angle_type = e.choice<std::string>("angleType", {{"heading", "heading"}, {"pitch", "pitch"}, {"roll", "roll"}});
+  c.angle = e.number("angle");
+  c.tolerance = e.number("angleTolerance");
+  if (c.tolerance < 0) e.fail_attribute("angleTolerance", "an angle tolerance cannot be negative");
+  c.coordinate_system = e.optional_choice<std::string>("coordinateSystem", {{"entity", "entity"},
+                                                                             {"lane", "lane"},
+                                                                             {"road", "road"},
+                                                                             {"trajectory", "trajectory"},
+                                                                             {"world", "world"}})
+                            .value_or(default_system);
+  if (c.coordinate_system == "trajectory") e.fail_attribute("coordinateSystem", "trajectory is not supported");
+}
+
+EntityCondition read_angle_condition(Element& e) {
+  AngleCondition c;
+  read_angle(e, c, "world");
+  if (c.coordinate_system == "entity")
+    e.fail_attribute("coordinateSystem",
+                     "an AngleCondition cannot use entity (the entity's own frame: its angle is always 0); "
+                     "use world, road or lane, or a RelativeAngleCondition");
+  return c;
+}
+
+EntityCondition read_relative_angle_condition(Element& e) {
+  RelativeAngleCondition c;
+  c.entity = e.text("entityRef");
+  read_angle(e, c, "entity");
   return c;
 }
 
@@ -241,6 +310,8 @@ const std::vector<std::pair<std::string, EntityReader>> kEntityConditions = {
     {"TimeToCollisionCondition", read_time_to_collision},
     {"CollisionCondition", read_collision},
     {"RelativeClearanceCondition", read_relative_clearance},
+    {"AngleCondition", read_angle_condition},
+    {"RelativeAngleCondition", read_relative_angle_condition},
 };
 
 // `read(reader, element)` calls the table's reader (the value readers also take the context).

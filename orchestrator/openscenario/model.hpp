@@ -80,6 +80,7 @@ using position::InRouteFromLane;
 using position::InRouteFromRoad;
 using position::RoadPosition;
 using position::RoutePosition;
+using position::TrajectoryPosition;
 using position::WorldPosition;
 
 // ---- Actions ------------------------------------------------------------------------
@@ -237,7 +238,16 @@ struct VariableModifyAction {
 // lights (AppearanceAction / LightStateAction) and the environment (EnvironmentAction:
 // time of day, weather, road condition). SUMO runs render neither; `element` names which.
 struct AppearanceAction { std::string element; };
-struct EnvironmentAction { std::string name; };
+// An Environment's TimeOfDay: the time it sets (seconds since 1970-01-01T00:00:00 UTC, see
+// openscenario/date_time.hpp) and whether it then runs on with the simulation time.
+struct TimeOfDaySetting {
+  double date_time = 0;
+  bool animation = false;
+};
+struct EnvironmentAction {
+  std::string name;
+  std::optional<TimeOfDaySetting> time_of_day;  // the only part a condition reads
+};
 // Trailers (1.3): the actor tows `trailer` from now on / no trailer any more.
 // SynchronizeAction (openscenario/synchronize.hpp): reach `position` when the master `entity`
 // reaches `master_position`; tolerances in m (absent: kSynchronizeTolerance).
@@ -270,6 +280,11 @@ struct LateralDistanceAction {
   std::string displacement = "any";  // any, leftToReferencedEntity, rightToReferencedEntity
   std::optional<double> max_acceleration, max_deceleration, max_speed;
 };
+// SetMonitorAction (1.3): sets the monitor `monitor` (MonitorDeclarations) to `value`.
+struct SetMonitorAction {
+  std::string monitor;
+  bool value = false;
+};
 struct ConnectTrailerAction { std::string entity; };  // the trailer (checked like every `entity`)
 struct DisconnectTrailerAction {};
 using PrivateAction = std::variant<TeleportAction, SpeedAction, SpeedProfileAction, LaneChangeAction, LaneOffsetAction,
@@ -279,7 +294,8 @@ using PrivateAction = std::variant<TeleportAction, SpeedAction, SpeedProfileActi
                                    VariableSetAction, VariableModifyAction, ConnectTrailerAction,
                                    DisconnectTrailerAction, AppearanceAction, EnvironmentAction, SynchronizeAction,
                                    TrafficSignalStateAction, TrafficSignalControllerAction, LateralDistanceAction,
-                                   TrafficSwarmAction, TrafficSourceAction, TrafficSinkAction, TrafficStopAction>;
+                                   TrafficSwarmAction, TrafficSourceAction, TrafficSinkAction, TrafficStopAction,
+                                   SetMonitorAction>;
 // Which alternatives are global actions (they take no actors).
 template <class T>
 inline constexpr bool kIsGlobalAction =
@@ -288,7 +304,8 @@ inline constexpr bool kIsGlobalAction =
     std::is_same_v<T, VariableSetAction> || std::is_same_v<T, VariableModifyAction> ||
     std::is_same_v<T, EnvironmentAction> || std::is_same_v<T, TrafficSignalStateAction> ||
     std::is_same_v<T, TrafficSignalControllerAction> || std::is_same_v<T, TrafficSwarmAction> ||
-    std::is_same_v<T, TrafficSourceAction> || std::is_same_v<T, TrafficSinkAction> || std::is_same_v<T, TrafficStopAction>;
+    std::is_same_v<T, TrafficSourceAction> || std::is_same_v<T, TrafficSinkAction> || std::is_same_v<T, TrafficStopAction> ||
+    std::is_same_v<T, SetMonitorAction>;
 
 // ---- Conditions and triggers --------------------------------------------------------
 enum class Rule { EqualTo, GreaterThan, LessThan, GreaterOrEqual, LessOrEqual, NotEqualTo };
@@ -305,6 +322,13 @@ struct VariableCondition { std::string variable; Rule rule = Rule::EqualTo; std:
 // A signal's state / a controller's phase now equal the condition's (traffic_signals.hpp).
 struct TrafficSignalCondition { std::string signal; std::string state; };
 struct TrafficSignalControllerCondition { std::string controller; std::string phase; };
+// TimeOfDayCondition: the time of day now (the last EnvironmentAction's TimeOfDay, run on
+// since then when it animates) against `date_time` (as TimeOfDaySetting). No time of day set
+// yet: false.
+struct TimeOfDayCondition {
+  Rule rule = Rule::EqualTo;
+  double date_time = 0;
+};
 struct SpeedCondition { Rule rule = Rule::GreaterThan; double value = 0; };
 struct RelativeDistanceCondition {
   std::string entity;
@@ -368,13 +392,31 @@ struct RelativeClearanceCondition {
   bool freespace = false;
   double distance_forward = 0, distance_backward = 0;
 };
+// AngleCondition (1.3): the triggering entity's heading, pitch or roll (`angle_type`) in
+// `coordinate_system` is within `tolerance` of `angle` (rad; differences taken on the
+// circle). world (the default): the inertial angle; road / lane: relative to the road's
+// reference line / the lane's centre line where the entity is (pitch and roll relative to
+// the road surface, 0 for an entity standing on it). RelativeAngleCondition (1.3): the
+// triggering entity's angle minus `entity`'s, in the entity frame (the default) or world the
+// plain difference, in road / lane the difference of their road-relative angles.
+struct AngleCondition {
+  std::string angle_type;  // heading, pitch, roll
+  double angle = 0, tolerance = 0;
+  std::string coordinate_system = "world";
+};
+struct RelativeAngleCondition {
+  std::string entity;
+  std::string angle_type;
+  double angle = 0, tolerance = 0;
+  std::string coordinate_system = "entity";
+};
 struct ByEntityCondition {
   bool all = false;  // triggeringEntitiesRule
   std::vector<std::string> triggering_entities;
   std::variant<SpeedCondition, RelativeDistanceCondition, TraveledDistanceCondition, StandStillCondition,
                EndOfRoadCondition, OffroadCondition, AccelerationCondition, ReachPositionCondition,
                RelativeSpeedCondition, TimeHeadwayCondition, DistanceCondition, TimeToCollisionCondition,
-               CollisionCondition, RelativeClearanceCondition>
+               CollisionCondition, RelativeClearanceCondition, AngleCondition, RelativeAngleCondition>
       condition;
 };
 struct Condition {
@@ -382,7 +424,7 @@ struct Condition {
   double delay = 0;
   Edge edge = Edge::None;
   std::variant<SimulationTimeCondition, StoryboardElementStateCondition, ParameterCondition, VariableCondition,
-               ByEntityCondition, TrafficSignalCondition, TrafficSignalControllerCondition>
+               ByEntityCondition, TrafficSignalCondition, TrafficSignalControllerCondition, TimeOfDayCondition>
       kind;
   Place place;
 };
@@ -471,6 +513,9 @@ struct Scenario {
   // ParameterSetAction, ParameterModifyAction and ParameterCondition).
   std::vector<Parameter> local_parameters;
   std::vector<Parameter> variables;  // VariableDeclarations (1.2); `type` as for parameters
+  // MonitorDeclarations (1.3): boolean monitors by name with their initial values; the
+  // storyboard's SetMonitorActions change them, a run reports their final values.
+  std::vector<std::pair<std::string, bool>> monitors;
   std::string road_file;  // absolute path of the .xodr ("" when none)
   std::vector<TrafficSignalController> signal_controllers;  // RoadNetwork/TrafficSignals
   std::vector<Entity> entities;

@@ -1,8 +1,9 @@
-// Position: the eight kinds the orchestrator resolves on OpenDRIVE roads (GeoPosition and
-// TrajectoryPosition are not supported).
+// Position: the nine kinds the orchestrator resolves on OpenDRIVE roads (GeoPosition is not
+// supported: docs/openscenario.md says why).
 #include <fmt/format.h>
 
 #include "openscenario/reader_context.hpp"
+#include "openscenario/trajectory_position.hpp"
 
 namespace orch::openscenario::reading {
 namespace {
@@ -48,8 +49,23 @@ RoutePosition read_route_position(Element& p) {
   return r;
 }
 
+// TrajectoryPosition (1.1): s along the trajectory's path (not negative), t to its left
+// (default 0), an optional Orientation (relative: to the path's heading at s).
+TrajectoryPosition read_trajectory_position(Element& p) {
+  if (!context_in_use) p.fail("a TrajectoryPosition is read only within a scenario file");
+  TrajectoryPosition r;
+  r.s = p.number("s");
+  if (r.s < 0) p.fail_attribute("s", "s cannot be negative (it is measured from the trajectory's start)");
+  r.t = p.optional_number("t").value_or(0.0);
+  r.orientation = read_orientation(p);
+  Element ref = p.child("TrajectoryRef");
+  r.path = trajectory_path_of(read_trajectory_ref(ref, *context_in_use));
+  return r;
+}
+
 Position read_kind(Element& p) {
   const std::string_view kind = p.name();
+  if (kind == "TrajectoryPosition") return read_trajectory_position(p);
   if (kind == "WorldPosition") {
     WorldPosition w{p.number("x"), p.number("y"), p.optional_number("h")};
     p.ignore_attributes({"z", "p", "r"});
@@ -71,10 +87,14 @@ Position read_kind(Element& p) {
   if (kind == "LanePosition")
     return LanePosition{p.text("roadId"), p.integer("laneId"), p.number("s"), p.optional_number("offset").value_or(0.0),
                         read_orientation(p)};
-  // RelativeLanePosition: ds or dsLane (1.1+); only ds is run.
-  RelativeLanePosition r{p.text("entityRef"), p.integer("dLane"), p.number("ds"),
-                         p.optional_number("offset").value_or(0.0), read_orientation(p)};
-  if (p.has("dsLane")) p.fail_attribute("dsLane", "dsLane is not supported (use ds)");
+  // RelativeLanePosition: ds (along the road's s) or dsLane (1.1+: along the centre line of
+  // the reference entity's lane); the standard makes them mutually exclusive, 1.0 has only ds.
+  RelativeLanePosition r{p.text("entityRef"), p.integer("dLane"), 0.0, p.optional_number("offset").value_or(0.0),
+                         read_orientation(p), std::nullopt};
+  if (p.has("ds") && p.has("dsLane")) p.fail_attribute("dsLane", "ds and dsLane are mutually exclusive: give one");
+  if (p.has("dsLane")) r.ds_lane = p.number("dsLane");
+  else if (p.has("ds")) r.ds = p.number("ds");
+  else p.fail("a RelativeLanePosition needs ds or dsLane");
   return r;
 }
 
@@ -85,7 +105,8 @@ ContextInUse::~ContextInUse() { context_in_use = previous_; }
 
 Position read_position(Element& position) {
   Element p = position.one_of({"WorldPosition", "RelativeWorldPosition", "RelativeObjectPosition", "RoadPosition",
-                               "RelativeRoadPosition", "LanePosition", "RelativeLanePosition", "RoutePosition"});
+                               "RelativeRoadPosition", "LanePosition", "RelativeLanePosition", "RoutePosition",
+                               "TrajectoryPosition"});
   position.finish();
   Position result = read_kind(p);
   p.finish();

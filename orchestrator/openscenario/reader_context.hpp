@@ -28,6 +28,7 @@ class Context {
   // Parameters of Stories and Maneuvers, named by their runtime key ("<owner>/<name>").
   std::vector<Parameter> local_parameters;
   std::vector<Parameter> variables;  // VariableDeclarations (1.2)
+  std::vector<std::string> monitors;  // MonitorDeclarations (1.3), by name
   std::vector<TrafficSignalController> signal_controllers;  // RoadNetwork/TrafficSignals, read first
   // Catalog kinds whose Directory does not exist: kind -> directory (a reference into it is
   // the error, the missing directory only a warning).
@@ -91,6 +92,8 @@ Storyboard read_storyboard(Element& storyboard, const Scenario& scenario, Contex
 // Readers of single actions used by the tables (routing_reader.cpp, global_action_reader.cpp).
 AssignRouteAction read_assign_route(Element& e, Context& context);
 FollowTrajectoryAction read_follow_trajectory(Element& e, Context& context);
+// A TrajectoryRef's Trajectory, inline or from a catalog (FollowTrajectoryAction, TrajectoryPosition).
+Trajectory read_trajectory_ref(Element& trajectory_ref, Context& context);
 ParameterSetAction read_parameter_set(Element& parameter_action, Element& set);
 ParameterModifyAction read_parameter_modify(Element& parameter_action, Element& modify);
 AppearanceAction read_light_state(Element& light_state_action);
@@ -100,6 +103,8 @@ AppearanceAction read_animation(Element& animation_action, Context& context);
 AppearanceAction read_controller_override(Element& override_action, Context& context);
 AppearanceAction read_user_defined_action(Element& user_defined_action, Context& context);
 EnvironmentAction read_environment_action(Element& environment_action, Context& context);
+// An xsd:dateTime attribute (TimeOfDay, TimeOfDayCondition) as openscenario/date_time.hpp reads it.
+double read_date_time(Element& e, const char* attribute);
 VariableSetAction read_variable_set(Element& variable_action, Element& set, const Context& context);
 VariableModifyAction read_variable_modify(Element& variable_action, Element& modify, const Context& context);
 // The declared variable `variableRef` names, with its type (VariableAction, VariableCondition).

@@ -199,6 +199,12 @@ std::shared_ptr<const position::RouteWaypoints> read_route_ref(Element& route_re
   return route;
 }
 
+Trajectory read_trajectory_ref(Element& trajectory_ref, Context& context) {
+  Element inner = trajectory_ref.one_of({"Trajectory", "CatalogReference"});
+  trajectory_ref.finish();
+  return read_trajectory_or_reference(inner, context);
+}
+
 FollowTrajectoryAction read_follow_trajectory(Element& e, Context& context) {
   FollowTrajectoryAction a;
   a.initial_distance_offset = e.optional_number("initialDistanceOffset").value_or(0.0);

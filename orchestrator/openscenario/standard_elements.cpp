@@ -67,8 +67,8 @@ constexpr std::array kStandardElements = std::to_array<std::string_view>({
     // Element names (not type names) the list above missed, and 1.3's.
     "AddValue", "CentralObject", "DirectionOfTravelDistribution", "FinalSpeed", "FromLaneCoordinates",
     "FromRoadCoordinates", "InRoutePosition", "ModifyAction", "MultiplyByValue", "None", "PositionStart",
-    "RelativeAngleCondition", "Rule", "SensorReference", "SensorReferenceSet", "SetAction", "StartTrigger",
-    "TargetPosition", "TargetPositionMaster", "Trailer", "TrailerAction", "TrailerCoupler", "TrailerHitch",
+    "RelativeAngleCondition", "Rule", "SensorReference", "SensorReferenceSet", "SetAction", "SetMonitorAction",
+    "StartTrigger", "TargetPosition", "TargetPositionMaster", "Trailer", "TrailerAction", "TrailerCoupler", "TrailerHitch",
     "TrailerRef", "VariableAction",
 });
 

@@ -7,6 +7,7 @@
 
 #include "core/errors.hpp"
 #include "core/exhaustive.hpp"
+#include "openscenario/angle_measures.hpp"
 #include "openscenario/entity_measures.hpp"
 #include "openscenario/road_following.hpp"
 #include "openscenario/rule.hpp"
@@ -60,6 +61,13 @@ bool StoryboardRuntime::Impl::value_of(const Condition& c, ConditionMemory& m) {
           return state && normalized_signal_state(*state) == normalized_signal_state(kind.state);
         } else if constexpr (std::is_same_v<T, TrafficSignalControllerCondition>) {
           return signals.phase(kind.controller) == kind.phase;
+        } else if constexpr (std::is_same_v<T, TimeOfDayCondition>) {
+          // Times of day are whole or millisecond values; simulation times k * dt: equal
+          // within a microsecond.
+          if (!time_of_day) return false;
+          const double now = time_of_day->now(t);
+          if (std::abs(now - kind.date_time) < 1e-6) return satisfies(kind.rule, kind.date_time, kind.date_time);
+          return satisfies(kind.rule, now, kind.date_time);
         } else {
           static_assert(kUnhandled<T>, "an OpenSCENARIO condition the reader makes needs its evaluation here");
         }
@@ -168,6 +176,15 @@ bool StoryboardRuntime::Impl::entity_condition(const ByEntityCondition& c, const
           const double d = relative_distance(me, {&other, &scenario.entity(k.entity)->box}, k.distance_type,
                                              k.coordinate_system, k.freespace);
           return satisfies(k.rule, d, k.value);
+        } else if constexpr (std::is_same_v<T, AngleCondition>) {
+          const std::optional<double> angle = entity_angle(self, k.angle_type, k.coordinate_system, roads);
+          return angle && std::abs(angle_difference(*angle, k.angle)) <= k.tolerance + 1e-9;
+        } else if constexpr (std::is_same_v<T, RelativeAngleCondition>) {
+          const EntityState& other = entities.at(k.entity);
+          if (!other.placed) return false;
+          const std::optional<double> mine = entity_angle(self, k.angle_type, k.coordinate_system, roads);
+          const std::optional<double> theirs = entity_angle(other, k.angle_type, k.coordinate_system, roads);
+          return mine && theirs && std::abs(angle_difference(angle_difference(*mine, *theirs), k.angle)) <= k.tolerance + 1e-9;
         }
         else
           static_assert(kUnhandled<T>, "an OpenSCENARIO entity condition the reader makes needs its evaluation here");

@@ -22,6 +22,8 @@ void position_entities(const Position& p, std::vector<std::string>& names) {
             names.push_back(current->entity);
           for (const position::RouteWaypoint& w : kind.route->waypoints) position_entities(w.position, names);
         }
+        if constexpr (std::is_same_v<T, position::TrajectoryPosition>)
+          for (const Position& vertex : kind.path->positions()) position_entities(vertex, names);
       },
       p);
 }

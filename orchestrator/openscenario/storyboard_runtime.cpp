@@ -14,6 +14,7 @@ StoryboardRuntime::Impl::Impl(const Scenario& s, const opendrive::RoadNetwork& r
   for (const Parameter& p : s.parameters) parameters[p.name] = p;
   for (const Parameter& p : s.local_parameters) parameters[p.name] = p;  // "<owner>/<name>"
   for (const Parameter& v : s.variables) variables[v.name] = v;
+  for (const auto& [name, value] : s.monitors) monitors[name] = value;
   for (const Story& story : s.storyboard.stories) {
     names[{"story", story.key}] = story.name;
     for (const Act& act : story.acts) {
@@ -36,7 +37,8 @@ StoryboardRuntime::Impl::Impl(const Scenario& s, const opendrive::RoadNetwork& r
 }
 
 ActionContext StoryboardRuntime::Impl::context() {
-  return ActionContext{scenario, roads, resolver, entities, parameters, variables, trailers, t, last_dt, &signals, &traffic};
+  return ActionContext{scenario, roads,   resolver, entities, parameters, variables, trailers, t,
+                       last_dt,  &signals, &traffic, &time_of_day, &monitors};
 }
 
 void StoryboardRuntime::Impl::transition(const std::string& type, const std::string& key,
@@ -318,6 +320,7 @@ void StoryboardRuntime::observe(const std::string& name, const opendrive::Pose2&
 
 const std::map<std::string, Parameter>& StoryboardRuntime::parameters() const { return impl_->parameters; }
 const std::map<std::string, Parameter>& StoryboardRuntime::variables() const { return impl_->variables; }
+const std::map<std::string, bool>& StoryboardRuntime::monitors() const { return impl_->monitors; }
 const std::map<std::string, std::string>& StoryboardRuntime::trailers() const { return impl_->trailers; }
 const std::map<std::string, std::string>& StoryboardRuntime::signal_states() const { return impl_->signals.states(); }
 const TrafficBook& StoryboardRuntime::traffic() const { return impl_->traffic; }

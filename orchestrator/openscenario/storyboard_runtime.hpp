@@ -57,6 +57,8 @@ class StoryboardRuntime {
   [[nodiscard]] const std::map<std::string, Parameter>& parameters() const;
   // Variable values now (VariableSetAction / VariableModifyAction change them).
   [[nodiscard]] const std::map<std::string, Parameter>& variables() const;
+  // Monitor values now (MonitorDeclarations, 1.3; SetMonitorActions change them).
+  [[nodiscard]] const std::map<std::string, bool>& monitors() const;
   // Which trailer each tractor tows now (tractor -> trailer).
   [[nodiscard]] const std::map<std::string, std::string>& trailers() const;
   // Each traffic signal's state now (OpenDRIVE signal id -> the file's state text).

@@ -63,6 +63,8 @@ struct StoryboardRuntime::Impl {
   TrailerLinks trailers;                        // tractor -> trailer towed now
   TrafficSignals signals;                       // signal states, controller phases
   TrafficBook traffic;                          // traffic started by TrafficActions
+  std::optional<TimeOfDayClock> time_of_day;    // the Environment's, once an EnvironmentAction set one
+  std::map<std::string, bool> monitors;         // MonitorDeclarations' values now
   // Each storyboard action's place in the file (stories, acts, groups, maneuvers, events,
   // actions in document order; Init actions, key "", come before all): the order in which
   // esmini steps running actions within a step (lane_change_motion_order below).

@@ -174,6 +174,23 @@ std::vector<Parameter> read_variables(Element& root) {
   return variables;
 }
 
+// MonitorDeclarations (1.3): named booleans with their initial values, set by
+// SetMonitorActions (the standard's means for a scenario to report whether what it tests held).
+std::vector<std::pair<std::string, bool>> read_monitors(Element& root) {
+  std::vector<std::pair<std::string, bool>> monitors;
+  auto declarations = root.optional_child("MonitorDeclarations");
+  if (!declarations) return monitors;
+  for (Element d : declarations->children("MonitorDeclaration")) {
+    const std::string name = d.text("name");
+    for (const auto& other : monitors)
+      if (other.first == name) d.fail_attribute("name", fmt::format("monitor \"{}\" is declared twice", name));
+    monitors.emplace_back(name, d.boolean("value"));
+    d.finish();
+  }
+  declarations->finish();
+  return monitors;
+}
+
 }  // namespace
 
 std::map<std::string, std::string> parse_parameter_overrides(const std::vector<std::string>& texts) {
@@ -205,6 +222,8 @@ Scenario load_scenario(const std::string& path, const LoadOptions& options) {
   scenario.parameters = read_parameters(root, options, context);
   scenario.variables = read_variables(root);
   context.variables = scenario.variables;
+  scenario.monitors = read_monitors(root);
+  for (const auto& monitor : scenario.monitors) context.monitors.push_back(monitor.first);
   const std::string dir = fs::path(path).parent_path().string();
   if (auto locations = root.optional_child("CatalogLocations")) reading::read_catalog_locations(*locations, dir, context);
   Element network = root.child("RoadNetwork");

@@ -222,6 +222,7 @@ class OpenScenarioFormat : public RunFormat {
       log.note(fmt::format("{} background vehicles in SUMO at the end", background_));
     if (traffic_)
       for (const openscenario::Traffic& t : runtime_->traffic().all()) log.note(traffic_outcome(traffic_record(t, *traffic_)));
+    for (const auto& [name, value] : runtime_->monitors()) log.note(fmt::format("monitor {} = {} at the end", name, value));
   }
 
   void finish(RunResult& result) override {
@@ -233,6 +234,8 @@ class OpenScenarioFormat : public RunFormat {
     if (observed_) result.collisions = observed_->contacts();
     if (traffic_ && runtime_)
       for (const openscenario::Traffic& t : runtime_->traffic().all()) result.storyboard_traffic.push_back(traffic_record(t, *traffic_));
+    if (runtime_)
+      for (const auto& [name, value] : runtime_->monitors()) result.monitors.emplace_back(name, value);
   }
   [[nodiscard]] std::optional<std::string> ego_collision_reason() const override { return collision_; }
 

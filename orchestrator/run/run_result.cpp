@@ -213,6 +213,8 @@ std::string to_json(const RunResult& r) {
                           {"reference_min_gap", optional_json(ref.reference_min_gap)}};
   }
   j["storyboard_traffic"] = storyboard_traffic_json(r.storyboard_traffic);
+  j["monitors"] = nullptr;
+  for (const auto& [name, value] : r.monitors) j["monitors"][name] = value;
   j["trace_rows"] = r.trace_rows;
   j["wall_time_s"] = r.wall_time_s;
   j["timing"] = {{"start_s", r.timing.start_s},

@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/verdict.hpp"
@@ -117,6 +118,8 @@ struct RunResult {
   std::optional<ReferenceRunRecord> reference_run;
   // OpenSCENARIO: the storyboard's TrafficActions that started (empty: none; then null).
   std::vector<TrafficActionRecord> storyboard_traffic;
+  // OpenSCENARIO 1.3 MonitorDeclarations: each monitor's value at the end (empty: none; then null).
+  std::vector<std::pair<std::string, bool>> monitors;
 };
 
 std::string to_json(const RunResult& r);
