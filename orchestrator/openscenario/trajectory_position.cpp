@@ -32,7 +32,7 @@ class ShapePath final : public position::TrajectoryPath {
   [[nodiscard]] std::vector<opendrive::Pose2> points(const std::vector<opendrive::Pose2>& resolved) const override {
     std::vector<PathPoint> points;
     if (std::holds_alternative<PolylineShape>(trajectory_.shape)) {
-      for (const opendrive::Pose2& p : resolved) points.push_back({p.x, p.y, 0.0, std::nullopt});
+      for (const opendrive::Pose2& p : resolved) points.push_back({p.x, p.y, 0.0, std::nullopt, std::nullopt});
     } else if (const auto* nurbs = std::get_if<NurbsShape>(&trajectory_.shape)) {
       std::vector<NurbsControl> controls;
       for (std::size_t i = 0; i < resolved.size(); ++i)
