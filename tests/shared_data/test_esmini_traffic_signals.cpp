@@ -108,7 +108,9 @@ TEST(EsminiTrafficSignals, AGroupStateHoldsTheRoadsSignalGroupRedOnSumo) {
     const double t = row.num("time");
     if (std::abs(t - 19.0) < 1e-6) speed_at_19 = row.num("speed"), x_at_19 = row.num("x"), y_at_19 = row.num("y");
     if (std::abs(t - 34.0) < 1e-6) x_at_34 = row.num("x"), y_at_34 = row.num("y");
-    if (t <= 20.0) EXPECT_NE(row.str("edge").rfind(":4", 0), 0u) << "in junction 4 on red at " << t;
+    if (t <= 20.0) {
+      EXPECT_NE(row.str("edge").rfind(":4", 0), 0u) << "in junction 4 on red at " << t;
+    }
   }
   EXPECT_NEAR(speed_at_19, 0.0, 0.05);  // standing at the group's red
   EXPECT_GT(std::hypot(x_at_34 - x_at_19, y_at_34 - y_at_19), 50.0);  // and on once it is green
