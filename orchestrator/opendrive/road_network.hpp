@@ -124,6 +124,15 @@ struct RoadCoordinate {
   double road_heading = 0.0;  // heading of the reference line at s
 };
 
+// An OpenDRIVE <controller>: a signal group, the signals (<control signalId>) that share one
+// signal cycle. OpenSCENARIO's TrafficSignalController names one by its id (the standard,
+// 6.11.2) and its phases' TrafficSignalGroupState sets all of its signals.
+struct SignalController {
+  std::string id;
+  std::string name;
+  std::vector<std::string> signals;
+};
+
 class RoadNetwork {
  public:
   RoadNetwork() = default;
@@ -134,6 +143,8 @@ class RoadNetwork {
   [[nodiscard]] const Road& road(const std::string& road_id) const;
   [[nodiscard]] const std::vector<Junction>& junctions() const { return junctions_; }
   [[nodiscard]] const Junction* junction(const std::string& junction_id) const;
+  [[nodiscard]] const std::vector<SignalController>& signal_controllers() const { return signal_controllers_; }
+  void set_signal_controllers(std::vector<SignalController> controllers) { signal_controllers_ = std::move(controllers); }
 
   // Inertial pose of the centre of `lane_id` at s, moved `offset` metres to the left of it.
   [[nodiscard]] Pose2 lane_pose(const std::string& road_id, int lane_id, double s, double offset) const;
@@ -147,6 +158,7 @@ class RoadNetwork {
   std::map<std::string, std::size_t> index_;
   RoadGrid grid_;
   std::vector<Junction> junctions_;
+  std::vector<SignalController> signal_controllers_;
 };
 
 // Projection of (x, y) onto one road's reference line: nearest s in [0, length] and signed t

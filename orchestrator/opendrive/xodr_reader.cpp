@@ -42,7 +42,9 @@ class Reader {
     std::vector<Junction> junctions;
     for (const pugi::xml_node junction : root.children("junction")) junctions.push_back(read_junction(junction));
     check_links(root, roads);
-    return RoadNetwork(std::move(roads), std::move(junctions));
+    RoadNetwork network(std::move(roads), std::move(junctions));
+    network.set_signal_controllers(read_signal_controllers(root));
+    return network;
   }
 
  private:
@@ -147,6 +149,20 @@ class Reader {
   std::optional<int> lane_link(const pugi::xml_node& node) const {
     if (!node) return std::nullopt;
     return integer(node, "id");
+  }
+
+  // The signal groups (<controller>); a control without a signalId names no signal.
+  std::vector<SignalController> read_signal_controllers(const pugi::xml_node& root) const {
+    std::vector<SignalController> out;
+    for (const pugi::xml_node node : root.children("controller")) {
+      SignalController c{node.attribute("id").as_string(), node.attribute("name").as_string(), {}};
+      if (c.id.empty()) throw ScenarioError(src_.where(node, "id"), "controller without an id");
+      for (const pugi::xml_node control : node.children("control"))
+        if (const std::string signal = control.attribute("signalId").as_string(); !signal.empty())
+          c.signals.push_back(signal);
+      out.push_back(std::move(c));
+    }
+    return out;
   }
 
   Junction read_junction(const pugi::xml_node& node) const {

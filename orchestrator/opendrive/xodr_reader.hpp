@@ -2,7 +2,7 @@
 // Reads an OpenDRIVE (.xodr) file into a RoadNetwork. Only what positions, lane types and
 // driving on need is read (planView, laneOffset, lane sections, widths, types, speeds, road
 // and lane links, junctions, the elevation profile and superelevation); road marks, lateral
-// shapes, objects and signals are ignored.
+// shapes, objects and signals are ignored; the signal groups (<controller>) are read.
 // Errors name file, line and element path.
 #include <string>
 

@@ -326,6 +326,11 @@ const std::vector<ActionEntry> kPrivateActions = {
        Element position = e.child("Position");
        return AcquirePositionAction{read_position(position)};
      }},
+    {"RoutingAction", "RandomRouteAction",
+     [](Element&, Element& e, Context&) -> PrivateAction {
+       e.finish();  // no content (1.3)
+       return RandomRouteAction{};
+     }},
     {"RoutingAction", "FollowTrajectoryAction",
      [](Element&, Element& e, Context& c) -> PrivateAction { return read_follow_trajectory(e, c); }},
     {"AppearanceAction", "LightStateAction",
@@ -362,6 +367,7 @@ const std::vector<ActionEntry> kGlobalActions = {
     {"TrafficAction", "TrafficSourceAction", read_traffic_action},
     {"TrafficAction", "TrafficSinkAction", read_traffic_action},
     {"TrafficAction", "TrafficStopAction", read_traffic_action},
+    {"TrafficAction", "TrafficAreaAction", read_traffic_action},
     {"VariableAction", "ModifyAction",
      [](Element& w, Element& e, Context& c) -> PrivateAction { return read_variable_modify(w, e, c); }},
     {"", "SetMonitorAction",

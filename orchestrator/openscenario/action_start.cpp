@@ -13,6 +13,7 @@
 #include "openscenario/lane_offset.hpp"
 #include "openscenario/lateral_distance.hpp"
 #include "openscenario/nurbs.hpp"
+#include "openscenario/random_route.hpp"
 #include "openscenario/route_plan.hpp"
 #include "openscenario/synchronize_motion.hpp"
 #include "openscenario/text_number.hpp"
@@ -417,9 +418,20 @@ std::vector<std::string> start_action(const PrivateAction& action, const std::st
         } else if constexpr (std::is_same_v<T, TrafficSignalControllerAction>) {
           ctx.signals->set_phase(a.controller, a.phase, ctx.t);
         } else if constexpr (std::is_same_v<T, TrafficSwarmAction>) {
-          ctx.traffic->start(Traffic{0, a.name, a, std::nullopt, 0, std::nullopt}, ctx.t);
+          ctx.traffic->start(Traffic{0, a.name, a, std::nullopt, 0, std::nullopt, {}}, ctx.t);
         } else if constexpr (std::is_same_v<T, TrafficSourceAction> || std::is_same_v<T, TrafficSinkAction>) {
-          ctx.traffic->start(Traffic{0, a.name, a, ctx.resolver.resolve(a.position, poses(ctx)), 0, std::nullopt}, ctx.t);
+          ctx.traffic->start(Traffic{0, a.name, a, ctx.resolver.resolve(a.position, poses(ctx)), 0, std::nullopt, {}},
+                             ctx.t);
+        } else if constexpr (std::is_same_v<T, TrafficAreaAction>) {
+          // A polygon's corners are where they are when the action starts (a relative one follows no entity after).
+          Traffic area{0, a.name, a, std::nullopt, 0, std::nullopt, {}};
+          for (const Position& corner : a.polygon) {
+            const ResolvedPosition r = ctx.resolver.resolve(corner, poses(ctx));
+            area.polygon.push_back({r.pose.x, r.pose.y});
+          }
+          ctx.traffic->start(std::move(area), ctx.t);
+        } else if constexpr (std::is_same_v<T, RandomRouteAction>) {
+          plan_random_route(state, ctx.roads, entity);
         } else if constexpr (std::is_same_v<T, TrafficStopAction>) {
           ctx.traffic->stop(a.name, ctx.t);  // none running yet (its action not started): nothing to stop
         } else if constexpr (std::is_same_v<T, SetMonitorAction>) {

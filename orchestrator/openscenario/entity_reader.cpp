@@ -184,4 +184,8 @@ std::vector<Entity> read_entity(Element& scenario_object, Context& context) {
   return read_scenario_object(scenario_object, context, name);
 }
 
+std::vector<Entity> read_entity_template(Element& object_template, Context& context) {
+  return read_scenario_object(object_template, context, "");
+}
+
 }  // namespace orch::openscenario::reading

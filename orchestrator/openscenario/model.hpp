@@ -287,6 +287,9 @@ struct SetMonitorAction {
 };
 struct ConnectTrailerAction { std::string entity; };  // the trailer (checked like every `entity`)
 struct DisconnectTrailerAction {};
+// RoutingAction/RandomRouteAction (1.3, no content): the entity drives a random route, its own
+// choice at every fork, from where it is (openscenario/random_route.hpp).
+struct RandomRouteAction {};
 using PrivateAction = std::variant<TeleportAction, SpeedAction, SpeedProfileAction, LaneChangeAction, LaneOffsetAction,
                                    LongitudinalDistanceAction, ActivateControllerAction, AssignControllerAction,
                                    VisibilityAction, FollowTrajectoryAction, AssignRouteAction, AcquirePositionAction,
@@ -295,7 +298,7 @@ using PrivateAction = std::variant<TeleportAction, SpeedAction, SpeedProfileActi
                                    DisconnectTrailerAction, AppearanceAction, EnvironmentAction, SynchronizeAction,
                                    TrafficSignalStateAction, TrafficSignalControllerAction, LateralDistanceAction,
                                    TrafficSwarmAction, TrafficSourceAction, TrafficSinkAction, TrafficStopAction,
-                                   SetMonitorAction>;
+                                   SetMonitorAction, TrafficAreaAction, RandomRouteAction>;
 // Which alternatives are global actions (they take no actors).
 template <class T>
 inline constexpr bool kIsGlobalAction =
@@ -305,7 +308,7 @@ inline constexpr bool kIsGlobalAction =
     std::is_same_v<T, EnvironmentAction> || std::is_same_v<T, TrafficSignalStateAction> ||
     std::is_same_v<T, TrafficSignalControllerAction> || std::is_same_v<T, TrafficSwarmAction> ||
     std::is_same_v<T, TrafficSourceAction> || std::is_same_v<T, TrafficSinkAction> || std::is_same_v<T, TrafficStopAction> ||
-    std::is_same_v<T, SetMonitorAction>;
+    std::is_same_v<T, SetMonitorAction> || std::is_same_v<T, TrafficAreaAction>;
 
 // ---- Conditions and triggers --------------------------------------------------------
 enum class Rule { EqualTo, GreaterThan, LessThan, GreaterOrEqual, LessOrEqual, NotEqualTo };
@@ -438,10 +441,15 @@ struct Trigger {
 // the controller cycles through its phases, the first starting at `delay` after the start of
 // the `reference` controller's first phase (after the simulation's start without one).
 struct TrafficSignalPhaseState { std::string signal; std::string state; };
+// TrafficSignalGroupState (1.2): one state for every signal of the controller's signal group
+// (the OpenDRIVE <controller> whose id is the TrafficSignalController's name); a phase's
+// TrafficSignalStates, more specific, override it for their signals.
 struct TrafficSignalPhase {
   std::string name;
   double duration = 0;
   std::vector<TrafficSignalPhaseState> states;
+  std::optional<std::string> group_state;
+  Place group_place;  // where the TrafficSignalGroupState is written (messages)
 };
 struct TrafficSignalController {
   std::string name;

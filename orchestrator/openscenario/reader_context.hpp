@@ -65,6 +65,8 @@ void read_catalog_locations(Element& locations, const std::string& scenario_dir,
 
 // The entity, then the trailers written inline in it (named "<entity>+", "<entity>++", ...).
 std::vector<Entity> read_entity(Element& scenario_object, Context& context);
+// A ScenarioObjectTemplate (1.3: an entity without a name, as in an EntityDistribution).
+std::vector<Entity> read_entity_template(Element& object_template, Context& context);
 Controller read_controller(Element& controller);
 
 Position read_position(Element& position);

@@ -5,6 +5,7 @@
 #include "core/errors.hpp"
 #include "opendrive/xodr_reader.hpp"
 #include "openscenario/synchronize_targets.hpp"
+#include "openscenario/traffic_signals.hpp"
 
 namespace orch::openscenario {
 namespace {
@@ -63,6 +64,11 @@ Diagnostics check_scenario_file(const std::string& path, const LoadOptions& opti
             for (const Event& e : m.events)
               for (const Action& a : e.actions) collect(a.action, a.place, positions);
     for (const auto& [position, place] : positions) check_position(*position, roads, path, place, diags);
+    try {  // a TrafficSignalGroupState needs its controller's signal group in the road network
+      (void)TrafficSignals(scenario.signal_controllers, roads.signal_controllers());
+    } catch (const MapError& e) {
+      diags.error(SourceLocation{path, "", 0}, e.what());
+    }
   } catch (const ScenarioError& e) {
     diags.append(e.diagnostics());
   }

@@ -69,7 +69,8 @@ constexpr std::array kStandardElements = std::to_array<std::string_view>({
     "FromRoadCoordinates", "InRoutePosition", "ModifyAction", "MultiplyByValue", "None", "PositionStart",
     "RelativeAngleCondition", "Rule", "SensorReference", "SensorReferenceSet", "SetAction", "SetMonitorAction",
     "StartTrigger", "TargetPosition", "TargetPositionMaster", "Trailer", "TrailerAction", "TrailerCoupler", "TrailerHitch",
-    "TrailerRef", "VariableAction",
+    "TrailerRef", "VariableAction", "ScenarioObjectTemplate", "TrafficArea", "TrafficDistribution",
+    "TrafficDistributionEntry", "TrafficSignalGroupState",
 });
 
 }  // namespace

@@ -44,6 +44,8 @@ std::vector<std::string> referenced_entities(const PrivateAction& action) {
           if (const auto* r = std::get_if<RelativeTargetSpeed>(&a.target)) names.push_back(r->entity);
         if constexpr (std::is_same_v<T, AssignRouteAction>)
           for (const Position& p : a.waypoints) position_entities(p, names);
+        if constexpr (std::is_same_v<T, TrafficAreaAction>)
+          for (const Position& p : a.polygon) position_entities(p, names);
         if constexpr (std::is_same_v<T, FollowTrajectoryAction>) {
           if (const auto* polyline = std::get_if<PolylineShape>(&a.trajectory.shape))
             for (const TrajectoryVertex& v : polyline->vertices) position_entities(v.position, names);

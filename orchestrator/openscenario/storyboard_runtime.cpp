@@ -10,7 +10,11 @@
 namespace orch::openscenario {
 
 StoryboardRuntime::Impl::Impl(const Scenario& s, const opendrive::RoadNetwork& r)
-    : scenario(s), roads(r), resolver(r), trailers(initial_trailer_links(s)), signals(s.signal_controllers) {
+    : scenario(s),
+      roads(r),
+      resolver(r),
+      trailers(initial_trailer_links(s)),
+      signals(s.signal_controllers, r.signal_controllers()) {
   for (const Parameter& p : s.parameters) parameters[p.name] = p;
   for (const Parameter& p : s.local_parameters) parameters[p.name] = p;  // "<owner>/<name>"
   for (const Parameter& v : s.variables) variables[v.name] = v;
@@ -245,7 +249,8 @@ void StoryboardRuntime::Impl::run_init() {
   // whatever their order in the file (esmini's routing-test.xosc assigns the ego's route
   // before it teleports it; a route planned from no position would be no plan).
   const auto is_routing = [](const InitAction& a) {
-    return std::holds_alternative<AssignRouteAction>(a.action) || std::holds_alternative<AcquirePositionAction>(a.action);
+    return std::holds_alternative<AssignRouteAction>(a.action) || std::holds_alternative<AcquirePositionAction>(a.action) ||
+           std::holds_alternative<RandomRouteAction>(a.action);
   };
   for (const bool routing : {false, true})
     for (const InitAction& a : scenario.storyboard.init) {

@@ -10,6 +10,7 @@
 #include <variant>
 #include <vector>
 
+#include "core/polyline.hpp"
 #include "map/position_resolver.hpp"
 #include "openscenario/model.hpp"
 
@@ -18,10 +19,11 @@ namespace orch::openscenario {
 struct Traffic {
   int serial = 0;    // 1, 2, ... in the order started: which traffic a vehicle belongs to
   std::string name;  // the trafficName ("" none)
-  std::variant<TrafficSwarmAction, TrafficSourceAction, TrafficSinkAction> spec;
+  std::variant<TrafficSwarmAction, TrafficSourceAction, TrafficSinkAction, TrafficAreaAction> spec;
   std::optional<position::ResolvedPosition> place;  // a source's or sink's position, resolved when it started
   double started = 0;
   std::optional<double> stopped;  // when a TrafficStopAction ended it
+  std::vector<Vec2> polygon;      // a TrafficAreaAction's Polygon, its corners resolved when it started
 };
 
 class TrafficBook {

@@ -17,10 +17,13 @@ using position::Position;
 // removed around an entity or a position (openscenario/traffic_book.hpp keeps which run; on
 // SUMO run/openscenario_traffic.hpp). `name` is the TrafficAction's trafficName ("" when the
 // file gives none: no TrafficStopAction can name it). Categories: the TrafficDefinition's
-// VehicleCategoryDistribution (empty: cars).
+// VehicleCategoryDistribution, or 1.3's TrafficDistribution (its entries' EntityDistributions:
+// each vehicle template a share of weight entry x template / their sums, with its bounding
+// box's size); empty: cars.
 struct TrafficCategoryShare {
   std::string category;  // car, van, truck, bus, motorbike, bicycle, ...
   double weight = 1;
+  std::optional<double> length, width, height;  // a TrafficDistribution's vehicle: its BoundingBox
 };
 struct TrafficSwarmAction {
   std::string name;
@@ -47,6 +50,28 @@ struct TrafficSinkAction {
   double radius = 0;
   std::optional<double> rate;  // vehicles per second; absent: every vehicle in the radius at once
 };
-struct TrafficStopAction { std::string name; };  // ends the traffic of that trafficName
+struct TrafficStopAction { std::string name; };
+
+// TrafficAreaAction (1.3): numberOfEntities vehicles in an area, given as a Polygon (positions
+// resolved when the action starts) or as RoadRanges (each a list of RoadCursors: a road, an s,
+// the lanes; the range runs from cursor to cursor, at most `length` m). `continuous`: a vehicle
+// that leaves the area is replaced; else the area is filled once.
+struct TrafficAreaRoadCursor {
+  std::string road;
+  std::optional<double> s;  // absent: the road's start (first cursor) or end (a later one)
+  std::vector<int> lanes;   // absent: every lane
+};
+struct TrafficAreaRoadRange {
+  std::optional<double> length;
+  std::vector<TrafficAreaRoadCursor> cursors;  // two or more
+};
+struct TrafficAreaAction {
+  std::string name;
+  int entities = 0;
+  bool continuous = false;
+  std::vector<Position> polygon;                  // three or more; empty: road_ranges
+  std::vector<TrafficAreaRoadRange> road_ranges;  // empty: polygon
+  std::vector<TrafficCategoryShare> categories;
+};  // ends the traffic of that trafficName
 
 }  // namespace orch::openscenario

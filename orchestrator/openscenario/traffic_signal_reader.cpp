@@ -45,9 +45,13 @@ TrafficSignalPhase read_phase(Element& e) {
     p.states.push_back({s.text("trafficSignalId"), s.text("state")});
     s.finish();
   }
-  // TrafficSignalGroupState (1.2) addresses signals by group, which the road does not define here.
-  if (auto group = e.optional_child("TrafficSignalGroupState"))
-    group->fail("TrafficSignalGroupState is not supported (give each signal's TrafficSignalState)");
+  // TrafficSignalGroupState (1.2): the state of every signal of the controller's signal group
+  // (the road network's; resolved against the OpenDRIVE controllers when the run starts).
+  if (auto group = e.optional_child("TrafficSignalGroupState")) {
+    p.group_state = group->text("state");
+    p.group_place = group->place();
+    group->finish();
+  }
   e.finish();
   return p;
 }

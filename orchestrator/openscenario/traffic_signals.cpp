@@ -4,6 +4,11 @@
 #include <cmath>
 #include <set>
 
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include "core/errors.hpp"
+
 namespace orch::openscenario {
 
 std::string normalized_signal_state(const std::string& state) {
@@ -13,8 +18,45 @@ std::string normalized_signal_state(const std::string& state) {
   return out;
 }
 
-TrafficSignals::TrafficSignals(const std::vector<TrafficSignalController>& controllers) {
-  for (const TrafficSignalController& c : controllers) controllers_[c.name].spec = &c;
+namespace {
+
+// The signal group a controller's name refers to: an OpenDRIVE controller's id, else its name.
+const opendrive::SignalController* signal_group(const std::string& name,
+                                                const std::vector<opendrive::SignalController>& groups) {
+  for (const auto& g : groups)
+    if (g.id == name) return &g;
+  for (const auto& g : groups)
+    if (!g.name.empty() && g.name == name) return &g;
+  return nullptr;
+}
+
+}  // namespace
+
+TrafficSignals::TrafficSignals(const std::vector<TrafficSignalController>& controllers,
+                               const std::vector<opendrive::SignalController>& groups) {
+  for (const TrafficSignalController& c : controllers) {
+    controllers_[c.name].spec = &c;
+    for (const TrafficSignalPhase& p : c.phases) {
+      if (!p.group_state) continue;
+      const opendrive::SignalController* group = signal_group(c.name, groups);
+      if (group == nullptr || group->signals.empty()) {
+        std::vector<std::string> ids;
+        for (const auto& g : groups) ids.push_back(g.id);
+        throw MapError(fmt::format(
+            "the TrafficSignalGroupState of phase \"{}\" of TrafficSignalController \"{}\" ({}, line {}): {}; a "
+            "group state sets the signals of the road network's signal group (OpenDRIVE <controller>) whose id is the "
+            "controller's name{}",
+            p.name, c.name, p.group_place.path, p.group_place.line,
+            group == nullptr ? "the road network has no signal group of that id" : "that signal group controls no signal",
+            group == nullptr ? (ids.empty() ? std::string(" (the road network defines none: give each signal's "
+                                                          "TrafficSignalState)")
+                                            : fmt::format(" (it has: {})", fmt::join(ids, ", ")))
+                             : std::string()));
+      }
+      controllers_[c.name].group = group->signals;
+      break;
+    }
+  }
   // Start times follow the references (checked acyclic at load; a broken chain starts at 0).
   for (auto& [name, c] : controllers_) {
     double start = 0;
@@ -47,7 +89,10 @@ int TrafficSignals::phase_at(const Running& c, double t) const {
 
 void TrafficSignals::enter(Running& c, int phase) {
   c.phase = phase;
-  for (const TrafficSignalPhaseState& s : c.spec->phases[static_cast<std::size_t>(phase)].states)
+  const TrafficSignalPhase& p = c.spec->phases[static_cast<std::size_t>(phase)];
+  if (p.group_state)
+    for (const std::string& signal : c.group) states_[signal] = *p.group_state;
+  for (const TrafficSignalPhaseState& s : p.states)
     states_[s.signal] = s.state;
 }
 

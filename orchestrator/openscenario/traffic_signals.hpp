@@ -10,11 +10,17 @@
 // reference's first phase"). A phase that starts sets the states of its signals; a
 // TrafficSignalStateAction sets one signal until the next phase that names it starts.
 // TrafficSignalControllerAction starts the named phase now; the cycle goes on from there.
+// A phase's TrafficSignalGroupState sets every signal of the controller's signal group: the
+// road network's OpenDRIVE <controller> whose id (else whose name) is the
+// TrafficSignalController's name (the standard, 6.11.2: the controller "references the
+// identifier of a signal group in the road network ... with the name attribute"); then the
+// phase's own TrafficSignalStates, more specific, set theirs.
 #include <map>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "opendrive/road_network.hpp"
 #include "openscenario/model.hpp"
 
 namespace orch::openscenario {
@@ -24,7 +30,10 @@ std::string normalized_signal_state(const std::string& state);
 
 class TrafficSignals {
  public:
-  explicit TrafficSignals(const std::vector<TrafficSignalController>& controllers);
+  // Throws MapError naming the TrafficSignalGroupState when the road network has no signal
+  // group of its controller's name (or the group controls no signal).
+  explicit TrafficSignals(const std::vector<TrafficSignalController>& controllers,
+                          const std::vector<opendrive::SignalController>& groups = {});
 
   // The phases due at time t start (their signals take their states).
   void advance(double t);
@@ -42,6 +51,7 @@ class TrafficSignals {
     const TrafficSignalController* spec = nullptr;
     double start = 0;  // when its phase 0 (virtually) started
     int phase = -1;    // the current phase (-1 before the first starts)
+    std::vector<std::string> group;  // the signals of its signal group (a phase's group state sets them)
   };
   [[nodiscard]] int phase_at(const Running& c, double t) const;
   void enter(Running& c, int phase);

@@ -62,6 +62,17 @@ std::vector<std::string> range_values(Element& range_element) {
   return values;
 }
 
+// UserDefinedDistribution: the standard leaves both its content and its `type` to the tool
+// that writes it ("user defined"), so no reading of them is sound here: the error names the
+// type and the standard distributions that say the same.
+[[noreturn]] void user_defined(Element& e, const char* instead) {
+  const std::string type = e.optional_text("type").value_or("");
+  e.fail(fmt::format("UserDefinedDistribution (type \"{}\") cannot be sampled: the standard leaves its content to the "
+                     "tool that defines the type, and the orchestrator defines none; write the distribution as {} "
+                     "instead",
+                     type, instead));
+}
+
 DeterministicFactor read_single(Element& e) {
   DeterministicFactor f;
   f.where = e.place();
@@ -78,7 +89,7 @@ DeterministicFactor read_single(Element& e) {
   } else if (kind.name() == "DistributionRange") {
     values = range_values(kind);
   } else {
-    kind.fail("UserDefinedDistribution is an OpenSCENARIO element the orchestrator does not run (not supported)");
+    user_defined(kind, "a DistributionSet (the values) or a DistributionRange (lower to upper in steps)");
   }
   e.finish();
   for (auto& v : values) f.options.push_back({std::move(v)});
@@ -177,7 +188,8 @@ StochasticParameter read_stochastic(Element& e) {
     if (s.elements.empty()) kind.fail("a ProbabilityDistributionSet needs at least one Element");
     p.distribution = s;
   } else {
-    kind.fail("UserDefinedDistribution is an OpenSCENARIO element the orchestrator does not run (not supported)");
+    user_defined(kind, "a ProbabilityDistributionSet (values with weights), a Histogram, or a Uniform, Normal, "
+                       "LogNormal or Poisson distribution");
   }
   kind.finish();
   return p;

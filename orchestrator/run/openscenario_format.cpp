@@ -295,6 +295,12 @@ class OpenScenarioFormat : public RunFormat {
           else if constexpr (std::is_same_v<T, openscenario::TrafficSourceAction>)
             return fmt::format("{}: TrafficSourceAction, {} vehicles/s within {} m (SUMO vehicles traffic{}.N)", name,
                                spec.rate, spec.radius, t.serial);
+          else if constexpr (std::is_same_v<T, openscenario::TrafficAreaAction>)
+            return fmt::format("{}: TrafficAreaAction, {} vehicles in {}{} (SUMO vehicles traffic{}.N)", name,
+                               spec.entities,
+                               spec.polygon.empty() ? fmt::format("{} road range(s)", spec.road_ranges.size())
+                                                    : fmt::format("a polygon of {} corners", spec.polygon.size()),
+                               spec.continuous ? ", continuous" : "", t.serial);
           else
             return fmt::format("{}: TrafficSinkAction within {} m", name, spec.radius);
         },

@@ -8,6 +8,7 @@
 
 #include "opendrive/lane_graph.hpp"
 #include "opendrive/sumo_route.hpp"
+#include "run/traffic_area.hpp"
 
 namespace orch {
 
@@ -19,8 +20,10 @@ bool moving_traffic_lane(const std::string& type) {
   return false;
 }
 
-// A SUMO vehicle of the OpenSCENARIO vehicle category (the TrafficDefinition's), in a typical size.
-ModelInfo traffic_model(const std::string& category) {
+// A SUMO vehicle of the OpenSCENARIO vehicle category (the TrafficDefinition's), in a typical
+// size, or in its own (a TrafficDistribution's vehicle template's BoundingBox).
+ModelInfo traffic_model(const openscenario::TrafficCategoryShare& share) {
+  const std::string& category = share.category;
   ModelInfo m;
   m.kind = ActorKind::Vehicle;
   m.id = category;
@@ -49,6 +52,9 @@ ModelInfo traffic_model(const std::string& category) {
       m.width = k.width;
       m.height = k.height;
     }
+  if (share.length && *share.length > 0) m.length = *share.length;
+  if (share.width && *share.width > 0) m.width = *share.width;
+  if (share.height && *share.height > 0) m.height = *share.height;
   return m;
 }
 
@@ -110,29 +116,39 @@ bool OpenScenarioTraffic::free(const Vec2& p, const std::map<std::string, opensc
   return true;
 }
 
-std::string OpenScenarioTraffic::category(const std::vector<openscenario::TrafficCategoryShare>& shares) {
+openscenario::TrafficCategoryShare OpenScenarioTraffic::category(
+    const std::vector<openscenario::TrafficCategoryShare>& shares) {
   double total = 0;
   for (const auto& s : shares) total += s.weight;
-  if (shares.empty() || total <= 0) return "car";
+  if (shares.empty() || total <= 0) return {"car", 1.0, {}, {}, {}};
   double u = uniform() * total;
   for (const auto& s : shares) {
-    if (u < s.weight) return s.category;
+    if (u < s.weight) return s;
     u -= s.weight;
   }
-  return shares.back().category;
+  return shares.back();
 }
 
 void OpenScenarioTraffic::spawn(int serial, const Place& place, double speed, double max_speed,
-                                const std::string& kind, double t, std::vector<sim::Command>& out) {
+                                const openscenario::TrafficCategoryShare& kind, double t, std::vector<sim::Command>& out,
+                                const std::set<std::pair<std::string, int>>& keep_on) {
   const std::string id = fmt::format("traffic{}.{}", serial, next_id_++);
   const ModelInfo model = traffic_model(kind);
+  std::vector<opendrive::LaneEntry> ahead = straight_on(lanes_.roads(), place.road, place.lane);
+  if (!keep_on.empty()) {  // an area's: as far as its lanes go (a junction's lanes only on the way to one of them)
+    std::size_t kept = 0;
+    for (std::size_t i = 0; i < ahead.size(); ++i) {
+      if (keep_on.count({ahead[i].road_id, ahead[i].lane})) kept = i + 1;
+      else if (lanes_.roads().road(ahead[i].road_id).junction == "-1") break;
+    }
+    ahead.resize(kept);
+  }
   sim::SpawnVehicle c;
   c.actor = {static_cast<sim::ActorId>(-1), id, ActorKind::Vehicle, model.length, model.width};
   c.model = model;
   c.scripted = false;
   c.traffic = true;
-  c.route = opendrive::sumo_route(lanes_, lanes_.roads(), place.road, place.lane, place.s,
-                                  straight_on(lanes_.roads(), place.road, place.lane));
+  c.route = opendrive::sumo_route(lanes_, lanes_.roads(), place.road, place.lane, place.s, ahead);
   if (c.route.empty() || c.route.front() != place.sumo.edge) c.route = {place.sumo.edge};
   c.edge = place.sumo.edge;
   c.lane = place.sumo.index;
@@ -201,6 +217,7 @@ std::vector<sim::Command> OpenScenarioTraffic::update(const openscenario::Traffi
           using T = std::decay_t<decltype(spec)>;
           if constexpr (std::is_same_v<T, openscenario::TrafficSwarmAction>) swarm(traffic, spec, entities, t, out);
           else if constexpr (std::is_same_v<T, openscenario::TrafficSourceAction>) source(traffic, spec, entities, t, out);
+          else if constexpr (std::is_same_v<T, openscenario::TrafficAreaAction>) area(traffic, spec, entities, t, out);
           else sink(traffic, spec, dt, others, out);
         },
         traffic.spec);
@@ -296,6 +313,57 @@ void OpenScenarioTraffic::source(const openscenario::Traffic& traffic, const ope
   }
 }
 
+void OpenScenarioTraffic::area(const openscenario::Traffic& traffic, const openscenario::TrafficAreaAction& spec,
+                               const std::map<std::string, openscenario::EntityState>& entities, double t,
+                               std::vector<sim::Command>& out) {
+  auto found = area_places_.find(traffic.serial);
+  if (found == area_places_.end()) {
+    std::vector<AreaPlace> points;
+    for (const Place& p : places_) points.push_back({p.road, p.lane, p.s, p.point});
+    const auto length = [&](const std::string& road) {
+      const opendrive::Road* r = lanes_.roads().find(road);
+      return r == nullptr ? 0.0 : r->length;
+    };
+    found = area_places_.emplace(traffic.serial, area_places(points, traffic.polygon, spec.road_ranges, length)).first;
+  }
+  const std::vector<std::size_t>& mine = found->second;
+  // In a road range: beside one of the area's places, less than kAreaHalfWidth across its lane
+  // (a lane change onto a lane the range leaves out, or a road alongside, is out) and within
+  // kPlaceStep along it (past the range's end is out).
+  const auto inside = [&](const Vec2& p) {
+    if (traffic.polygon.size() >= 3) return inside_polygon(p, traffic.polygon);
+    for (std::size_t i : mine) {
+      const Place& place = places_[i];
+      const Vec2 d = p - place.point;
+      const double along = d.x() * std::cos(place.heading) + d.y() * std::sin(place.heading);
+      const double across = -d.x() * std::sin(place.heading) + d.y() * std::cos(place.heading);
+      if (std::abs(along) <= kPlaceStep && std::abs(across) <= kAreaHalfWidth) return true;
+    }
+    return false;
+  };
+  for (auto it = vehicles_.begin(); it != vehicles_.end();) {
+    const auto next = std::next(it);
+    if (it->second.serial == traffic.serial && it->second.seen && !inside(it->second.position))
+      remove(it->first, traffic.serial, out);
+    it = next;
+  }
+  const Tally& tally = tallies_[traffic.serial];
+  int missing = spec.continuous ? spec.entities - count(traffic.serial)
+                                : spec.entities - (tally.spawned - tally.not_inserted);
+  if (missing <= 0 || mine.empty()) return;
+  std::set<std::pair<std::string, int>> lanes;
+  for (std::size_t i : mine) lanes.insert({places_[i].road, places_[i].lane});
+  std::vector<std::size_t> candidates = mine;
+  while (missing > 0 && !candidates.empty()) {
+    const std::size_t k = draw(candidates.size());
+    const Place& place = places_[candidates[k]];
+    candidates.erase(candidates.begin() + static_cast<std::ptrdiff_t>(k));
+    if (!free(place.point, entities)) continue;
+    spawn(traffic.serial, place, 0.0, 0.0, category(spec.categories), t, out, lanes);
+    --missing;
+  }
+}
+
 void OpenScenarioTraffic::sink(const openscenario::Traffic& traffic, const openscenario::TrafficSinkAction& spec,
                                double dt, const std::vector<const sim::NearbyVehicle*>& background,
                                std::vector<sim::Command>& out) {
@@ -326,6 +394,7 @@ TrafficActionRecord traffic_record(const openscenario::Traffic& t, const OpenSce
         using T = std::decay_t<decltype(spec)>;
         if constexpr (std::is_same_v<T, openscenario::TrafficSwarmAction>) return "swarm";
         else if constexpr (std::is_same_v<T, openscenario::TrafficSourceAction>) return "source";
+        else if constexpr (std::is_same_v<T, openscenario::TrafficAreaAction>) return "area";
         else return "sink";
       },
       t.spec);

@@ -19,8 +19,16 @@
 //           Background vehicles are known only near the scenario's entities
 //           (WorldSnapshot::nearby, within 75 m of one), so a sink farther from every entity
 //           removes only TrafficAction vehicles.
+//   area    (TrafficAreaAction, 1.3) keeps numberOfEntities vehicles of its own in its area
+//           (run/traffic_area.hpp: a Polygon or RoadRanges): spawned on free road places of the
+//           area, each on a route that stays on the area's lanes (straight on, as far as the
+//           area's lanes go), so SUMO takes it out where it would leave; one seen outside the
+//           area (outside the polygon; for road ranges: no place of the area within kPlaceStep m
+//           along its lane and kAreaHalfWidth m across) is removed. Continuous:
+//           missing vehicles are spawned again every step; else the area is filled once
+//           (spawns SUMO did not insert are tried again) and empties as its vehicles leave.
 //   stop    (TrafficStopAction) ends the named traffic: a swarm no longer spawns or removes, a
-//           source no longer spawns, a sink no longer removes; the vehicles drive on.
+//           source no longer spawns, a sink no longer removes, an area neither; the vehicles drive on.
 #include <cstdint>
 #include <map>
 #include <random>
@@ -41,6 +49,7 @@ class OpenScenarioTraffic {
   static constexpr double kPlaceStep = 10.0;  // m between road places along a lane
   static constexpr double kSpacing = 20.0;    // m: no spawn this close to another body (as esmini's swarm)
   static constexpr double kInsertWait = 5.0;  // s: a spawn SUMO has not inserted by then is given up
+  static constexpr double kAreaHalfWidth = 2.0;  // m across a lane's centre: still on it (an area's road range)
 
   // Road places: every kPlaceStep m along every lane for moving traffic (OpenDRIVE types
   // driving, entry, exit, on/off ramps) that SUMO's net has, junctions' connecting roads left out.
@@ -93,16 +102,20 @@ class OpenScenarioTraffic {
   void source(const openscenario::Traffic& traffic, const openscenario::TrafficSourceAction& spec,
               const std::map<std::string, openscenario::EntityState>& entities, double t,
               std::vector<sim::Command>& out);
+  void area(const openscenario::Traffic& traffic, const openscenario::TrafficAreaAction& spec,
+            const std::map<std::string, openscenario::EntityState>& entities, double t, std::vector<sim::Command>& out);
   void sink(const openscenario::Traffic& traffic, const openscenario::TrafficSinkAction& spec, double dt,
             const std::vector<const sim::NearbyVehicle*>& background, std::vector<sim::Command>& out);
   [[nodiscard]] bool free(const Vec2& p, const std::map<std::string, openscenario::EntityState>& entities) const;
-  void spawn(int serial, const Place& place, double speed, double max_speed, const std::string& category, double t,
-             std::vector<sim::Command>& out);
+  // `share`: the vehicle's category (and a TrafficDistribution's size); `keep_on`: the lanes
+  // (road, lane) its route may use (empty: straight on without limit).
+  void spawn(int serial, const Place& place, double speed, double max_speed, const openscenario::TrafficCategoryShare& share,
+             double t, std::vector<sim::Command>& out, const std::set<std::pair<std::string, int>>& keep_on = {});
   // `by`: the traffic whose action removed it (0: given up, not inserted).
   void remove(const std::string& id, int by, std::vector<sim::Command>& out);
   std::uint64_t draw(std::uint64_t n) { return n == 0 ? 0 : rng_() % n; }
   double uniform() { return static_cast<double>(rng_() >> 11) * 0x1.0p-53; }
-  std::string category(const std::vector<openscenario::TrafficCategoryShare>& shares);
+  openscenario::TrafficCategoryShare category(const std::vector<openscenario::TrafficCategoryShare>& shares);
 
   const opendrive::SumoLaneIndex& lanes_;
   std::vector<Place> places_;
@@ -111,6 +124,7 @@ class OpenScenarioTraffic {
   std::map<int, int> spawned_by_source_;     // serial -> vehicles spawned so far
   std::map<int, double> sink_credit_;        // serial -> removals due (rate x time) not yet made
   std::map<int, Tally> tallies_;             // serial -> what became of its vehicles
+  std::map<int, std::vector<std::size_t>> area_places_;  // an area's serial -> its places (indices)
   std::set<std::string> removed_background_;  // this step's: a vehicle two sinks reach is removed once
   int next_id_ = 0;
   int removed_ = 0;

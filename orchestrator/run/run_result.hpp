@@ -50,10 +50,10 @@ struct ReferenceRunRecord {
 };
 
 // One TrafficAction of an OpenSCENARIO storyboard that ran (result.json "storyboard_traffic";
-// run/openscenario_traffic.hpp counts). For a swarm or a source: spawned = active_at_end +
+// run/openscenario_traffic.hpp counts). For a swarm, a source or an area: spawned = active_at_end +
 // removed + left + not_inserted; a sink spawns none and counts what it removed.
 struct TrafficActionRecord {
-  std::string kind;   // "swarm", "source", "sink"
+  std::string kind;   // "swarm", "source", "sink", "area"
   std::string name;   // the trafficName ("" none)
   std::string label;  // as run.log and traffic_actions.csv name it: the name, or "traffic<serial>"
   std::string vehicles;  // the SUMO ids of its vehicles: "traffic<serial>.N" ("" a sink)

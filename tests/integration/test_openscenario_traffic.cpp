@@ -2,7 +2,8 @@
 // traffic (run/openscenario_traffic.hpp) step as the run loop steps them, and what SUMO reports
 // of the traffic vehicles (WorldSnapshot::traffic) is checked: a swarm's vehicles appear inside
 // its annulus, are removed outside its ellipse and their number is kept; a source injects at
-// its rate; a sink removes the vehicles that reach it.
+// its rate; a sink removes the vehicles that reach it; a TrafficAreaAction (1.3) keeps its
+// vehicles, of its TrafficDistribution's kinds and sizes, in its area.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -174,6 +175,53 @@ TEST(OpenScenarioTraffic, ASourceInjectsAtItsRateAndASinkRemovesWhatReachesIt) {
   // The sink (traffic 2) removed what the source (traffic 1) lost: no background here.
   EXPECT_EQ(run.traffic().tally(2).removed, run.traffic().tally(1).removed);
   EXPECT_EQ(run.traffic().tally(2).removed_background, 0);
+}
+
+// TrafficAreaAction (1.3): road 0's lane -1 from s = 200 to 600, 4 vehicles, continuous, of a
+// TrafficDistribution (a 5.5 m van or an 11 m truck). SUMO drives them out of the area's end;
+// each is removed there and replaced, so the area holds 4 again.
+TEST(OpenScenarioTraffic, AnAreaKeepsItsVehiclesOfItsDistributionInsideItOnRealSumo) {
+  const auto vehicle = [](const std::string& category, double length) {
+    return R"(<EntityDistributionEntry weight="1"><ScenarioObjectTemplate><Vehicle name=")" + category +
+           R"(" vehicleCategory=")" + category + R"("><BoundingBox><Center x="0" y="0" z="1"/><Dimensions width="2.2" length=")" +
+           std::to_string(length) + R"(" height="2.5"/></BoundingBox><Performance maxSpeed="30" maxDeceleration="8" maxAcceleration="3"/>
+<Axles><RearAxle maxSteering="0" wheelDiameter="0.8" trackWidth="1.8" positionX="0" positionZ="0.4"/></Axles></Vehicle>
+</ScenarioObjectTemplate></EntityDistributionEntry>)";
+  };
+  TrafficRun run(R"(<GlobalAction><TrafficAction trafficName="Zone"><TrafficAreaAction numberOfEntities="4" continuous="true">
+<TrafficDistribution><TrafficDistributionEntry weight="1"><EntityDistribution>)" +
+                     vehicle("van", 5.5) + vehicle("truck", 11) + R"(</EntityDistribution></TrafficDistributionEntry></TrafficDistribution>
+<TrafficArea><RoadRange><RoadCursor roadId="0" s="200"><Lane id="-1"/></RoadCursor><RoadCursor roadId="0" s="600"/></RoadRange></TrafficArea>
+</TrafficAreaAction></TrafficAction></GlobalAction>)",
+                 1500, -2, 0);
+  std::set<std::string> known;
+  std::set<double> lengths;
+  std::size_t most = 0;
+  double moved = 0;
+  std::map<std::string, double> first_x;
+  for (int step = 1; step <= 1200; ++step) {  // 60 s
+    const sim::WorldSnapshot& snap = run.step();
+    most = std::max(most, snap.traffic.size());
+    for (const auto& v : snap.traffic) {
+      // In the area (its lane, s 200..600), a vehicle's length and a step's travel (2 m) past its
+      // places' kPlaceStep at most (it is removed then); a lane change onto lane -2 (y = -5.25)
+      // takes it out once kAreaHalfWidth (2 m) off lane -1's centre.
+      EXPECT_GT(v.position.y(), -3.5 - 0.5) << v.sumo_id << " at step " << step;
+      EXPECT_LT(v.position.y(), -1.75 + 0.3) << v.sumo_id << " at step " << step;
+      EXPECT_GE(v.position.x(), 200.0 - 12.0) << v.sumo_id << " at step " << step;
+      EXPECT_LE(v.position.x(), 600.0 + OpenScenarioTraffic::kPlaceStep + 2.0) << v.sumo_id << " at step " << step;
+      lengths.insert(v.length);
+      if (known.insert(v.sumo_id).second) first_x[v.sumo_id] = v.position.x();
+      moved = std::max(moved, v.position.x() - first_x[v.sumo_id]);
+    }
+  }
+  EXPECT_EQ(most, 4u);                  // numberOfEntities, never more
+  EXPECT_EQ(run.traffic().count(1), 4);  // and kept
+  EXPECT_GT(moved, 50.0);               // SUMO's driver drives them
+  const OpenScenarioTraffic::Tally tally = run.traffic().tally(1);
+  EXPECT_GT(tally.removed, 0);  // those that drove out of the area's end
+  EXPECT_EQ(tally.spawned, 4 + tally.removed + tally.left + tally.not_inserted);
+  for (const double l : lengths) EXPECT_TRUE(std::abs(l - 5.5) < 1e-6 || std::abs(l - 11.0) < 1e-6) << l;
 }
 
 }  // namespace orch

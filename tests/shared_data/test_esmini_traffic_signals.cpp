@@ -3,7 +3,9 @@
 // car SUMO drives (--ego) stops at the light while the storyboard's controller holds it red
 // and drives through once the controller's phase turns it green; SUMO's own program (green
 // for the first 42 s) would have let it through at once. And esmini's traffic_lights.xosc
-// runs: its events wait for the signal states its actions set.
+// runs: its events wait for the signal states its actions set. A phase's
+// TrafficSignalGroupState (1.2) holds the light red the same way, through the road's signal
+// group (an OpenDRIVE <controller> added to a copy of the road).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -17,10 +19,10 @@ namespace {
 
 const std::string kRoad = std::string(ORCH_SHARED_DATA_DIR) + "/esmini_examples/xodr/fabriksgatan_traffic_lights.xodr";
 
-std::string scenario(const std::string& phases) {
+std::string scenario(const std::string& phases, const std::string& road = kRoad) {
   return R"(<?xml version="1.0"?><OpenSCENARIO>
 <FileHeader revMajor="1" revMinor="3" date="2024-01-01T00:00:00" author="t" description="a red light on SUMO"/>
-<RoadNetwork><LogicFile filepath=")" + kRoad + R"("/><TrafficSignals>
+<RoadNetwork><LogicFile filepath=")" + road + R"("/><TrafficSignals>
  <TrafficSignalController name="Junction4">)" + phases + R"(</TrafficSignalController></TrafficSignals></RoadNetwork>
 <Entities><ScenarioObject name="Ego"><Vehicle name="car" vehicleCategory="car">
   <BoundingBox><Center x="1.4" y="0" z="0.8"/><Dimensions width="2" length="5" height="1.5"/></BoundingBox>
@@ -47,8 +49,9 @@ const std::string kRed20 = R"(<Phase name="red" duration="20"><TrafficSignalStat
 const std::string kGreen = R"(<Phase name="green" duration="100"><TrafficSignalState trafficSignalId="1" state="off;off;on"/></Phase>)";
 
 // The run's trace (the car SUMO drives through the storyboard's lights).
-Trace run_with(const TempDir& dir, const std::string& name, const std::string& phases) {
-  const auto file = dir.write(name + ".xosc", scenario(phases));
+Trace run_with(const TempDir& dir, const std::string& name, const std::string& phases,
+               const std::string& road = kRoad) {
+  const auto file = dir.write(name + ".xosc", scenario(phases, road));
   const auto out = dir / name;
   const auto r = run_cli({"run", file.string(), "--ego", "Ego", "--out", out.string(), "-q", "--no-report"});
   EXPECT_EQ(r.exit_code, 0) << r.output;
@@ -86,6 +89,31 @@ TEST(EsminiTrafficSignals, ASumoDrivenCarWaitsAtTheStoryboardsRedAndGoesOnGreen)
   ASSERT_GT(rows, 600);
   EXPECT_NEAR(speed_at_19, 0.0, 0.05);  // standing at the red light
   EXPECT_GT(std::hypot(x_at_34 - x_at_19, y_at_34 - y_at_19), 50.0);  // 14 s of green: through the junction and on
+}
+
+// The controller "Junction4" names the road's signal group of that id (signal 1): its phases'
+// group states set signal 1 as the TrafficSignalStates above do.
+TEST(EsminiTrafficSignals, AGroupStateHoldsTheRoadsSignalGroupRedOnSumo) {
+  TempDir dir;
+  std::string road = slurp(kRoad);
+  const auto end = road.rfind("</OpenDRIVE>");
+  ASSERT_NE(end, std::string::npos);
+  road.insert(end, R"(<controller id="Junction4" name="j4"><control signalId="1" type="0"/></controller>)");
+  const auto copy = dir.write("fabriksgatan_grouped.xodr", road);
+  const Trace trace = run_with(dir, "group_red_then_green", R"(<Phase name="red" duration="20"><TrafficSignalGroupState state="on;off;off"/></Phase>
+  <Phase name="green" duration="100"><TrafficSignalGroupState state="off;off;on"/></Phase>)", copy.string());
+  double speed_at_19 = -1, x_at_19 = 0, y_at_19 = 0, x_at_34 = 0, y_at_34 = 0;
+  for (const auto& row : trace.rows()) {
+    if (row.str("actor_id") != "Ego") continue;
+    const double t = row.num("time");
+    if (std::abs(t - 19.0) < 1e-6) speed_at_19 = row.num("speed"), x_at_19 = row.num("x"), y_at_19 = row.num("y");
+    if (std::abs(t - 34.0) < 1e-6) x_at_34 = row.num("x"), y_at_34 = row.num("y");
+    if (t <= 20.0) {
+      EXPECT_NE(row.str("edge").rfind(":4", 0), 0u) << "in junction 4 on red at " << t;
+    }
+  }
+  EXPECT_NEAR(speed_at_19, 0.0, 0.05);  // standing at the group's red
+  EXPECT_GT(std::hypot(x_at_34 - x_at_19, y_at_34 - y_at_19), 50.0);  // and on once it is green
 }
 
 TEST(EsminiTrafficSignals, EsminisTrafficLightsFileRunsItsSignalEvents) {

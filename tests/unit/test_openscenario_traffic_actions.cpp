@@ -135,8 +135,8 @@ TEST_F(TrafficActions, BadTrafficIsAnErrorNamingFileLineAndWhatWasExpected) {
   EXPECT_NE(error(R"(<TrafficAction><TrafficSinkAction radiuss="5"><Position><LanePosition roadId="0" laneId="-1" s="9" offset="0"/></Position></TrafficSinkAction></TrafficAction>)")
                 .find("did you mean \"radius\""),
             std::string::npos);
-  // The standard's TrafficAreaAction (1.3) is not run: said so.
-  EXPECT_NE(error(R"(<TrafficAction><TrafficAreaAction continuous="true" numberOfEntities="3"/></TrafficAction>)").find("not supported"),
+  // A TrafficAreaAction (1.3) needs its area and its distribution (test_openscenario_traffic_area.cpp).
+  EXPECT_NE(error(R"(<TrafficAction><TrafficAreaAction continuous="true" numberOfEntities="3"/></TrafficAction>)").find("TrafficArea"),
             std::string::npos);
 }
 

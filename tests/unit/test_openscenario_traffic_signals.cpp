@@ -27,9 +27,9 @@ using test::vehicle;
 
 TrafficSignalController controller(const std::string& name, double delay, const std::string& reference) {
   TrafficSignalController c{name, delay, reference, {}};
-  c.phases.push_back({"go", 10, {{"1", "off;off;on"}}});
-  c.phases.push_back({"wait", 3, {{"1", "off;on;off"}}});
-  c.phases.push_back({"stop", 7, {{"1", "on;off;off"}, {"2", "off;on"}}});
+  c.phases.push_back({"go", 10, {{"1", "off;off;on"}}, std::nullopt, {}});
+  c.phases.push_back({"wait", 3, {{"1", "off;on;off"}}, std::nullopt, {}});
+  c.phases.push_back({"stop", 7, {{"1", "on;off;off"}, {"2", "off;on"}}, std::nullopt, {}});
   return c;
 }
 
@@ -69,6 +69,85 @@ TEST(TrafficSignals, AReferencedControllerShiftsTheStartAndAStateActionHoldsUnti
   signals.advance(13);  // 7 s of "stop" from 6
   EXPECT_EQ(signals.phase("A"), "go");
   EXPECT_EQ(normalized_signal_state(" On; OFF ;off"), "on;off;off");
+}
+
+// TrafficSignalGroupState (1.2): a phase's one state for every signal of the controller's
+// signal group (the OpenDRIVE controller of the TrafficSignalController's name); the phase's
+// own TrafficSignalStates override it for their signals.
+TEST(TrafficSignals, AGroupStateSetsEverySignalOfTheControllersSignalGroup) {
+  TrafficSignalController c{"J1", 0, "", {}};
+  c.phases.push_back({"go", 5, {}, "off;off;on", {}});
+  c.phases.push_back({"stop", 5, {{"12", "off;on;off"}}, "on;off;off", {}});
+  const std::vector<TrafficSignalController> controllers{c};
+  const std::vector<opendrive::SignalController> groups{{"J0", "", {"99"}}, {"J1", "north", {"11", "12", "13"}}};
+  TrafficSignals signals(controllers, groups);
+  signals.advance(0);
+  EXPECT_EQ(signals.state("11"), "off;off;on");
+  EXPECT_EQ(signals.state("13"), "off;off;on");
+  EXPECT_FALSE(signals.state("99"));  // another group's signal
+  signals.advance(5);
+  EXPECT_EQ(signals.state("11"), "on;off;off");
+  EXPECT_EQ(signals.state("12"), "off;on;off");  // the signal's own state wins over the group's
+  // The group found by the OpenDRIVE controller's name when no id matches.
+  TrafficSignalController by_name = c;
+  by_name.name = "north";
+  const std::vector<TrafficSignalController> named{by_name};
+  TrafficSignals named_signals(named, groups);
+  named_signals.advance(0);
+  EXPECT_EQ(named_signals.state("12"), "off;off;on");
+  // No such group: an error naming the phase, its place and the groups there are.
+  TrafficSignalController lost = c;
+  lost.name = "J9";
+  lost.phases[0].group_place = {"/OpenSCENARIO/RoadNetwork/TrafficSignals/TrafficSignalController/Phase/TrafficSignalGroupState", 7};
+  const std::vector<TrafficSignalController> lost_controllers{lost};
+  try {
+    TrafficSignals bad(lost_controllers, groups);
+    ADD_FAILURE() << "no error";
+  } catch (const MapError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("phase \"go\" of TrafficSignalController \"J9\""), std::string::npos) << what;
+    EXPECT_NE(what.find("line 7"), std::string::npos) << what;
+    EXPECT_NE(what.find("(it has: J0, J1)"), std::string::npos) << what;
+  }
+}
+
+// The OpenDRIVE reader keeps the signal groups (<controller>, its <control signalId>), and a
+// scenario's phases read the group state; the storyboard sets the group's signals by it.
+TEST(TrafficSignals, TheRoadsSignalGroupsReachTheStoryboardsGroupStates) {
+  test::TempDir dir;
+  std::string road = kStraightTwoLaneRoad;
+  road.replace(road.rfind("</OpenDRIVE>"), std::string("</OpenDRIVE>").size(),
+               R"(<controller id="5" name="main"><control signalId="41" type="0"/><control signalId="42"/></controller></OpenDRIVE>)");
+  dir.write("road.xodr", road);
+  const std::string text = R"(<?xml version="1.0"?><OpenSCENARIO>
+<FileHeader revMajor="1" revMinor="3" date="2024-01-01T00:00:00" author="t" description="groups"/>
+<RoadNetwork><LogicFile filepath="road.xodr"/><TrafficSignals>
+ <TrafficSignalController name="5">
+  <Phase name="go" duration="4"><TrafficSignalGroupState state="off;off;on"/></Phase>
+  <Phase name="stop" duration="6"><TrafficSignalState trafficSignalId="42" state="off;on;off"/><TrafficSignalGroupState state="on;off;off"/></Phase>
+ </TrafficSignalController></TrafficSignals></RoadNetwork>
+<Entities>)" + vehicle("A") + R"(</Entities>
+<Storyboard><Init><Actions>)" + place("A", 10, -1, 10) + R"(</Actions></Init><StopTrigger/></Storyboard></OpenSCENARIO>)";
+  const Scenario scenario = load_scenario(dir.write("s.xosc", text).string());
+  ASSERT_EQ(scenario.signal_controllers.size(), 1u);
+  EXPECT_EQ(scenario.signal_controllers[0].phases[1].group_state, "on;off;off");
+  const opendrive::RoadNetwork roads = opendrive::read_xodr_file((dir / "road.xodr").string());
+  ASSERT_EQ(roads.signal_controllers().size(), 1u);
+  EXPECT_EQ(roads.signal_controllers()[0].signals, (std::vector<std::string>{"41", "42"}));
+  StoryboardRuntime runtime(scenario, roads);
+  EXPECT_EQ(runtime.signal_states().at("41"), "off;off;on");
+  EXPECT_EQ(runtime.signal_states().at("42"), "off;off;on");
+  run_until(runtime, 4);
+  EXPECT_EQ(runtime.signal_states().at("41"), "on;off;off");
+  EXPECT_EQ(runtime.signal_states().at("42"), "off;on;off");
+  // A road without that group: the run cannot start, the error says why.
+  const opendrive::RoadNetwork plain = opendrive::read_xodr_text(kStraightTwoLaneRoad, "plain.xodr");
+  try {
+    StoryboardRuntime bad(scenario, plain);
+    ADD_FAILURE() << "no error";
+  } catch (const MapError& e) {
+    EXPECT_NE(std::string(e.what()).find("the road network defines none"), std::string::npos) << e.what();
+  }
 }
 
 class SignalStoryboard : public ::testing::Test {

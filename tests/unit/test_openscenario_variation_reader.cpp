@@ -185,13 +185,22 @@ TEST(OpenScenarioVariation, ParameterAssignedTwiceInOneSetIsAnError) {
   EXPECT_NE(e.find("parameter \"Gap_m\" is assigned twice in this ParameterValueSet"), std::string::npos) << e;
 }
 
-TEST(OpenScenarioVariation, UserDefinedDistributionIsNotSupported) {
+// The standard leaves a UserDefinedDistribution's content to the tool defining its type: the
+// error names the type and the standard distributions to write instead (stochastic or not).
+TEST(OpenScenarioVariation, UserDefinedDistributionNamesItsTypeAndWhatToUseInstead) {
   const std::string e = error_of(stochastic(R"(
       <StochasticDistribution parameterName="Gap_m">
         <UserDefinedDistribution type="mine">x</UserDefinedDistribution>
       </StochasticDistribution>)"));
-  EXPECT_NE(e.find("UserDefinedDistribution is an OpenSCENARIO element the orchestrator does not run (not supported)"),
-            std::string::npos) << e;
+  EXPECT_NE(e.find("UserDefinedDistribution (type \"mine\") cannot be sampled"), std::string::npos) << e;
+  EXPECT_NE(e.find("ProbabilityDistributionSet"), std::string::npos) << e;
+  EXPECT_NE(e.find("FILE:"), std::string::npos) << e;
+  const std::string d = error_of(deterministic(R"(
+      <DeterministicSingleParameterDistribution parameterName="Gap_m">
+        <UserDefinedDistribution type="sweep">1 2 3</UserDefinedDistribution>
+      </DeterministicSingleParameterDistribution>)"));
+  EXPECT_NE(d.find("UserDefinedDistribution (type \"sweep\")"), std::string::npos) << d;
+  EXPECT_NE(d.find("DistributionSet"), std::string::npos) << d;
 }
 
 TEST(OpenScenarioVariation, BadNumbersAreErrors) {

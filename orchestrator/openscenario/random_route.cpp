@@ -1,0 +1,47 @@
+#include "openscenario/random_route.hpp"
+
+#include <algorithm>
+#include <cstdint>
+
+#include "opendrive/lane_graph.hpp"
+#include "opendrive/route_planner.hpp"
+
+namespace orch::openscenario {
+namespace {
+
+std::uint64_t fnv1a(const std::string& text) {
+  std::uint64_t h = 1469598103934665603ull;
+  for (const unsigned char c : text) {
+    h ^= c;
+    h *= 1099511628211ull;
+  }
+  return h;
+}
+
+}  // namespace
+
+void plan_random_route(EntityState& state, const opendrive::RoadNetwork& roads, const std::string& entity) {
+  state.route.clear();
+  state.route_passed = 0;
+  state.route_plan.clear();
+  state.route_plan_next = 0;
+  state.route_plan_loop.reset();
+  ++state.route_version;
+  if (!state.placed || state.road_id.empty() || roads.find(state.road_id) == nullptr) return;
+  const opendrive::Road& road = roads.road(state.road_id);
+  std::optional<int> exit = opendrive::lane_at_road_exit(road, state.lane, std::clamp(state.s, 0.0, road.length));
+  std::string at = state.road_id;
+  for (std::size_t forks = 0; exit && state.route_plan.size() < kRandomRouteMaxRoads;) {
+    const std::vector<opendrive::LaneEntry> next = opendrive::next_lanes(roads, at, *exit);
+    if (next.empty()) break;
+    std::size_t pick = 0;
+    if (next.size() > 1)
+      pick = fnv1a(entity + "/" + at + "/" + std::to_string(*exit) + "/" + std::to_string(forks++)) % next.size();
+    const opendrive::LaneEntry& entry = next[pick];
+    state.route_plan.push_back(entry);
+    at = entry.road_id;
+    exit = opendrive::lane_at_road_exit(roads.road(at), entry.lane, entry.s);
+  }
+}
+
+}  // namespace orch::openscenario
