@@ -4,21 +4,11 @@
 #include <numbers>
 
 #include "core/checked_numeric.hpp"
+#include "core/stable_hash.hpp"
 
 namespace orch::batch {
 
 namespace {
-
-// FNV-1a: a fixed, documented hash of the parameter's name for its stream's seed
-// (std::hash may differ between standard libraries).
-std::uint64_t fnv1a(const std::string& text) {
-  std::uint64_t h = 14695981039346656037ull;
-  for (unsigned char c : text) {
-    h ^= c;
-    h *= 1099511628211ull;
-  }
-  return h;
-}
 
 nlohmann::json as_type(ValueType type, double x) {
   if (type == ValueType::Int) return clamped_round<long long>(x, -(1LL << 53), 1LL << 53);
@@ -78,7 +68,7 @@ double unit_interval(std::mt19937_64& engine) {
 }
 
 std::mt19937_64 parameter_stream(std::uint64_t set_seed, const std::string& key) {
-  const std::uint64_t h = fnv1a(key);
+  const std::uint64_t h = stable_hash(key);
   std::seed_seq seq{static_cast<std::uint32_t>(set_seed), static_cast<std::uint32_t>(set_seed >> 32),
                     static_cast<std::uint32_t>(h), static_cast<std::uint32_t>(h >> 32)};
   return std::mt19937_64(seq);

@@ -5,6 +5,7 @@
 #include <queue>
 #include <set>
 
+#include "core/stable_hash.hpp"
 #include "opendrive/sumo_net.hpp"
 
 namespace orch::opendrive {
@@ -14,15 +15,6 @@ namespace {
 // Junction passes outweigh any length for LeastIntersections (roads are far shorter).
 constexpr double kJunctionWeight = 1e7;
 
-std::uint64_t fnv1a(const std::string& text) {
-  std::uint64_t h = 1469598103934665603ull;
-  for (const unsigned char c : text) {
-    h ^= c;
-    h *= 1099511628211ull;
-  }
-  return h;
-}
-
 // Weight of driving `distance` metres on `lane` of `road` (entered as `entry` when it came
 // from a link, for the junction count).
 double weight(RouteStrategy strategy, const Road& road, int lane, double s, double distance, bool in_junction) {
@@ -31,7 +23,7 @@ double weight(RouteStrategy strategy, const Road& road, int lane, double s, doub
     case RouteStrategy::Fastest: return distance / lane_speed_limit(road, section_index(road, s), lane);
     case RouteStrategy::LeastIntersections: return distance + (in_junction ? kJunctionWeight : 0.0);
     case RouteStrategy::Random: {
-      const double factor = 0.5 + static_cast<double>(fnv1a(road.id + "/" + std::to_string(lane)) % 1000) / 1000.0;
+      const double factor = 0.5 + static_cast<double>(stable_hash(road.id + "/" + std::to_string(lane)) % 1000) / 1000.0;
       return distance * factor;
     }
   }

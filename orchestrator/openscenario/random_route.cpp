@@ -3,22 +3,11 @@
 #include <algorithm>
 #include <cstdint>
 
+#include "core/stable_hash.hpp"
 #include "opendrive/lane_graph.hpp"
 #include "opendrive/route_planner.hpp"
 
 namespace orch::openscenario {
-namespace {
-
-std::uint64_t fnv1a(const std::string& text) {
-  std::uint64_t h = 1469598103934665603ull;
-  for (const unsigned char c : text) {
-    h ^= c;
-    h *= 1099511628211ull;
-  }
-  return h;
-}
-
-}  // namespace
 
 void plan_random_route(EntityState& state, const opendrive::RoadNetwork& roads, const std::string& entity) {
   state.route.clear();
@@ -36,7 +25,7 @@ void plan_random_route(EntityState& state, const opendrive::RoadNetwork& roads, 
     if (next.empty()) break;
     std::size_t pick = 0;
     if (next.size() > 1)
-      pick = fnv1a(entity + "/" + at + "/" + std::to_string(*exit) + "/" + std::to_string(forks++)) % next.size();
+      pick = stable_hash(entity + "/" + at + "/" + std::to_string(*exit) + "/" + std::to_string(forks++)) % next.size();
     const opendrive::LaneEntry& entry = next[pick];
     state.route_plan.push_back(entry);
     at = entry.road_id;
