@@ -414,7 +414,9 @@ void OpenScenarioFormat::open(RunResult& result, RunLog& log, SimulatorConfig& c
                                                   req_.controllers_off});
   ego_driven_ = driving.driven;
   if (!ego_driven_) ego_model_ = EgoModelChoice{};  // nothing drives it: no reference driver either
-  result.ego_model = ego_.empty() || ego_driven_ ? ego_model_.name : "storyboard";
+  // A file without an ego (no system-under-test controller, no name rule, no --ego): "none",
+  // not the default model's name (the report's header said "ego driven by sumo").
+  result.ego_model = ego_.empty() ? "none" : ego_driven_ ? ego_model_.name : "storyboard";
   result.controllers = req_.controllers_off ? "off" : "on";
   if (req_.controllers_off)
     log.note("--controllers off: no controller runs, every entity follows the storyboard (the file's controllers are "

@@ -34,6 +34,7 @@ const std::filesystem::path& area_run() {
 TEST(OpenScenarioTrafficAreaCli, BothAreasRunAndTheirVehiclesStayInside) {
   const auto result = read_json(area_run() / "result.json");
   ASSERT_EQ(result["verdict"], "success") << result["reason"];
+  EXPECT_EQ(result["ego_model"], "none") << "the file has no ego: nothing is said to drive one";
   const auto& traffic = result["storyboard_traffic"];
   ASSERT_TRUE(traffic.is_object()) << result.dump(1);
   ASSERT_EQ(traffic["actions"].size(), 2u);
