@@ -11,6 +11,18 @@
 
 namespace orch {
 
+bool inside_polygon(const Vec2& p, const std::vector<Vec2>& polygon) {
+  if (polygon.size() < 3) return false;
+  bool inside = false;
+  for (std::size_t i = 0, j = polygon.size() - 1; i < polygon.size(); j = i++) {
+    const Vec2& a = polygon[i];
+    const Vec2& b = polygon[j];
+    if ((a.y() > p.y()) != (b.y() > p.y()) && p.x() < (b.x() - a.x()) * (p.y() - a.y()) / (b.y() - a.y()) + a.x())
+      inside = !inside;
+  }
+  return inside;
+}
+
 double wrap_angle(double a) {
   constexpr double two_pi = 2 * std::numbers::pi;
   a = std::fmod(a, two_pi);

@@ -15,6 +15,8 @@ using Vec2 = Eigen::Vector2d;
 // Radians counter-clockwise from +x, wrapped to (-pi, pi].
 double wrap_angle(double radians);
 inline Vec2 left_normal(const Vec2& unit_tangent) { return {-unit_tangent.y(), unit_tangent.x()}; }
+// Whether p lies inside the closed polygon (even-odd rule; fewer than 3 corners: no inside).
+bool inside_polygon(const Vec2& p, const std::vector<Vec2>& polygon);
 
 class Polyline {
  public:

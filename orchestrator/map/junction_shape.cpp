@@ -30,19 +30,6 @@ std::vector<double> crossings(const std::vector<Vec2>& shape, const Polyline& la
   return out;
 }
 
-// Whether p lies inside the closed polygon `shape` (even-odd rule; a shape with no area has
-// no inside).
-bool inside(const std::vector<Vec2>& shape, const Vec2& p) {
-  bool in = false;
-  for (std::size_t k = 0, j = shape.size() - 1; k < shape.size(); j = k++) {
-    const Vec2& a = shape[k];
-    const Vec2& b = shape[j];
-    if ((a.y() > p.y()) != (b.y() > p.y()) && p.x() < (b.x() - a.x()) * (p.y() - a.y()) / (b.y() - a.y()) + a.x())
-      in = !in;
-  }
-  return in;
-}
-
 }  // namespace
 
 double cross2(const Vec2& o, const Vec2& a, const Vec2& b) {
@@ -92,7 +79,7 @@ double cut_into(const std::vector<Vec2>& shape, const LaneEnd& e) {
   if (cut <= kMaxShapeCut && shape.size() >= 3) {
     const double length = e.shape->length();
     const double probe = std::min(0.5, length / 2);
-    if (inside(shape, e.shape->point_at(e.incoming ? length - probe : probe))) cut = length;
+    if (inside_polygon(e.shape->point_at(e.incoming ? length - probe : probe), shape)) cut = length;
   }
   return cut > kMaxShapeCut ? cut : 0.0;
 }

@@ -12,7 +12,6 @@
 #include "openscenario/expression.hpp"
 #include "openscenario/lane_offset.hpp"
 #include "openscenario/lateral_distance.hpp"
-#include "openscenario/nurbs.hpp"
 #include "openscenario/random_route.hpp"
 #include "openscenario/route_plan.hpp"
 #include "openscenario/synchronize_motion.hpp"
@@ -169,43 +168,15 @@ PathMotion trajectory_path(const FollowTrajectoryAction& a, ActionContext& ctx, 
     if (!a.timing || !time) return std::nullopt;
     return (a.timing->absolute ? 0.0 : ctx.t) + *time * a.timing->scale + a.timing->offset;
   };
+  std::vector<opendrive::Pose2> resolved;
+  for (const Position& p : shape_positions(a.trajectory)) resolved.push_back(ctx.resolver.resolve(p, poses(ctx)).pose);
   std::vector<PathPoint> points;
-  if (const auto* polyline = std::get_if<PolylineShape>(&a.trajectory.shape)) {
-    for (const TrajectoryVertex& v : polyline->vertices) {
-      const opendrive::Pose2 p = ctx.resolver.resolve(v.position, poses(ctx)).pose;
-      points.push_back({p.x, p.y, 0.0, due(v.time), std::nullopt});
-    }
-  } else if (const auto* nurbs = std::get_if<NurbsShape>(&a.trajectory.shape)) {
-    std::vector<NurbsControl> controls;
-    for (const NurbsControlPoint& c : nurbs->points) {
-      const opendrive::Pose2 p = ctx.resolver.resolve(c.position, poses(ctx)).pose;
-      controls.push_back({p.x, p.y, c.weight, c.time});
-    }
-    try {
-      points = nurbs_points(controls, nurbs->knots, nurbs->order);
-    } catch (const MapError& e) {
-      throw MapError(fmt::format("trajectory \"{}\" of \"{}\": {}", a.trajectory.name, entity, e.what()));
-    }
-    for (PathPoint& p : points) p.due = due(p.due);
-  } else if (const auto* spline = std::get_if<ClothoidSplineShape>(&a.trajectory.shape)) {
-    std::vector<std::optional<opendrive::Pose2>> starts;
-    for (const ClothoidSplineSegment& segment : spline->segments)
-      starts.push_back(segment.start ? std::optional(ctx.resolver.resolve(*segment.start, poses(ctx)).pose)
-                                     : std::nullopt);
-    points = clothoid_spline_points(*spline, starts, state_of(ctx, entity).pose);
-    for (PathPoint& p : points) p.due = due(p.due);
-  } else {
-    const auto& c = std::get<ClothoidShape>(a.trajectory.shape);
-    const opendrive::Pose2 start = ctx.resolver.resolve(c.start, poses(ctx)).pose;
-    points = clothoid_points(start, c.curvature, c.curvature_dot, c.length);
-    if (a.timing) {  // constant speed from startTime to stopTime
-      for (std::size_t i = 0; i < points.size(); ++i) {
-        const double f = static_cast<double>(i) / static_cast<double>(points.size() - 1);
-        points[i].due = due(*c.start_time + f * (*c.stop_time - *c.start_time));
-      }
-    }
+  try {
+    points = shape_points(a.trajectory, resolved, state_of(ctx, entity).pose);
+  } catch (const MapError& e) {
+    throw MapError(fmt::format("trajectory \"{}\" of \"{}\": {}", a.trajectory.name, entity, e.what()));
   }
-  if (a.trajectory.closed) close_path(points);
+  for (PathPoint& p : points) p.due = due(p.due);
   try {
     PathMotion path = make_path(std::move(points), a.timing.has_value());
     path.distance = std::min(a.initial_distance_offset, path.length());

@@ -2,9 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 
 #include "core/errors.hpp"
+#include "core/polyline.hpp"
 
 namespace orch::openscenario {
 namespace {
@@ -28,11 +28,7 @@ double lane_heading(const opendrive::Road& road, int lane, double s) {
 
 }  // namespace
 
-double angle_difference(double a, double b) {
-  double d = std::remainder(a - b, 2 * std::numbers::pi);
-  if (d <= -std::numbers::pi) d += 2 * std::numbers::pi;
-  return d;
-}
+double angle_difference(double a, double b) { return wrap_angle(a - b); }
 
 std::optional<double> entity_angle(const EntityState& entity, const std::string& angle_type,
                                    const std::string& coordinate_system, const opendrive::RoadNetwork& roads) {

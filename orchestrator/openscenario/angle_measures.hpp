@@ -9,7 +9,7 @@
 
 namespace orch::openscenario {
 
-// a - b on the circle, in (-pi, pi].
+// a - b on the circle, in (-pi, pi] (core wrap_angle).
 double angle_difference(double a, double b);
 
 // `angle_type`: heading, pitch or roll; `coordinate_system`: world (inertial), road (relative

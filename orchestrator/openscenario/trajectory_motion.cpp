@@ -5,6 +5,7 @@
 
 #include "core/checked_numeric.hpp"
 #include "core/errors.hpp"
+#include "openscenario/nurbs.hpp"
 
 namespace orch::openscenario {
 
@@ -121,6 +122,52 @@ bool PathMotion::done(double t) const {
   if (follower) return distance >= length() - kFollowEnd;  // when the entity gets there, in time or not
   if (timed) return t >= *points.back().due - 1e-9;
   return distance >= length() - 1e-9;
+}
+
+std::vector<Position> shape_positions(const Trajectory& trajectory) {
+  std::vector<Position> out;
+  if (const auto* polyline = std::get_if<PolylineShape>(&trajectory.shape)) {
+    for (const TrajectoryVertex& v : polyline->vertices) out.push_back(v.position);
+  } else if (const auto* nurbs = std::get_if<NurbsShape>(&trajectory.shape)) {
+    for (const NurbsControlPoint& c : nurbs->points) out.push_back(c.position);
+  } else if (const auto* spline = std::get_if<ClothoidSplineShape>(&trajectory.shape)) {
+    for (const ClothoidSplineSegment& segment : spline->segments)
+      if (segment.start) out.push_back(*segment.start);
+  } else {
+    out.push_back(std::get<ClothoidShape>(trajectory.shape).start);
+  }
+  return out;
+}
+
+std::vector<PathPoint> shape_points(const Trajectory& trajectory, const std::vector<opendrive::Pose2>& resolved,
+                                    const opendrive::Pose2& entity) {
+  std::vector<PathPoint> points;
+  if (const auto* polyline = std::get_if<PolylineShape>(&trajectory.shape)) {
+    for (std::size_t i = 0; i < resolved.size(); ++i)
+      points.push_back({resolved[i].x, resolved[i].y, 0.0, polyline->vertices[i].time, std::nullopt});
+  } else if (const auto* nurbs = std::get_if<NurbsShape>(&trajectory.shape)) {
+    std::vector<NurbsControl> controls;
+    for (std::size_t i = 0; i < resolved.size(); ++i)
+      controls.push_back({resolved[i].x, resolved[i].y, nurbs->points[i].weight, nurbs->points[i].time});
+    points = nurbs_points(controls, nurbs->knots, nurbs->order);
+  } else if (const auto* spline = std::get_if<ClothoidSplineShape>(&trajectory.shape)) {
+    std::vector<std::optional<opendrive::Pose2>> starts;
+    std::size_t next = 0;
+    for (const ClothoidSplineSegment& segment : spline->segments)
+      starts.push_back(segment.start ? std::optional(resolved[next++]) : std::nullopt);
+    points = clothoid_spline_points(*spline, starts, entity);
+  } else {
+    const auto& c = std::get<ClothoidShape>(trajectory.shape);
+    points = clothoid_points(resolved.front(), c.curvature, c.curvature_dot, c.length);
+    if (c.start_time && c.stop_time) {  // constant speed from startTime to stopTime
+      for (std::size_t i = 0; i < points.size(); ++i) {
+        const double f = static_cast<double>(i) / static_cast<double>(points.size() - 1);
+        points[i].due = *c.start_time + f * (*c.stop_time - *c.start_time);
+      }
+    }
+  }
+  if (trajectory.closed) close_path(points);
+  return points;
 }
 
 }  // namespace orch::openscenario

@@ -64,6 +64,17 @@ std::vector<PathPoint> clothoid_points(const opendrive::Pose2& start, double k0,
 std::vector<PathPoint> clothoid_spline_points(const ClothoidSplineShape& spline,
                                               const std::vector<std::optional<opendrive::Pose2>>& starts,
                                               const opendrive::Pose2& entity);
+// The positions a trajectory's shape names, in the order shape_points takes them resolved:
+// Polyline vertices, Nurbs control points, the ClothoidSpline segments' PositionStarts (those
+// given), a Clothoid's start.
+std::vector<Position> shape_positions(const Trajectory& trajectory);
+// The path of a trajectory (closed ones back to their start) from its shape_positions
+// resolved (`resolved`, same order); `entity` starts a ClothoidSpline whose first segment has
+// no PositionStart. `due` is the shape's own time (vertex, control point or spline time; a
+// Clothoid's startTime to stopTime at constant speed), to be mapped to simulation time by the
+// caller. Throws MapError for a Nurbs the formula cannot take.
+std::vector<PathPoint> shape_points(const Trajectory& trajectory, const std::vector<opendrive::Pose2>& resolved,
+                                    const opendrive::Pose2& entity);
 // A closed trajectory (Trajectory `closed`, "True if trajectory is closed": the standard says
 // no more) returns to where it began: a straight segment from its last point to its first is
 // added (none when they meet already). Timed: that segment is due at the speed of the path's

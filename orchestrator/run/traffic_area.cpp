@@ -4,18 +4,6 @@
 
 namespace orch {
 
-bool inside_polygon(const Vec2& p, const std::vector<Vec2>& polygon) {
-  if (polygon.size() < 3) return false;
-  bool inside = false;
-  for (std::size_t i = 0, j = polygon.size() - 1; i < polygon.size(); j = i++) {
-    const Vec2& a = polygon[i];
-    const Vec2& b = polygon[j];
-    if ((a.y() > p.y()) != (b.y() > p.y()) && p.x() < (b.x() - a.x()) * (p.y() - a.y()) / (b.y() - a.y()) + a.x())
-      inside = !inside;
-  }
-  return inside;
-}
-
 std::vector<AreaPart> area_parts(const openscenario::TrafficAreaRoadRange& range,
                                  const std::vector<double>& cursor_road_lengths) {
   std::vector<AreaPart> parts;

@@ -20,8 +20,6 @@
 
 namespace orch {
 
-// Inside the polygon (even-odd rule); false for fewer than 3 corners.
-bool inside_polygon(const Vec2& p, const std::vector<Vec2>& polygon);
 
 // A place as the area test needs it (OpenScenarioTraffic::Place has more).
 struct AreaPlace {
