@@ -14,6 +14,7 @@
 #include "run/openscenario_traffic.hpp"
 #include "support/cli_runner.hpp"
 #include "unit/openscenario_snippets.hpp"
+#include "unit/openscenario_traffic_snippets.hpp"
 
 namespace orch::openscenario {
 namespace {
@@ -158,22 +159,14 @@ TEST_F(TrafficActions, TheStoryboardKeepsTrafficUntilATrafficStopActionEndsIt) {
             test::transition_times(runtime, "StopItAction", "endTransition"));
 }
 
-// Road 0's right side as netconvert makes it: edge -0, two lanes (lane -1 is SUMO lane 1).
-const char* kNet = R"(<net><edge id="-0" from="a" to="b"><lane id="-0_0" index="0" length="2000" shape="0,0 1,1"/>
-<lane id="-0_1" index="1" length="2000" shape="0,0 1,1"/></edge></net>)";
+using test::kRoadZeroNet;
 
 TEST_F(TrafficActions, ASwarmSpawnsInItsAnnulusTheSameWayForTheSameSeed) {
   const Scenario s = load(kSwarm);
   const opendrive::RoadNetwork roads = opendrive::read_xodr_file((dir_.path() / "road.xodr").string());
-  const opendrive::SumoLaneIndex lanes{roads, dir_.write("n.net.xml", kNet).string()};
+  const opendrive::SumoLaneIndex lanes{roads, dir_.write("n.net.xml", kRoadZeroNet).string()};
   StoryboardRuntime runtime(s, roads);
-  const auto spawns = [&](long long seed) {
-    OpenScenarioTraffic traffic(lanes, seed);
-    std::vector<sim::SpawnVehicle> out;
-    for (auto& c : traffic.update(runtime.traffic(), runtime.entities(), {}, 0.0, 0.05))
-      out.push_back(std::get<sim::SpawnVehicle>(c));
-    return out;
-  };
+  const auto spawns = [&](long long seed) { return test::first_step_spawns(lanes, runtime, seed); };
   const auto first = spawns(7);
   ASSERT_EQ(first.size(), 8u);  // numberOfVehicles, room enough on 2 x 600 m of lanes
   const opendrive::Pose2 a = runtime.entities().at("A").pose;
@@ -208,7 +201,7 @@ TEST_F(TrafficActions, ASwarmSpawnsInItsAnnulusTheSameWayForTheSameSeed) {
 TEST_F(TrafficActions, ASwarmRemovesItsVehiclesOutsideTheEllipse) {
   const Scenario s = load(kSwarm);
   const opendrive::RoadNetwork roads = opendrive::read_xodr_file((dir_.path() / "road.xodr").string());
-  const opendrive::SumoLaneIndex lanes{roads, dir_.write("n.net.xml", kNet).string()};
+  const opendrive::SumoLaneIndex lanes{roads, dir_.write("n.net.xml", kRoadZeroNet).string()};
   StoryboardRuntime runtime(s, roads);
   OpenScenarioTraffic traffic(lanes, 1);
   std::vector<sim::NearbyVehicle> seen;
@@ -245,7 +238,7 @@ TEST_F(TrafficActions, ASinkRemovesBackgroundVehiclesInItsRadiusOnce) {
 <LanePosition roadId="0" laneId="-1" s="1060" offset="0"/></Position></TrafficSinkAction></TrafficAction>)";
   const Scenario s = load(sink + "</GlobalAction><GlobalAction>" + other);
   const opendrive::RoadNetwork roads = opendrive::read_xodr_file((dir_.path() / "road.xodr").string());
-  const opendrive::SumoLaneIndex lanes{roads, dir_.write("n.net.xml", kNet).string()};
+  const opendrive::SumoLaneIndex lanes{roads, dir_.write("n.net.xml", kRoadZeroNet).string()};
   StoryboardRuntime runtime(s, roads);
   OpenScenarioTraffic traffic(lanes, 1);
   const std::vector<sim::NearbyVehicle> background{{"bg.inside_both", {1055, -1.75}, 0, 20, 4.5, 1.8},

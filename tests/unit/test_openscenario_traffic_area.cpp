@@ -17,6 +17,7 @@
 #include "run/traffic_area.hpp"
 #include "support/cli_runner.hpp"
 #include "unit/openscenario_snippets.hpp"
+#include "unit/openscenario_traffic_snippets.hpp"
 #include "unit/xodr_network_snippets.hpp"
 
 namespace orch::openscenario {
@@ -46,9 +47,7 @@ std::string road_range_area(int entities, bool continuous, const std::string& di
 </TrafficAreaAction></TrafficAction>)";
 }
 
-// Road 0's right side as netconvert makes it: edge -0, two lanes (lane -1 is SUMO lane 1).
-const char* kNet = R"(<net><edge id="-0" from="a" to="b"><lane id="-0_0" index="0" length="2000" shape="0,0 1,1"/>
-<lane id="-0_1" index="1" length="2000" shape="0,0 1,1"/></edge></net>)";
+using test::kRoadZeroNet;
 
 template <class T>
 const T* init_action(const Scenario& s) {
@@ -174,15 +173,9 @@ TEST(TrafficAreaPlaces, ARoadRangeRunsFromCursorToCursorOverRoadsAndStopsAtItsLe
 TEST_F(TrafficArea13, AnAreaSpawnsItsVehiclesInItsAreaOnRoutesThatStayThereTheSameForTheSameSeed) {
   const Scenario s = load(road_range_area(5, true));
   const opendrive::RoadNetwork roads = opendrive::read_xodr_file((dir_.path() / "road.xodr").string());
-  const opendrive::SumoLaneIndex lanes{roads, dir_.write("n.net.xml", kNet).string()};
+  const opendrive::SumoLaneIndex lanes{roads, dir_.write("n.net.xml", kRoadZeroNet).string()};
   StoryboardRuntime runtime(s, roads);
-  const auto spawns = [&](long long seed) {
-    OpenScenarioTraffic traffic(lanes, seed);
-    std::vector<sim::SpawnVehicle> out;
-    for (auto& c : traffic.update(runtime.traffic(), runtime.entities(), {}, 0.0, 0.05))
-      out.push_back(std::get<sim::SpawnVehicle>(c));
-    return out;
-  };
+  const auto spawns = [&](long long seed) { return test::first_step_spawns(lanes, runtime, seed); };
   const auto first = spawns(3);
   ASSERT_EQ(first.size(), 5u);
   std::set<std::string> categories;
@@ -205,7 +198,7 @@ TEST_F(TrafficArea13, AnAreaSpawnsItsVehiclesInItsAreaOnRoutesThatStayThereTheSa
 
 TEST_F(TrafficArea13, AContinuousAreaReplacesAVehicleThatLeftItAndAOnceFilledAreaDoesNot) {
   const opendrive::RoadNetwork roads = opendrive::read_xodr_text(test::kStraightTwoLaneRoad, "road.xodr");
-  const opendrive::SumoLaneIndex lanes{roads, dir_.write("n.net.xml", kNet).string()};
+  const opendrive::SumoLaneIndex lanes{roads, dir_.write("n.net.xml", kRoadZeroNet).string()};
   for (const bool continuous : {true, false}) {
     const Scenario s = load(road_range_area(3, continuous));
     StoryboardRuntime runtime(s, roads);
@@ -239,7 +232,7 @@ TEST_F(TrafficArea13, APolygonAreaSpawnsInsideItsCornersAsResolvedWhenItStarts) 
 <Position><RelativeWorldPosition entityRef="A" dx="240" dy="-10"/></Position>
 <Position><RelativeWorldPosition entityRef="A" dx="40" dy="-10"/></Position></Polygon></TrafficArea></TrafficAreaAction></TrafficAction>)");
   const opendrive::RoadNetwork roads = opendrive::read_xodr_file((dir_.path() / "road.xodr").string());
-  const opendrive::SumoLaneIndex lanes{roads, dir_.write("n.net.xml", kNet).string()};
+  const opendrive::SumoLaneIndex lanes{roads, dir_.write("n.net.xml", kRoadZeroNet).string()};
   StoryboardRuntime runtime(s, roads);
   ASSERT_EQ(runtime.traffic().all().front().polygon.size(), 4u);
   OpenScenarioTraffic traffic(lanes, 5);
