@@ -10,9 +10,7 @@ double read_date_time(Element& e, const char* attribute) {
   const std::string text = e.text(attribute);
   const std::optional<double> value = parse_date_time(text);
   if (!value)
-    e.fail_attribute(attribute, fmt::format("\"{}\" is no xsd:dateTime (YYYY-MM-DDThh:mm:ss, optionally with "
-                                            "fractional seconds and a zone such as Z or +01:00)",
-                                            text));
+    e.fail_attribute(attribute, fmt::format("\"{}\" is no {}", text, kDateTimeForm));
   return *value;
 }
 

@@ -12,4 +12,8 @@ namespace orch::openscenario {
 // nullopt when the text is no xsd:dateTime or names no real date or time.
 std::optional<double> parse_date_time(std::string_view text);
 
+// What an error says a dateTime should look like.
+inline constexpr std::string_view kDateTimeForm =
+    "xsd:dateTime (YYYY-MM-DDThh:mm:ss, optionally with fractional seconds and a zone such as Z or +01:00)";
+
 }  // namespace orch::openscenario

@@ -5,6 +5,7 @@
 
 #include <fmt/format.h>
 
+#include "openscenario/date_time.hpp"
 #include "openscenario/expression.hpp"
 #include "openscenario/text_number.hpp"
 
@@ -74,7 +75,11 @@ std::string check_parameter_value(const std::string& type, const std::string& va
     return parse_whole<double>(value) ? "" : fmt::format("\"{}\" is not a number", value);
   }
   if (type == "boolean") return value == "true" || value == "false" ? "" : fmt::format("\"{}\" is not true or false", value);
-  if (type == "string" || type == "dateTime") return "";
+  if (type == "dateTime") {
+    return parse_date_time(value) ? ""
+                                  : fmt::format("\"{}\" is no {}", value, kDateTimeForm);
+  }
+  if (type == "string") return "";
   return fmt::format("unknown parameterType \"{}\"", type);
 }
 

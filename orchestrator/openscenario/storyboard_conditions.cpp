@@ -8,6 +8,7 @@
 #include "core/errors.hpp"
 #include "core/exhaustive.hpp"
 #include "openscenario/angle_measures.hpp"
+#include "openscenario/date_time.hpp"
 #include "openscenario/entity_measures.hpp"
 #include "openscenario/road_following.hpp"
 #include "openscenario/rule.hpp"
@@ -76,7 +77,12 @@ bool StoryboardRuntime::Impl::value_of(const Condition& c, ConditionMemory& m) {
 }
 
 bool StoryboardRuntime::Impl::compare(const Parameter& p, Rule rule, const std::string& value) {
-  if (p.type == "string" || p.type == "boolean" || p.type == "dateTime") return satisfies(rule, p.value, value);
+  if (p.type == "dateTime") {
+    // Instants, not texts: "12:00:00+02:00" is "10:00:00Z" (both checked as xsd:dateTime
+    // at load and wherever the parameter is set).
+    return satisfies(rule, parse_date_time(p.value).value_or(0.0), parse_date_time(value).value_or(0.0));
+  }
+  if (p.type == "string" || p.type == "boolean") return satisfies(rule, p.value, value);
   // Both texts were checked as numbers of the type at load.
   return satisfies(rule, parse_whole<double>(p.value).value_or(0.0), parse_whole<double>(value).value_or(0.0));
 }

@@ -125,6 +125,25 @@ TEST_F(TimeAndMonitors, ReaderChecksDateTimes) {
   EXPECT_NE(load_error(environment("13.6.2025 12:00", false), "").find("dateTime"), std::string::npos);
 }
 
+TEST_F(TimeAndMonitors, DateTimeParametersCompareAsInstantsNotTexts) {
+  // 12:00:00+02:00 is 10:00:00Z; 11:30:00+02:00 is 09:30:00Z, earlier although its text sorts
+  // after "10:00".
+  const std::string declarations =
+      R"(<ParameterDeclarations><ParameterDeclaration name="When" parameterType="dateTime" value="2024-01-01T10:00:00Z"/></ParameterDeclarations>)";
+  load("",
+       value_event("Same", kSpeedUp, R"(<ParameterCondition parameterRef="When" rule="equalTo" value="2024-01-01T12:00:00+02:00"/>)") +
+           value_event("Before", kSpeedUp, R"(<ParameterCondition parameterRef="When" rule="lessThan" value="2024-01-01T11:30:00+02:00"/>)") +
+           value_event("After", kSpeedUp, R"(<ParameterCondition parameterRef="When" rule="greaterThan" value="2024-01-01T11:30:00+02:00"/>)"),
+       declarations);
+  run_until(*runtime_, 1);
+  EXPECT_GE(started("Same"), 0.0);
+  EXPECT_EQ(started("Before"), -1.0);
+  EXPECT_GE(started("After"), 0.0);
+  const std::string bad =
+      R"(<ParameterDeclarations><ParameterDeclaration name="When" parameterType="dateTime" value="noon"/></ParameterDeclarations>)";
+  EXPECT_NE(load_error("", "", bad).find("\"noon\" is no xsd:dateTime"), std::string::npos) << load_error("", "", bad);
+}
+
 TEST_F(TimeAndMonitors, UserDefinedValueConditionIsAnErrorNamingTheValue) {
   const std::string message =
       load_error("", value_event("E", kSpeedUp, R"(<UserDefinedValueCondition name="RainSensor" rule="greaterThan" value="0.5"/>)"));
