@@ -115,6 +115,20 @@ class Comparison(unittest.TestCase):
         self.assertEqual([d.text() for d in c.differences], ["GoAction endTransition at 1.55 s: ours none, peer 1.55 s"])
 
 
+    def test_a_file_differing_only_in_transitions_counts_as_positions_matching(self):
+        events = [e for e in OUR_EVENTS if "GoAction endTransition" not in e[2]]
+        for name in ("same", "transition", "position"):
+            (self.root / name).mkdir()
+        same = Outputs(self.root / "same", ours_events=OUR_EVENTS, peer_log=PEER_LOG).compare()
+        transition = Outputs(self.root / "transition", ours_events=events, peer_log=PEER_LOG).compare()
+        position = Outputs(self.root / "position", shift=lambda t: 0.2, ours_events=OUR_EVENTS, peer_log=PEER_LOG).compare()
+        results = [{"file": f"../shared/data/esmini_examples/xosc/{n}.xosc", "status": s, "comparison": c}
+                   for n, s, c in (("a", "match", same), ("b", "differs", transition), ("c", "differs", position))]
+        results.append({"file": "scenarios/openscenario/d.xosc", "status": "unreadable", "comparison": None})
+        self.assertEqual([osc_differential.positions_match(r) for r in results], [True, True, False, False])
+        self.assertEqual(osc_differential.positions_figure(results),
+                         "positions: 2 of 3 compared files within the tolerance at every point (esmini's examples: 2 of 3)")
+
     def test_a_stop_one_step_after_the_other_runs_end_is_paired_not_missed(self):
         # Ours stops at its StopTrigger at 2.00 s (the compared end), the peer one step later.
         late_stop = PEER_LOG.replace("[2.000] [info] storyBoard", "[2.050] [info] storyBoard")
