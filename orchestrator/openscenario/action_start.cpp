@@ -402,7 +402,7 @@ std::vector<std::string> start_action(const PrivateAction& action, const std::st
           }
           ctx.traffic->start(std::move(area), ctx.t);
         } else if constexpr (std::is_same_v<T, RandomRouteAction>) {
-          plan_random_route(state, ctx.roads, entity);
+          plan_random_route(state, ctx.roads, entity, ctx.seed);
         } else if constexpr (std::is_same_v<T, TrafficStopAction>) {
           ctx.traffic->stop(a.name, ctx.t);  // none running yet (its action not started): nothing to stop
         } else if constexpr (std::is_same_v<T, SetMonitorAction>) {

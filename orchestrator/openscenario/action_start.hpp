@@ -1,6 +1,7 @@
 #pragma once
 // What each private action does to an entity when it starts, and, for actions that take
 // time, each step until it ends (internal to the storyboard runtime).
+#include <cstdint>
 #include <map>
 #include <optional>
 #include <string>
@@ -48,6 +49,7 @@ struct ActionContext {
   TrafficBook* traffic = nullptr;     // the traffic TrafficActions started (traffic_book.hpp)
   std::optional<TimeOfDayClock>* time_of_day = nullptr;  // set by EnvironmentActions
   std::map<std::string, bool>* monitors = nullptr;        // MonitorDeclarations, set by SetMonitorActions
+  std::uint64_t seed = 0;  // the run's (--seed): RandomRouteAction's draws
 };
 
 // Route: an AcquirePositionAction waiting for its entity to reach the position.

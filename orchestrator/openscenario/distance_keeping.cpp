@@ -14,11 +14,12 @@ namespace orch::openscenario {
 namespace {
 
 // Where the entity keeps the distance: the s on the referenced entity's road, and the
-// direction of travel there.
+// direction of travel there; `error`: the metres the entity is short of it (> 0: behind it).
 struct DistanceTarget {
   const EntityState* ref = nullptr;
   double s = 0;
   int direction = 1;
+  double error = 0;
 };
 
 DistanceTarget distance_target(const LongitudinalDistanceAction& a, const EntityState& state, ActionContext& ctx,
@@ -28,16 +29,23 @@ DistanceTarget distance_target(const LongitudinalDistanceAction& a, const Entity
   if (!state.placed) throw MapError(fmt::format("entity \"{}\" has no position yet", entity));
   const opendrive::Road& road = ctx.roads.road(ref.road_id);
   const int direction = travel_direction(ref, road);
+  // How far the referenced entity is ahead: along its road when both are on it, else (one
+  // past a junction or a road's end) along the entity's heading, as the distance in the
+  // entity's frame (the standard's default coordinateSystem, and esmini's measure).
+  const bool same_road = state.road_id == ref.road_id;
+  const double along =
+      same_road ? (ref.s - state.s) * direction
+                : (ref.pose.x - state.pose.x) * std::cos(state.pose.heading) +
+                      (ref.pose.y - state.pose.y) * std::sin(state.pose.heading);
   double gap = a.distance ? *a.distance : *a.time_gap * ref.speed;
-  const bool ahead = a.displacement == "leadingReferencedEntity" ||
-                     (a.displacement == "any" && (state.s - ref.s) * direction >= 0);
+  const bool ahead = a.displacement == "leadingReferencedEntity" || (a.displacement == "any" && along <= 0);
   if (a.freespace) {
     const BoundingBox& own = ctx.scenario.entity(entity)->box;
     const BoundingBox& other = ctx.scenario.entity(a.entity)->box;
     gap += ahead ? (other.center_x + other.length / 2) - (own.center_x - own.length / 2)
                  : (own.center_x + own.length / 2) - (other.center_x - other.length / 2);
   }
-  return {&ref, ref.s + direction * (ahead ? gap : -gap), direction};
+  return {&ref, ref.s + direction * (ahead ? gap : -gap), direction, along + (ahead ? gap : -gap)};
 }
 
 }  // namespace
@@ -63,42 +71,58 @@ void longitudinal_distance(const LongitudinalDistanceAction& a, EntityState& sta
 }
 
 // With DynamicConstraints: the entity stays in its lane and sets its speed for the next
-// step towards the distance. Without jerk limits: the speed from which braking (or speeding
-// up) at the limit ends at the referenced speed on the target, v = v_ref + sign(e)
-// sqrt(2 a |e|) (e: metres short of the target), within [0, maxSpeed], reached with an
-// acceleration within maxAcceleration / maxDeceleration. That law asks for a full swing of
-// the acceleration at the target, which a jerk limit cannot give (it overshoots and swings
-// round the target), so with maxAccelerationRate / maxDecelerationRate the acceleration is
-// a critically damped spring's, a = w^2 e - 2 w (v - v_ref), with w = J / (the larger
-// acceleration limit), J the smaller rate: the loop is no faster than the acceleration can
-// swing across its range; it changes by at most maxAccelerationRate (growing) /
+// step towards the distance. The standard gives the constraints only as limits and leaves the
+// law to the controller; without jerk limits it is esmini's damped spring (as esmini, which the
+// standard allows): a = k e - 2 sqrt(k) (v - v_ref), critically damped, e the metres short of
+// the target, v_ref the referenced speed, the stiffness k = 0.4 1/m times maxDeceleration
+// while behind the target (e > 0: it will brake on arriving), times maxAcceleration while
+// beyond it (either stands in for the other when absent; with neither, the speed jumps to
+// [0, maxSpeed]'s end towards the target). With maxAccelerationRate / maxDecelerationRate a
+// spring that stiff would swing round the target within the rates, so the loop is slowed to
+// what the acceleration can follow: k = w^2, w = J / (the larger acceleration limit), J the
+// smaller rate, and the acceleration changes by at most maxAccelerationRate (growing) /
 // maxDecelerationRate (falling) per second (the same reading of the rates as a
-// SpeedProfileAction's), within the acceleration limits and [0, maxSpeed]. Absent limits:
-// none. True once within kDistanceReached m and m/s of the target and the referenced speed.
+// SpeedProfileAction's). Always within the acceleration limits and [0, maxSpeed], each capped
+// by the vehicle's Performance. True once
+// within kDistanceReached m and m/s of the target and the referenced speed.
 constexpr double kDistanceReached = 0.1;
+constexpr double kSpringPerAcceleration = 0.4;  // esmini's spring constant, 1/m
 bool approach_distance(const LongitudinalDistanceAction& a, EntityState& state, ActionContext& ctx,
                        const std::string& entity, double& acceleration) {
   const DistanceTarget target = distance_target(a, state, ctx, entity);
   const double unlimited = std::numeric_limits<double>::infinity();
-  const double accelerate = a.max_acceleration.value_or(unlimited);
-  const double decelerate = a.max_deceleration.value_or(unlimited);
-  const double max_speed = a.max_speed.value_or(unlimited);
-  const double error = state.road_id == target.ref->road_id ? (target.s - state.s) * target.direction : 0.0;
+  double accelerate = a.max_acceleration.value_or(unlimited);
+  double decelerate = a.max_deceleration.value_or(unlimited);
+  double max_speed = a.max_speed.value_or(unlimited);
+  // The vehicle's Performance caps them too: the standard gives it as the vehicle's maximum,
+  // a physical limit (as a SpeedAction's transition; esmini does the same).
+  if (const Entity* e = ctx.scenario.entity(entity); e != nullptr && e->performance) {
+    if (e->performance->max_acceleration > 0) accelerate = std::min(accelerate, e->performance->max_acceleration);
+    if (e->performance->max_deceleration > 0) decelerate = std::min(decelerate, e->performance->max_deceleration);
+    if (e->performance->max_speed > 0) max_speed = std::min(max_speed, e->performance->max_speed);
+  }
+  const double error = target.error;
   const double v_ref = target.ref->speed;
-  double wanted = v_ref + std::copysign(std::sqrt(2 * (error > 0 ? decelerate : accelerate) * std::abs(error)), error);
-  wanted = std::clamp(wanted, 0.0, max_speed);
+  double tension = error > 0 ? decelerate : accelerate;
+  if (std::isinf(tension)) tension = error > 0 ? accelerate : decelerate;
   const bool jerk_limited = a.max_acceleration_rate || a.max_deceleration_rate;
   if (!(ctx.dt > 0)) {
     acceleration = 0;  // no step to limit the change over: the speed stays
   } else {
     const double before = state.speed;
-    double change = (wanted - before) / ctx.dt;
+    double change = 0;
     if (jerk_limited) {
       const double rate = std::min(a.max_acceleration_rate.value_or(unlimited), a.max_deceleration_rate.value_or(unlimited));
       double range = std::max(std::isinf(accelerate) ? 0.0 : accelerate, std::isinf(decelerate) ? 0.0 : decelerate);
       if (!(range > 0)) range = rate;  // no acceleration limit: a 1 s loop
       const double w = rate / range;
       change = w * w * error - 2 * w * (before - v_ref);
+    } else if (std::isinf(tension)) {
+      const double wanted = error > 0 ? max_speed : error < 0 ? 0.0 : v_ref;  // no limit to ease in by
+      change = (std::clamp(wanted, 0.0, max_speed) - before) / ctx.dt;
+    } else {
+      const double k = kSpringPerAcceleration * tension;
+      change = k * error - 2 * std::sqrt(k) * (before - v_ref);
     }
     change = std::clamp(change, -decelerate, accelerate);
     change = std::clamp(change, acceleration - a.max_deceleration_rate.value_or(unlimited) * ctx.dt,

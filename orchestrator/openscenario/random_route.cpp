@@ -3,13 +3,16 @@
 #include <algorithm>
 #include <cstdint>
 
+#include <fmt/format.h>
+
 #include "core/stable_hash.hpp"
 #include "opendrive/lane_graph.hpp"
 #include "opendrive/route_planner.hpp"
 
 namespace orch::openscenario {
 
-void plan_random_route(EntityState& state, const opendrive::RoadNetwork& roads, const std::string& entity) {
+void plan_random_route(EntityState& state, const opendrive::RoadNetwork& roads, const std::string& entity,
+                       std::uint64_t seed) {
   state.route.clear();
   state.route_passed = 0;
   state.route_plan.clear();
@@ -25,7 +28,7 @@ void plan_random_route(EntityState& state, const opendrive::RoadNetwork& roads, 
     if (next.empty()) break;
     std::size_t pick = 0;
     if (next.size() > 1)
-      pick = stable_hash(entity + "/" + at + "/" + std::to_string(*exit) + "/" + std::to_string(forks++)) % next.size();
+      pick = stable_hash(fmt::format("{}/{}/{}/{}/{}", seed, entity, at, *exit, forks++)) % next.size();
     const opendrive::LaneEntry& entry = next[pick];
     state.route_plan.push_back(entry);
     at = entry.road_id;

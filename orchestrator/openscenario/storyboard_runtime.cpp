@@ -9,12 +9,13 @@
 
 namespace orch::openscenario {
 
-StoryboardRuntime::Impl::Impl(const Scenario& s, const opendrive::RoadNetwork& r)
+StoryboardRuntime::Impl::Impl(const Scenario& s, const opendrive::RoadNetwork& r, std::uint64_t run_seed)
     : scenario(s),
       roads(r),
       resolver(r),
       trailers(initial_trailer_links(s)),
-      signals(s.signal_controllers, r.signal_controllers()) {
+      signals(s.signal_controllers, r.signal_controllers()),
+      seed(run_seed) {
   for (const Parameter& p : s.parameters) parameters[p.name] = p;
   for (const Parameter& p : s.local_parameters) parameters[p.name] = p;  // "<owner>/<name>"
   for (const Parameter& v : s.variables) variables[v.name] = v;
@@ -42,7 +43,7 @@ StoryboardRuntime::Impl::Impl(const Scenario& s, const opendrive::RoadNetwork& r
 
 ActionContext StoryboardRuntime::Impl::context() {
   return ActionContext{scenario, roads,   resolver, entities, parameters, variables, trailers, t,
-                       last_dt,  &signals, &traffic, &time_of_day, &monitors};
+                       last_dt,  &signals, &traffic, &time_of_day, &monitors, seed};
 }
 
 void StoryboardRuntime::Impl::transition(const std::string& type, const std::string& key,
@@ -299,8 +300,8 @@ void StoryboardRuntime::Impl::step(double dt) {
 }
 
 
-StoryboardRuntime::StoryboardRuntime(const Scenario& scenario, const opendrive::RoadNetwork& roads)
-    : impl_(std::make_unique<Impl>(scenario, roads)) {
+StoryboardRuntime::StoryboardRuntime(const Scenario& scenario, const opendrive::RoadNetwork& roads, std::uint64_t seed)
+    : impl_(std::make_unique<Impl>(scenario, roads, seed)) {
   for (const Entity& e : scenario.entities) {
     EntityState& state = impl_->entities[e.name];
     if (e.controller) state.controller = e.controller->name;

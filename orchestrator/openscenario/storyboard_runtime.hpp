@@ -11,6 +11,7 @@
 // the step it happened when the condition is evaluated after it, else in the next step
 // (ASAM OpenSCENARIO: a transition is observed in the following evaluation), so a stop
 // trigger on an instant action's endTransition fires although it is evaluated first.
+#include <cstdint>
 #include <map>
 #include <memory>
 #include <string>
@@ -35,8 +36,9 @@ struct TransitionLog {
 
 class StoryboardRuntime {
  public:
-  // Throws MapError when an Init position cannot be placed on the roads.
-  StoryboardRuntime(const Scenario& scenario, const opendrive::RoadNetwork& roads);
+  // Throws MapError when an Init position cannot be placed on the roads. `seed`: the run's
+  // (--seed), the source of what the storyboard leaves to chance (RandomRouteAction).
+  StoryboardRuntime(const Scenario& scenario, const opendrive::RoadNetwork& roads, std::uint64_t seed = 0);
   ~StoryboardRuntime();
   StoryboardRuntime(const StoryboardRuntime&) = delete;
   StoryboardRuntime& operator=(const StoryboardRuntime&) = delete;

@@ -73,7 +73,8 @@ struct StoryboardRuntime::Impl {
   // its groups with selectTriggeringEntities add to the named ones.
   std::map<std::string, std::vector<std::string>> act_triggering_entities;
 
-  Impl(const Scenario& s, const opendrive::RoadNetwork& r);
+  Impl(const Scenario& s, const opendrive::RoadNetwork& r, std::uint64_t run_seed);
+  std::uint64_t seed = 0;  // the run's (--seed)
 
   double last_dt = 0;  // the last step's
 

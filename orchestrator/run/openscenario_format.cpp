@@ -4,6 +4,7 @@
 #include <fmt/ranges.h>
 
 #include <algorithm>
+#include <cstdint>
 #include <map>
 #include <optional>
 #include <set>
@@ -434,7 +435,7 @@ void OpenScenarioFormat::open(RunResult& result, RunLog& log, SimulatorConfig& c
                         : fmt::format("{}: {}; the ego of metrics and the report because {}{}", ego_, ego_summary_,
                                       chosen.rule, req_.ego_link ? " (SUMO vehicle \"ego\")" : ""));
   if (req_.evaluation) check_criteria(*req_.evaluation, *scenario_, ego_, log);
-  runtime_.emplace(*scenario_, *roads_);
+  runtime_.emplace(*scenario_, *roads_, static_cast<std::uint64_t>(req_.seed));
   actors_.emplace(*scenario_, *lanes_, ego_,
                   !ego_driven_ ? EgoDrive::Storyboard : req_.ego_link ? EgoDrive::External : EgoDrive::Sumo);
   if (req_.controllers_off) actors_->disable_controllers();

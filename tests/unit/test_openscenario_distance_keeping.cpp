@@ -1,7 +1,8 @@
 // LongitudinalDistanceAction with DynamicConstraints (distance_keeping.cpp) in the storyboard
 // runtime, on a straight two-lane road (no simulator): it acts from the step after its
-// start, as every other action started then, and its jerk limits (maxAccelerationRate,
-// maxDecelerationRate) bound how fast its acceleration changes.
+// start, as every other action started then, its law without jerk limits is esmini's damped
+// spring, and its jerk limits (maxAccelerationRate, maxDecelerationRate) bound how fast its
+// acceleration changes.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -15,6 +16,7 @@
 #include "openscenario/xosc_reader.hpp"
 #include "support/cli_runner.hpp"
 #include "unit/openscenario_snippets.hpp"
+#include "unit/xodr_network_snippets.hpp"
 
 namespace orch::openscenario {
 namespace {
@@ -38,20 +40,25 @@ std::string keep_distance(double distance, const std::string& constraints, doubl
 class DistanceKeeping : public ::testing::Test {
  protected:
   // A at s = 10, B at s = `b_at`, both at 10 m/s in lane -1; A's maneuver holds `events`.
-  void load(double b_at, const std::string& events) {
+  // `two_roads`: on road 1 of two in a row along +x (xodr_two_in_a_row), B at `b_at` on road 2.
+  void load(double b_at, const std::string& events, bool two_roads = false, double a_at = 10) {
+    std::string a = test::place("A", a_at, -1, 10), b = test::place("B", b_at, -1, 10);
+    if (two_roads) {
+      a.replace(a.find("roadId=\"0\""), 10, "roadId=\"1\"");
+      b.replace(b.find("roadId=\"0\""), 10, "roadId=\"2\"");
+    }
     const std::string text = R"(<?xml version="1.0"?><OpenSCENARIO>
 <FileHeader revMajor="1" revMinor="2" date="2024-01-01T00:00:00" author="t" description="distance keeping"/>
 <RoadNetwork><LogicFile filepath="road.xodr"/></RoadNetwork>
 <Entities>)" + test::vehicle("A") + test::vehicle("B") +
                              R"(</Entities>
-<Storyboard><Init><Actions>)" + test::place("A", 10, -1, 10) +
-                             test::place("B", b_at, -1, 10) + R"(</Actions></Init>
+<Storyboard><Init><Actions>)" + a + b + R"(</Actions></Init>
 <Story name="S"><Act name="Act"><ManeuverGroup name="G" maximumExecutionCount="1">
 <Actors selectTriggeringEntities="false"><EntityRef entityRef="A"/></Actors><Maneuver name="M">)" +
                              events + R"(</Maneuver></ManeuverGroup><StartTrigger><ConditionGroup>)" + at_time(0) +
                              R"(</ConditionGroup></StartTrigger></Act></Story>
 <StopTrigger><ConditionGroup>)" + at_time(100) + R"(</ConditionGroup></StopTrigger></Storyboard></OpenSCENARIO>)";
-    dir_.write("road.xodr", test::kStraightTwoLaneRoad);
+    dir_.write("road.xodr", two_roads ? test::xodr_two_in_a_row() : std::string(test::kStraightTwoLaneRoad));
     scenario_ = load_scenario(dir_.write("s.xosc", text).string());
     roads_ = opendrive::read_xodr_file((dir_ / "road.xodr").string());
     runtime_ = std::make_unique<StoryboardRuntime>(scenario_, roads_);
@@ -113,9 +120,60 @@ TEST_F(DistanceKeeping, WithoutJerkLimitsTheAccelerationJumps) {
   EXPECT_NEAR((entity("A").speed - speed) / kStep, 2.0, 1e-9);
 }
 
+// Without jerk limits the law is esmini's damped spring, a = k e - 2 sqrt(k) (v - v_ref), the
+// stiffness k 0.4 1/m times maxDeceleration while short of the target and times
+// maxAcceleration while too close. 1 m short, at B's speed: 1.2 m/s^2 (the braking-distance
+// law would ask for sqrt(2 * 3 * 1) m/s more at once, its limit of 2 m/s^2).
+TEST_F(DistanceKeeping, WithoutJerkLimitsTheAccelerationIsADampedSpringsShortOfTheTarget) {
+  load(41, keep_distance(30, R"(maxAcceleration="2" maxDeceleration="3" maxSpeed="20")"));
+  run_to_start();  // the speed for the step after the start is set at the start
+  EXPECT_NEAR(entity("A").speed, 10 + 0.4 * 3 * 1.0 * kStep, 1e-9);
+}
+
+// 1 m too close: k = 0.4 * maxAcceleration, -0.8 m/s^2.
+TEST_F(DistanceKeeping, WithoutJerkLimitsTheAccelerationIsADampedSpringsTooClose) {
+  load(39, keep_distance(30, R"(maxAcceleration="2" maxDeceleration="3" maxSpeed="20")"));
+  run_to_start();
+  EXPECT_NEAR(entity("A").speed, 10 - 0.4 * 2 * 1.0 * kStep, 1e-9);
+}
+
+// B on the next road (past road 1's end), 41 m ahead along A's heading, the distance to keep
+// 40 m: measured across the road boundary, A is 1 m short: 1.2 m/s^2, as on one road (it
+// was measured as 0 m, and A braked to B's speed).
+TEST_F(DistanceKeeping, TheDistanceIsMeasuredAcrossARoadsEnd) {
+  load(1, keep_distance(40, R"(maxAcceleration="2" maxDeceleration="3" maxSpeed="20")"), true, 60);
+  run_to_start();
+  ASSERT_EQ(entity("A").road_id, "1");
+  ASSERT_EQ(entity("B").road_id, "2");
+  EXPECT_NEAR(entity("A").speed, 10 + 0.4 * 3 * 1.0 * kStep, 1e-9);
+}
+
+// The vehicle's Performance (maxAcceleration 10 m/s^2 here) caps DynamicConstraints that
+// allow more (15 m/s^2), as it caps a SpeedAction's transition.
+TEST_F(DistanceKeeping, TheVehiclesPerformanceCapsTheConstraints) {
+  load(110, keep_distance(30, R"(maxAcceleration="15" maxDeceleration="15" maxSpeed="100")"));
+  run_to_start();
+  EXPECT_NEAR(entity("A").speed, 10 + 10 * kStep, 1e-9);
+}
+
+// The spring's damping: from 100 m short it speeds up at its limit, then eases into B's speed
+// 30 m behind B without passing the target by more than 0.5 m (critically damped).
+TEST_F(DistanceKeeping, TheSpringSettlesAtTheDistanceWithoutSwinging) {
+  load(110, keep_distance(30, R"(maxAcceleration="2" maxDeceleration="3" maxSpeed="20")"));
+  run_to_start();
+  double closest = 1e9;
+  while (runtime_->time() < 40 - 1e-9) {
+    runtime_->step(kStep);
+    closest = std::min(closest, entity("B").s - entity("A").s);
+  }
+  EXPECT_GT(closest, 30.0 - 0.5);
+  EXPECT_NEAR(entity("B").s - entity("A").s, 30.0, 0.1);
+  EXPECT_NEAR(entity("A").speed, 10.0, 0.1);
+}
+
 // Started before the first step (at 0 s: no step size yet), the speed stays as it is until
-// the first step's end, and then changes within the limits (no jump to the braking law's
-// speed, 10 + sqrt(2 * 3 * 70) m/s).
+// the first step's end, and then changes within the limits (no jump to the spring's pull of
+// 0.4 * 3 * 70 m/s^2).
 TEST_F(DistanceKeeping, StartedBeforeTheFirstStepTheSpeedDoesNotJump) {
   load(110, keep_distance(30, R"(maxAcceleration="2" maxDeceleration="3" maxSpeed="40")", 0));
   ASSERT_FALSE(test::transition_times(*runtime_, "KeepAction", "startTransition").empty());

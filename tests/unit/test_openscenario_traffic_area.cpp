@@ -1,12 +1,15 @@
 // OpenSCENARIO 1.3's traffic additions: TrafficAreaAction (read, its area's places, its
 // vehicles kept in the area on SUMO commands without a simulator), TrafficDistribution (the
 // vehicle templates' shares and sizes) on swarms, sources and areas, the source's `speed`, and
-// RandomRouteAction (a random walk over the lane graph, the same for the same entity). The
+// RandomRouteAction (a random walk over the lane graph, the same for the same seed and entity). The
 // runs on real SUMO are tests/integration/test_openscenario_traffic.cpp.
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
 #include <set>
+#include <string>
+#include <vector>
 
 #include "core/errors.hpp"
 #include "opendrive/xodr_reader.hpp"
@@ -247,28 +250,55 @@ TEST_F(TrafficArea13, APolygonAreaSpawnsInsideItsCornersAsResolvedWhenItStarts) 
   }
 }
 
-// RandomRouteAction: a walk over the lane graph whose forks the entity's name decides.
+// RandomRouteAction: a walk over the lane graph whose forks the run's seed and the entity's
+// name decide.
+EntityState on_road_1_before_the_junction() {
+  EntityState state;
+  state.placed = true;
+  state.road_id = "1";
+  state.lane = -1;
+  state.s = 20;
+  return state;
+}
+
+std::vector<std::string> planned_roads(const EntityState& state) {
+  std::vector<std::string> roads;
+  for (const opendrive::LaneEntry& entry : state.route_plan) roads.push_back(entry.road_id);
+  return roads;
+}
+
 TEST(RandomRoute, AForkIsTakenEachWayByTheHashOfTheEntityTheSameEveryTime) {
   const opendrive::RoadNetwork roads = opendrive::read_xodr_text(test::xodr_three_way(), "three_way.xodr");
   std::set<std::string> first_roads;
   for (int i = 0; i < 16; ++i) {
-    EntityState state;
-    state.placed = true;
-    state.road_id = "1";
-    state.lane = -1;
-    state.s = 20;
+    EntityState state = on_road_1_before_the_junction();
     const std::string name = "Car" + std::to_string(i);
-    plan_random_route(state, roads, name);
+    plan_random_route(state, roads, name, 42);
     ASSERT_FALSE(state.route_plan.empty()) << name;
     first_roads.insert(state.route_plan.front().road_id);
     EntityState again = state;
-    plan_random_route(again, roads, name);
-    ASSERT_EQ(again.route_plan.size(), state.route_plan.size());
-    for (std::size_t k = 0; k < state.route_plan.size(); ++k)
-      EXPECT_EQ(again.route_plan[k].road_id, state.route_plan[k].road_id);
+    plan_random_route(again, roads, name, 42);
+    EXPECT_EQ(planned_roads(again), planned_roads(state)) << name;
     EXPECT_EQ(again.route_version, state.route_version + 1);  // a new plan
   }
   EXPECT_EQ(first_roads, (std::set<std::string>{"10", "11"}));  // both ways out of the junction
+}
+
+// The run's --seed reaches the walk: one entity takes both ways out of the junction over 16
+// seeds, and the same seed gives it the same route every time.
+TEST(RandomRoute, TheRunsSeedDecidesTheForksTheSameSeedTheSameRoute) {
+  const opendrive::RoadNetwork roads = opendrive::read_xodr_text(test::xodr_three_way(), "three_way.xodr");
+  std::set<std::string> first_roads;
+  for (std::uint64_t seed = 1; seed <= 16; ++seed) {
+    EntityState state = on_road_1_before_the_junction();
+    plan_random_route(state, roads, "Wanderer", seed);
+    ASSERT_FALSE(state.route_plan.empty()) << seed;
+    first_roads.insert(state.route_plan.front().road_id);
+    EntityState again = on_road_1_before_the_junction();
+    plan_random_route(again, roads, "Wanderer", seed);
+    EXPECT_EQ(planned_roads(again), planned_roads(state)) << seed;
+  }
+  EXPECT_EQ(first_roads, (std::set<std::string>{"10", "11"}));
 }
 
 TEST_F(TrafficArea13, ARandomRouteActionIsReadAndPlansFromTheEntitysLane) {
