@@ -320,7 +320,8 @@ std::vector<std::string> start_action(const PrivateAction& action, const std::st
           state.lateral_profile.reset();
           if (!state.placed) state.pose = state.path->pose_at(state.path->distance);
           if (a.follow_mode)  // stays where it is; its controller steers onto the path
-            start_following(*state.path, state.pose, state.speed, follow_limits(*ctx.scenario.entity(entity)));
+            start_following(*state.path, state.pose, state.speed, follow_limits(*ctx.scenario.entity(entity)),
+                            std::holds_alternative<PolylineShape>(a.trajectory.shape));
           else
             state.pose = state.path->pose_at(state.path->distance);
           state.placed = true;

@@ -74,6 +74,12 @@ double pursuit_curvature(const PathMotion& path, const FollowLimits& limits, con
   return to_goal > 1e-9 ? 2 * std::sin(alpha) / to_goal : 0.0;
 }
 
+// On its path: within 1 cm of its nearest point (an entity placed beside it steers onto it).
+bool on_path(const PathMotion& path, const opendrive::Pose2& pose) {
+  const opendrive::Pose2 nearest = path.pose_at(path.distance);
+  return std::hypot(nearest.x - pose.x, nearest.y - pose.y) < kFollowOnPath;
+}
+
 }  // namespace
 
 FollowLimits follow_limits(const Entity& entity) {
@@ -88,8 +94,45 @@ FollowLimits follow_limits(const Entity& entity) {
     if (wheelbase > 0 && entity.front_axle->max_steering > 0)
       limits.max_curvature = std::tan(std::min(entity.front_axle->max_steering, 1.5)) / wheelbase;
   }
-  limits.max_lateral_acceleration = kFollowMaxLateralAcceleration;
+  // No steering limit given (no axles: a pedestrian, an object): none assumed for the
+  // lateral acceleration either, so it follows the path's geometry exactly (follow_step).
+  if (!std::isinf(limits.max_curvature)) limits.max_lateral_acceleration = kFollowMaxLateralAcceleration;
   return limits;
+}
+
+std::vector<SchedulePiece> vertex_schedule(const std::vector<std::pair<double, double>>& timetable, double speed) {
+  std::vector<SchedulePiece> pieces;
+  double v = std::max(0.0, speed);
+  for (std::size_t i = 1; i < timetable.size(); ++i) {
+    const auto [t0, s0] = timetable[i - 1];
+    const double span = timetable[i].first - t0;
+    const double ds = timetable[i].second - s0;
+    SchedulePiece piece{t0, s0, v, 0.0};
+    if (ds < 1e-9 || span <= 0) {  // a stop at a repeated vertex (or no time to get there)
+      piece.speed = 0;
+      v = 0;
+    } else {
+      piece.acceleration = 2 * (ds - v * span) / (span * span);
+      if (v + piece.acceleration * span < 0) {  // slowing to the vertex's time would reverse:
+        piece.acceleration = -v * v / (2 * ds);  // stop on the vertex early and wait there
+        piece.stop = v / -piece.acceleration;
+        v = 0;
+      } else {
+        v += piece.acceleration * span;
+      }
+    }
+    pieces.push_back(piece);
+  }
+  return pieces;
+}
+
+double scheduled_distance(const std::vector<SchedulePiece>& schedule, double t) {
+  if (schedule.empty() || t <= schedule.front().start) return schedule.empty() ? 0.0 : schedule.front().from;
+  auto piece = std::upper_bound(schedule.begin(), schedule.end(), t,
+                                [](double time, const SchedulePiece& p) { return time < p.start; });
+  const SchedulePiece& p = *(piece - 1);
+  const double tau = std::min(t - p.start, p.stop);
+  return p.from + p.speed * tau + p.acceleration * tau * tau / 2;
 }
 
 double nearest_distance(const PathMotion& path, double x, double y, double from, double to) {
@@ -115,9 +158,11 @@ double nearest_distance(const PathMotion& path, double x, double y, double from,
   return best;
 }
 
-void start_following(PathMotion& path, const opendrive::Pose2& pose, double speed, const FollowLimits& limits) {
+void start_following(PathMotion& path, const opendrive::Pose2& pose, double speed, const FollowLimits& limits,
+                     bool vertices_timed) {
   path.distance = nearest_distance(path, pose.x, pose.y, path.distance, path.length());
-  path.follower = PathFollower{limits, speed, speed};
+  path.follower = PathFollower{limits, speed, speed, {}};
+  if (path.timed && vertices_timed) path.follower->schedule = vertex_schedule(path.timetable, speed);
 }
 
 double follow_step(PathMotion& path, opendrive::Pose2& pose, double& speed, std::optional<double> profile_speed,
@@ -130,9 +175,25 @@ double follow_step(PathMotion& path, opendrive::Pose2& pose, double& speed, std:
   else if (speed != f.speed) f.wanted_speed = speed;
   double wanted = f.wanted_speed;
   if (path.timed && dt > 0) {
-    const double due = path.distance_at(t);
-    const double due_speed = (due - path.distance_at(t - dt)) / dt;
-    wanted = due_speed + (path.distance_at(t - dt) - path.distance) / kFollowSpeedTau;
+    const auto due = [&](double time) {
+      return f.schedule.empty() ? path.distance_at(time) : std::min(path.length(), scheduled_distance(f.schedule, time));
+    };
+    wanted = (due(t) - due(t - dt)) / dt + (due(t - dt) - path.distance) / kFollowSpeedTau;
+  }
+  // No steering limit (see follow_limits) and on the path: it keeps to the path exactly.
+  if (std::isinf(limits.max_curvature) && on_path(path, pose)) {
+    const double v = f.speed + std::clamp(std::clamp(wanted, 0.0, limits.max_speed) - f.speed,
+                                          -limits.max_deceleration * dt, limits.max_acceleration * dt);
+    const double beyond = std::max(0.0, path.distance + v * dt - path.length());  // on past the end, as "position"
+    path.distance = std::min(path.length(), path.distance + v * dt);
+    const double heading = pose.heading;
+    pose = path.pose_at(path.distance);
+    pose.x += beyond * std::cos(pose.heading);
+    pose.y += beyond * std::sin(pose.heading);
+    pose.heading = v * dt < 1e-9 ? heading : std::fmod(pose.heading + 2 * M_PI, 2 * M_PI);  // standing: as it stood
+    f.speed = v;
+    speed = v;
+    return v * dt;
   }
   // An entity with no steering limit (no axles: a pedestrian, an object) facing away from
   // its goal turns round on the spot, as a person does, instead of walking a U-turn.

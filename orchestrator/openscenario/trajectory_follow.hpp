@@ -20,7 +20,20 @@
 //               maxDeceleration dt (k and L_d from the speed before the step)
 //   motion      heading += v k dt, position += v dt along the mean heading of the step.
 // So a sharp corner is rounded and a schedule the entity cannot keep is kept late.
+// An entity given no steering limit (no axles: a pedestrian, an object; then no lateral
+// acceleration limit is assumed either) that is on its path keeps to it exactly: v dt along
+// it, the speed as above. The standard (1.3, FollowingMode follow: "as good as possible by
+// observing the dynamic constraints of the entity") gives it none to observe; esmini moves
+// every follow-mode entity so (pedestrian.xosc).
+// Where a timed Polyline is due between its vertices the standard does not say; esmini's law
+// (vertex_schedule): from the entity's speed at the start, one constant acceleration per
+// segment that reaches the next vertex at its time (speed continuous at the vertices); one
+// that would have to reverse stops on the vertex early instead and waits there; a repeated
+// vertex is a stop. The follower tracks that as its due distance (other shapes: linear in
+// time between their points, as esmini).
 #include <optional>
+#include <utility>
+#include <vector>
 
 #include "opendrive/plan_view.hpp"
 #include "openscenario/model.hpp"
@@ -34,6 +47,7 @@ inline constexpr double kFollowMaxLateralAcceleration = 4.0;   // m/s^2, also wi
 inline constexpr double kFollowSpeedTau = 1.0;                 // s to close a schedule error
 inline constexpr double kFollowMaxPreview = 200.0;             // m looked ahead for corners
 inline constexpr double kFollowPreviewStep = 0.5;              // m
+inline constexpr double kFollowOnPath = 0.01;                  // m: "on its path"
 
 // The entity's limits: Performance (absent: none), the front axle's maxSteering over the
 // wheelbase (front minus rear positionX; absent axles: no steering limit) and the lateral
@@ -44,8 +58,15 @@ FollowLimits follow_limits(const Entity& entity);
 double nearest_distance(const PathMotion& path, double x, double y, double from, double to);
 
 // Makes `path` a followed one for an entity at `pose` moving at `speed`: it starts from its
-// nearest point at or beyond the path's initial distance.
-void start_following(PathMotion& path, const opendrive::Pose2& pose, double speed, const FollowLimits& limits);
+// nearest point at or beyond the path's initial distance. `vertices_timed`: the path is a
+// timed Polyline's (its timetable the vertices): due by vertex_schedule.
+void start_following(PathMotion& path, const opendrive::Pose2& pose, double speed, const FollowLimits& limits,
+                     bool vertices_timed = false);
+
+// esmini's schedule through the timetable's (due, distance) vertices from `speed` (above).
+std::vector<SchedulePiece> vertex_schedule(const std::vector<std::pair<double, double>>& timetable, double speed);
+// The distance due at simulation time `t` (before the first vertex: its distance).
+double scheduled_distance(const std::vector<SchedulePiece>& schedule, double t);
 
 // Moves the entity from t - dt to t along the followed path (see above); `profile_speed` is
 // its speed profile's value when one runs. Updates pose, speed and path.distance; returns

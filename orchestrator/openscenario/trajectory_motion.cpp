@@ -81,11 +81,15 @@ PathMotion make_path(std::vector<PathPoint> points, bool timed) {
     if (!path.points.empty()) {
       const PathPoint& last = path.points.back();
       const double step = std::hypot(p.x - last.x, p.y - last.y);
-      if (step < 1e-3) continue;
+      if (step < 1e-3) {
+        if (timed && p.due) path.timetable.emplace_back(*p.due, last.distance);
+        continue;
+      }
       p.distance = last.distance + step;
     } else {
       p.distance = 0;
     }
+    if (timed && p.due) path.timetable.emplace_back(*p.due, p.distance);
     path.points.push_back(p);
   }
   if (path.points.size() < 2) throw MapError("a trajectory whose points all lie within 1 mm of each other");
@@ -119,8 +123,11 @@ double PathMotion::distance_at(double t) const {
 }
 
 bool PathMotion::done(double t) const {
-  if (follower) return distance >= length() - kFollowEnd;  // when the entity gets there, in time or not
-  if (timed) return t >= *points.back().due - 1e-9;
+  // The last time given ends a timed path (a vertex repeated at the end is a stop until then).
+  const double end_due = !timed ? 0.0 : timetable.empty() ? points.back().due.value_or(0.0) : timetable.back().first;
+  // Followed: when the entity gets there, late or not, and not before the end's time.
+  if (follower) return distance >= length() - kFollowEnd && (!timed || t >= end_due - 1e-9);
+  if (timed) return t >= end_due - 1e-9;
   return distance >= length() - 1e-9;
 }
 

@@ -5,6 +5,7 @@
 // Pure geometry; positions are resolved by the caller when the action starts.
 #include <limits>
 #include <optional>
+#include <utility>
 #include <vector>
 
 #include "opendrive/plan_view.hpp"
@@ -31,15 +32,27 @@ struct FollowLimits {
   double max_curvature = kNone;  // tan(maxSteering) / wheelbase, for vehicles with axles
   double max_lateral_acceleration = kNone;
 };
+// A timed Polyline followed: where the entity is due, one constant acceleration per segment
+// between vertices (esmini's law, trajectory_follow.hpp), as pieces from `start` (simulation
+// time) on: distance `from` + speed * tau + acceleration * tau^2 / 2, tau up to `stop`
+// (the piece's standstill, when it arrives early) and the next piece's start.
+struct SchedulePiece {
+  double start = 0, from = 0, speed = 0, acceleration = 0;
+  double stop = std::numeric_limits<double>::infinity();  // tau at which it stands
+};
 struct PathFollower {
   FollowLimits limits;
   double speed = 0;           // the entity's actual speed
   double wanted_speed = 0;    // untimed paths: the speed the storyboard last set
+  std::vector<SchedulePiece> schedule;  // timed Polylines: where it is due (else the points' dues)
 };
 
 struct PathMotion {
   std::vector<PathPoint> points;  // at least two, distances increasing
   bool timed = false;
+  // Timed paths: (due, distance) of every point given, also of those dropped as repeats (a
+  // vertex repeated with a later time is a stop there; the last time ends the path).
+  std::vector<std::pair<double, double>> timetable;
   double distance = 0;  // where the entity is now (follow: its nearest point on the path)
   std::optional<PathFollower> follower;  // followingMode "follow" (else "position": put on the path)
 

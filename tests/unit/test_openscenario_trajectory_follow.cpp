@@ -75,6 +75,68 @@ TEST(TrajectoryFollow, LimitsComeFromPerformanceAndAxles) {
   const FollowLimits none = follow_limits(Entity{});  // a pedestrian: no performance, no axles
   EXPECT_TRUE(std::isinf(none.max_acceleration));
   EXPECT_TRUE(std::isinf(none.max_curvature));
+  EXPECT_TRUE(std::isinf(none.max_lateral_acceleration));  // none assumed without a steering limit
+}
+
+// esmini's law for a timed Polyline (trajectory_follow.hpp), checked against esmini 3.6's own
+// positions: bicycle_fall_over.xosc (10 m/s, vertices 0/20/25/30/30 m at 0/2/2.5/3.5/4 s:
+// 127.187 m at 2.75 s, 128.750 at 3.0, 130 from 3.5) and that file with vertices 0/10/30/35 m
+// at 0/2/4/6 s from rest (102.5 m at 1 s, 133.75 at 4.5, 135 at 5.0: stopped early).
+TEST(TrajectoryFollow, VertexScheduleReachesEachVertexOnTime) {
+  const auto bicycle = vertex_schedule({{0, 0}, {2, 20}, {2.5, 25}, {3.5, 30}, {4, 30}}, 10.0);
+  EXPECT_NEAR(scheduled_distance(bicycle, 1.0), 10.0, 1e-9);
+  EXPECT_NEAR(scheduled_distance(bicycle, 2.75), 27.1875, 1e-9);
+  EXPECT_NEAR(scheduled_distance(bicycle, 3.0), 28.75, 1e-9);
+  EXPECT_NEAR(scheduled_distance(bicycle, 3.5), 30.0, 1e-9);
+  EXPECT_NEAR(scheduled_distance(bicycle, 9.0), 30.0, 1e-9);
+  const auto from_rest = vertex_schedule({{0, 0}, {2, 10}, {4, 30}, {6, 35}}, 0.0);
+  EXPECT_NEAR(scheduled_distance(from_rest, -1.0), 0.0, 1e-9);
+  EXPECT_NEAR(scheduled_distance(from_rest, 1.0), 2.5, 1e-9);   // 5 m/s^2 to 10 m/s at 2 s
+  EXPECT_NEAR(scheduled_distance(from_rest, 2.0), 10.0, 1e-9);  // each vertex on time
+  EXPECT_NEAR(scheduled_distance(from_rest, 4.0), 30.0, 1e-9);
+  // 5 m in 2 s from 10 m/s would need a reverse: 10 m/s^2 down to a stop on the vertex at 5 s.
+  EXPECT_NEAR(scheduled_distance(from_rest, 4.5), 33.75, 1e-9);
+  EXPECT_NEAR(scheduled_distance(from_rest, 5.5), 35.0, 1e-9);
+}
+
+TEST(TrajectoryFollow, TimedPolylineFollowsTheVertexSchedule) {
+  // bicycle_fall_over.xosc's Cyclist: limits 10 m/s^2 (the schedule brakes at exactly that).
+  std::vector<PathPoint> points;
+  for (const auto& [x, due] : std::vector<std::pair<double, double>>{{0, 0}, {20, 2}, {25, 2.5}, {30, 3.5}, {30, 4}})
+    points.push_back({x, 0, 0.0, due, std::nullopt});
+  PathMotion path = make_path(points, true);
+  ASSERT_EQ(path.timetable.size(), 5U);  // the repeated last vertex is kept as a time
+  opendrive::Pose2 pose{0, 0, 0};
+  double speed = 10;
+  start_following(path, pose, speed, car_limits(), true);
+  double worst = 0, end_time = -1;
+  for (int k = 1; k <= 100 && end_time < 0; ++k) {
+    const double t = k * kDt;
+    follow_step(path, pose, speed, std::nullopt, t, kDt);
+    worst = std::max(worst, std::abs(pose.x - scheduled_distance(path.follower->schedule, t)));
+    if (path.done(t)) end_time = t;
+  }
+  EXPECT_LT(worst, 1e-6);
+  EXPECT_NEAR(end_time, 4.0, 1e-9);  // on the spot from 3.5 s, done at the last time
+  EXPECT_NEAR(speed, 0.0, 1e-9);
+}
+
+// No steering limit (a pedestrian): on its path it keeps to it exactly, corners included, at
+// the speed it is given (no lateral acceleration limit slows it).
+TEST(TrajectoryFollow, WithoutSteeringLimitThePathIsKeptExactly) {
+  std::vector<PathPoint> points{{0, 0, 0, std::nullopt, std::nullopt},
+                                {5, 0, 0, std::nullopt, std::nullopt},
+                                {5, 5, 0, std::nullopt, std::nullopt},
+                                {0, 5, 0, std::nullopt, std::nullopt}};
+  PathMotion path = make_path(points, false);
+  const FollowRun run = follow(path, {0, 0, 0}, 1.5, follow_limits(Entity{}), 20);
+  EXPECT_LT(run.max_off, 1e-9);
+  EXPECT_NEAR(run.end_time, std::ceil((15.0 - kFollowEnd) / 1.5 / kDt) * kDt, 1e-9);  // never slowed
+  // Beside the path it steers onto it first, then keeps to it.
+  PathMotion beside = make_path(points, false);
+  const FollowRun steered = follow(beside, {0, 0.5, 0}, 1.5, follow_limits(Entity{}), 20);
+  EXPECT_GT(steered.max_off, 0.1);
+  EXPECT_GT(steered.end_time, 0.0);
 }
 
 TEST(TrajectoryFollow, StraightTimedPathIsFollowedClosely) {
