@@ -10,6 +10,7 @@ packages=(
   nlohmann-json3-dev libeigen3-dev libcli11-dev libspdlog-dev libfmt-dev
   libboost-dev libboost-filesystem-dev libboost-system-dev
   libyaml-cpp-dev libpugixml-dev libssl-dev
+  libproj-dev                           # PROJ: OpenSCENARIO GeoPosition through the road's geoReference
   libgtest-dev libgmock-dev googletest libbenchmark-dev
   python3 xvfb xauth
   slurm-wlm munge                       # the nightly batch's Slurm test runs a single-node cluster

@@ -3,8 +3,8 @@
 // (map/position_resolver.hpp):
 //  - the ScenarioExecutor format's: a point of a RoadEditor route (WaypointRef) and a
 //    distance along a route from another actor (RouteDistance), on the waypoint maps;
-//  - OpenSCENARIO's: World, RelativeWorld, RelativeObject, Road, RelativeRoad, Lane,
-//    RelativeLane and Route positions with their Orientation, on OpenDRIVE roads.
+//  - OpenSCENARIO's: World, Geo, RelativeWorld, RelativeObject, Road, RelativeRoad, Lane,
+//    RelativeLane, Route and Trajectory positions with their Orientation, on OpenDRIVE roads.
 // Relative positions name the entity they refer to; the resolver asks the caller for its pose.
 #include <memory>
 #include <optional>
@@ -41,6 +41,10 @@ struct Orientation {
   double h = 0;
 };
 struct WorldPosition { double x = 0, y = 0; std::optional<double> h; };
+// WGS 84 latitude and longitude in degrees, placed through the road network's geoReference
+// (opendrive/geo_projection.hpp); a relative Orientation (or none) turns from the heading of
+// the road there.
+struct GeoPosition { double latitude_deg = 0, longitude_deg = 0; std::optional<Orientation> orientation; };
 // dz: height above the reference entity's (OpenSCENARIO's dz; the storyboard keeps it as the
 // entity's height above the road, the map resolves positions in the road plane).
 struct RelativeWorldPosition { std::string entity; double dx = 0, dy = 0; std::optional<Orientation> orientation; double dz = 0; };
@@ -97,7 +101,7 @@ struct TrajectoryPosition {
 // resolves any of them given the geometry it needs.
 using Position = std::variant<WaypointRef, RouteDistance, WorldPosition, RelativeWorldPosition, RelativeObjectPosition,
                               RoadPosition, RelativeRoadPosition, LanePosition, RelativeLanePosition, RoutePosition,
-                              TrajectoryPosition>;
+                              TrajectoryPosition, GeoPosition>;
 
 // A trajectory's path for TrajectoryPosition: the positions its shape holds (vertices, control
 // points, clothoid starts; checked and resolved by the caller) and its inertial points, in

@@ -123,6 +123,14 @@ ResolvedPosition PositionResolver::resolve_on_trajectory(const TrajectoryPositio
                              position.path->name(), along));
 }
 
+ResolvedPosition PositionResolver::resolve_geo(const GeoPosition& position) const {
+  if (!geo_) geo_ = std::make_shared<const opendrive::GeoProjection>(roads().geo_reference());
+  const Vec2 p = geo_->local({position.latitude_deg, position.longitude_deg});
+  ResolvedPosition r = locate(Pose2{p.x(), p.y(), 0.0});
+  r.pose.heading = oriented(position.orientation, r.road ? r.road->road_heading : 0.0);
+  return r;
+}
+
 ResolvedPosition PositionResolver::locate(const Pose2& pose) const {
   ResolvedPosition r{pose, roads().to_road(pose.x, pose.y), std::nullopt, std::nullopt};
   if (r.road) r.lane = roads().road(r.road->road_id).lane_at(r.road->s, r.road->t);
@@ -201,6 +209,8 @@ ResolvedPosition PositionResolver::resolve(const Position& position, const Entit
           return resolve_on_route(kind, entities);
         } else if constexpr (std::is_same_v<T, TrajectoryPosition>) {
           return resolve_on_trajectory(kind, entities);
+        } else if constexpr (std::is_same_v<T, GeoPosition>) {
+          return resolve_geo(kind);
         } else {  // RelativeLanePosition
           const ResolvedPosition from = locate(pose_of(kind.entity));
           if (!from.road || !from.lane)

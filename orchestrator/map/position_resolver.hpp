@@ -6,11 +6,13 @@
 // Pure: the entities a relative position refers to are asked of the caller (Entities), so
 // map/ knows neither runtime.
 #include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 
 #include "map/position.hpp"
 #include "map/waypoint_file.hpp"
+#include "opendrive/geo_projection.hpp"
 #include "opendrive/road_network.hpp"
 
 namespace orch::position {
@@ -72,8 +74,11 @@ class PositionResolver {
   [[nodiscard]] ResolvedPosition resolve_on_route(const RoutePosition& position, const Entities& entities) const;
   [[nodiscard]] ResolvedPosition resolve_on_trajectory(const TrajectoryPosition& position,
                                                        const Entities& entities) const;
+  [[nodiscard]] ResolvedPosition resolve_geo(const GeoPosition& position) const;
   const opendrive::RoadNetwork* roads_ = nullptr;
   const WaypointFile* waypoints_ = nullptr;
+  // Made on the first GeoPosition (PROJ reads its database then), shared by copies.
+  mutable std::shared_ptr<const opendrive::GeoProjection> geo_;
 };
 
 }  // namespace orch::position

@@ -133,6 +133,14 @@ struct SignalController {
   std::vector<std::string> signals;
 };
 
+// Where the network lies on the earth: the header's <geoReference> (a PROJ string; empty: a
+// local frame) and its <offset> (OpenDRIVE 1.6+, 8.5: world = R(hdg) * local + (x, y, z), the
+// world being the PROJ string's projected frame).
+struct GeoReference {
+  std::string proj;
+  double x = 0.0, y = 0.0, z = 0.0, hdg = 0.0;
+};
+
 class RoadNetwork {
  public:
   RoadNetwork() = default;
@@ -145,6 +153,8 @@ class RoadNetwork {
   [[nodiscard]] const Junction* junction(const std::string& junction_id) const;
   [[nodiscard]] const std::vector<SignalController>& signal_controllers() const { return signal_controllers_; }
   void set_signal_controllers(std::vector<SignalController> controllers) { signal_controllers_ = std::move(controllers); }
+  [[nodiscard]] const GeoReference& geo_reference() const { return geo_reference_; }
+  void set_geo_reference(GeoReference reference) { geo_reference_ = std::move(reference); }
 
   // Inertial pose of the centre of `lane_id` at s, moved `offset` metres to the left of it.
   [[nodiscard]] Pose2 lane_pose(const std::string& road_id, int lane_id, double s, double offset) const;
@@ -159,6 +169,7 @@ class RoadNetwork {
   RoadGrid grid_;
   std::vector<Junction> junctions_;
   std::vector<SignalController> signal_controllers_;
+  GeoReference geo_reference_;
 };
 
 // Projection of (x, y) onto one road's reference line: nearest s in [0, length] and signed t

@@ -44,10 +44,29 @@ class Reader {
     check_links(root, roads);
     RoadNetwork network(std::move(roads), std::move(junctions));
     network.set_signal_controllers(read_signal_controllers(root));
+    network.set_geo_reference(read_geo_reference(header));
     return network;
   }
 
  private:
+  // The header's geoReference (its text, usually CDATA) and offset; kept as written, checked
+  // by PROJ only when a GeoPosition needs it (a map need not be on the earth to be driven).
+  GeoReference read_geo_reference(const pugi::xml_node& header) const {
+    GeoReference g;
+    if (!header) return g;
+    std::string text = header.child("geoReference").text().get();
+    const auto first = text.find_first_not_of(" \t\r\n");
+    const auto last = text.find_last_not_of(" \t\r\n");
+    g.proj = first == std::string::npos ? "" : text.substr(first, last - first + 1);
+    if (const pugi::xml_node offset = header.child("offset")) {
+      g.x = number(offset, "x", 0.0);
+      g.y = number(offset, "y", 0.0);
+      g.z = number(offset, "z", 0.0);
+      g.hdg = number(offset, "hdg", 0.0);
+    }
+    return g;
+  }
+
   double number(const pugi::xml_node& node, const char* name, std::optional<double> fallback = {}) const {
     const pugi::xml_attribute a = node.attribute(name);
     if (!a) {

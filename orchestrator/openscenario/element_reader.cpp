@@ -178,8 +178,9 @@ void Element::finish() {
     // An element of the standard is never a misspelling, even when it is close to one read
     // here (RelativeClearanceCondition ~ RelativeDistanceCondition).
     if (is_standard_element(c.name()))
-      child.fail(fmt::format("{} in {} is an OpenSCENARIO element the orchestrator does not run (not supported)",
-                             c.name(), name()));
+      child.fail(fmt::format("{} in {} is an OpenSCENARIO element the orchestrator does not run there (not "
+                             "supported, or not one the schema allows in {})",
+                             c.name(), name(), name()));
     child.fail(fmt::format("unknown element {} in {}{}", c.name(), name(), did_you_mean(c.name(), known_children)));
   }
 }

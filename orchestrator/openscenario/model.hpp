@@ -82,6 +82,7 @@ using position::InRouteFromRoad;
 using position::RoadPosition;
 using position::RoutePosition;
 using position::TrajectoryPosition;
+using position::GeoPosition;
 using position::WorldPosition;
 
 // ---- Actions ------------------------------------------------------------------------

@@ -1,5 +1,8 @@
-// Position: the nine kinds the orchestrator resolves on OpenDRIVE roads (GeoPosition is not
-// supported: docs/openscenario.md says why).
+// Position: the ten kinds of OpenSCENARIO 1.0-1.3, resolved on OpenDRIVE roads
+// (map/position_resolver.hpp).
+#include <cmath>
+#include <numbers>
+
 #include <fmt/format.h>
 
 #include "openscenario/reader_context.hpp"
@@ -63,8 +66,33 @@ TrajectoryPosition read_trajectory_position(Element& p) {
   return r;
 }
 
+// GeoPosition: 1.2 gives degrees (latitudeDeg, longitudeDeg); 1.0 and 1.1 radians (latitude,
+// longitude, deprecated since 1.2 but valid). Height, altitude and verticalRoadSelection are
+// read but not used: positions are resolved in the road plane, on its surface.
+GeoPosition read_geo_position(Element& p) {
+  const auto angle = [&p](const char* degrees, const char* radians, double limit) {
+    if (p.has(degrees) && p.has(radians))
+      p.fail_attribute(radians, fmt::format("{} and {} give the same angle twice: give one", degrees, radians));
+    const char* given = p.has(degrees) ? degrees : radians;
+    if (!p.has(given))
+      p.fail(fmt::format("a GeoPosition needs {} (degrees, OpenSCENARIO 1.2) or {} (radians, 1.0 and 1.1)", degrees,
+                         radians));
+    const double value = given == degrees ? p.number(degrees) : p.number(radians) * 180.0 / std::numbers::pi;
+    if (std::abs(value) > limit)
+      p.fail_attribute(given, fmt::format("{} degrees is outside [-{}, {}]", value, limit, limit));
+    return value;
+  };
+  GeoPosition g;
+  g.latitude_deg = angle("latitudeDeg", "latitude", 90.0);
+  g.longitude_deg = angle("longitudeDeg", "longitude", 180.0);
+  p.ignore_attributes({"height", "altitude", "verticalRoadSelection"});
+  g.orientation = read_orientation(p);
+  return g;
+}
+
 Position read_kind(Element& p) {
   const std::string_view kind = p.name();
+  if (kind == "GeoPosition") return read_geo_position(p);
   if (kind == "TrajectoryPosition") return read_trajectory_position(p);
   if (kind == "WorldPosition") {
     WorldPosition w{p.number("x"), p.number("y"), p.optional_number("h")};
@@ -106,7 +134,7 @@ ContextInUse::~ContextInUse() { context_in_use = previous_; }
 Position read_position(Element& position) {
   Element p = position.one_of({"WorldPosition", "RelativeWorldPosition", "RelativeObjectPosition", "RoadPosition",
                                "RelativeRoadPosition", "LanePosition", "RelativeLanePosition", "RoutePosition",
-                               "TrajectoryPosition"});
+                               "TrajectoryPosition", "GeoPosition"});
   position.finish();
   Position result = read_kind(p);
   p.finish();
