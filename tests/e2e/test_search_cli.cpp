@@ -40,12 +40,17 @@ TEST(SearchCli, FalsificationImprovesOnItsInitialDesignAndResumesExactly) {
   EXPECT_EQ(s["fixed"]["lead.brake_time"], 30.0);
   const auto runs = runs_of(s);
   ASSERT_EQ(runs.size(), 10u);
-  // The initial design, then expected-improvement batches of --jobs points.
-  ASSERT_GE(s["iterations"].size(), 2u);
+  // The initial design, then batches of --jobs points: a poll around the best corner (both of
+  // its directions along the box's faces), then expected improvement.
+  ASSERT_GE(s["iterations"].size(), 3u);
   EXPECT_EQ(s["iterations"][0]["points"][0]["why"], "corner of the box");
   EXPECT_EQ(s["iterations"][1]["points"].size(), 2u);
-  EXPECT_EQ(s["iterations"][1]["points"][0]["why"], "expected improvement");
-  EXPECT_GT(s["iterations"][1]["points"][0]["acquisition"].get<double>(), 0);
+  for (const auto& p : s["iterations"][1]["points"]) {
+    EXPECT_EQ(p["why"], "pattern search around the best");
+    EXPECT_EQ(p["acquisition"].get<double>(), 0.25);  // the poll's first step
+  }
+  EXPECT_EQ(s["iterations"][2]["points"][0]["why"], "expected improvement");
+  EXPECT_GT(s["iterations"][2]["points"][0]["acquisition"].get<double>(), 0);
   const double initial_best = s["iterations"][0]["best_so_far"]["objective"].get<double>();
   const double final_best = s["iterations"].back()["best_so_far"]["objective"].get<double>();
   EXPECT_LT(final_best, initial_best);
