@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fstream>
+#include <iterator>
 #include <map>
 
 #include "support/cli_runner.hpp"
@@ -63,6 +65,14 @@ TEST(SearchCli, FalsificationImprovesOnItsInitialDesignAndResumesExactly) {
   }
   for (const char* f : {"batch.json", "summary.json", "junit.xml", "report.html", "search.html", "search_parameters.json"})
     EXPECT_TRUE(fs::exists(dir / "full" / f)) << f;
+  // The page: axes with units, the most critical run ringed, runs numbered (not by their
+  // shortened ids, which all begin with the logical scenario's uuid) and linked.
+  std::ifstream page_file(dir / "full" / "search.html");
+  const std::string page((std::istreambuf_iterator<char>(page_file)), std::istreambuf_iterator<char>());
+  EXPECT_NE(page.find("lead.speed (km/h)"), std::string::npos);
+  EXPECT_NE(page.find(R"(class="best")"), std::string::npos);
+  EXPECT_NE(page.find("\">run 1</a>"), std::string::npos);
+  EXPECT_NE(page.find(runs[0]["run_dir"].get<std::string>() + "/report.html"), std::string::npos);
 
   // Stopped after 6 runs, then resumed to 10: the same runs, with the same values.
   const CliResult first = run_cli(search_args(dir / "part", 6));
