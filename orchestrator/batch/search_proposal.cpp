@@ -158,33 +158,37 @@ std::vector<Proposal> grid_points(std::size_t budget, std::size_t dims, std::siz
 
 std::vector<Proposal> propose_minimum(const std::vector<Point>& x0, const std::vector<double>& y0, std::size_t count,
                                       SearchRng& rng, const SnapPoint& snap) {
-  // Two kinds of points, alternating (within a batch, and from batch to batch when a batch is
-  // one point): exploration, the largest expected improvement over the whole box; and
-  // exploitation, the smallest lower confidence bound (mean - sigma) in a trust region around
-  // the best run so far, which refines a minimum once one is in sight. The batch is built by
-  // the "kriging believer": each chosen point is added with its predicted mean (the
-  // hyperparameters of the first fit kept) before the next is chosen.
+  // Two kinds of iterations, alternating: exploitation, a pattern search's poll around the
+  // best run so far (the poll's points ordered by the model's mean: exploration is the other
+  // kind's job), which refines a minimum once one is in sight; and exploration, the largest
+  // expected improvement over the whole box. Whole iterations rather than points alternate
+  // (a parallel poll: the directions of one poll run side by side), and the first after the
+  // initial design is a poll: after the corners the model knows little, and the poll walks
+  // along the faces from the best corner, where monotone objectives have their minimum (on
+  // the analytic tests of test_search_logic.cpp a face minimum is found in 5 runs instead
+  // of 6; docs/search.md). The poll's points not needed fill up with exploration. The batch
+  // is built by the "kriging believer": each chosen point is added with its predicted mean
+  // (the hyperparameters of the first fit kept) before the next is chosen, and that mean
+  // lowers the best value expected improvement is measured from (without it a batch's second
+  // point sat next to its first: the believed point still promised the same improvement).
   std::vector<Point> x = x0;
   std::vector<double> y = y0;
   const std::size_t dims = x.front().size();
   const std::size_t incumbent = static_cast<std::size_t>(std::min_element(y0.begin(), y0.end()) - y0.begin());
-  const double best = y0[incumbent];
+  double best = y0[incumbent];
   GaussianProcess gp = GaussianProcess::fit(x, y);
   const GpHyper hyper = gp.hyper();
   const std::vector<Point> global = candidates(dims, {x0[incumbent]}, x, rng, snap);
   double step = 0;
   const std::vector<Point> local = poll_points(x0[incumbent], x, snap, step);
+  const bool poll_iteration = (x0.size() / count) % 2 == 0;  // a pure function of the runs
   std::vector<Proposal> out;
   for (std::size_t k = 0; k < count; ++k) {
-    bool exploit = ((count == 1 ? x0.size() : k) % 2) == 1;
     double score = 0;
     std::size_t i = local.size();
-    if (exploit)
-      i = best_candidate(local, x, [&](const Point& p) {
-            const GpPrediction pr = gp.predict(p);
-            return -(pr.mean - std::sqrt(std::max(0.0, pr.variance)));
-          }, score);
-    exploit = exploit && i < local.size();  // the poll exhausted by this batch: explore instead
+    if (poll_iteration)
+      i = best_candidate(local, x, [&](const Point& p) { return -gp.predict(p).mean; }, score);
+    const bool exploit = i < local.size();  // else the poll is exhausted by this batch: explore
     const std::vector<Point>& pool = exploit ? local : global;
     if (!exploit)
       i = best_candidate(pool, x, [&](const Point& p) { return expected_improvement(gp.predict(p), best); }, score);
@@ -200,6 +204,7 @@ std::vector<Proposal> propose_minimum(const std::vector<Point>& x0, const std::v
     out.push_back(exploit ? Proposal{chosen, step, "pattern search around the best"}
                           : Proposal{chosen, score, "expected improvement"});
     y.push_back(gp.predict(chosen).mean);
+    best = std::min(best, y.back());
     x.push_back(chosen);
     gp = GaussianProcess::fit_with(x, y, hyper);
   }

@@ -3,7 +3,8 @@
 // points run so far (unit-cube coordinates) and what they gave. No files, no runs: the
 // search runner (search_runner.hpp) maps points to parameter values and back.
 //  - an initial Latin hypercube,
-//  - falsification: expected improvement of a Gaussian process (gaussian_process.hpp),
+//  - falsification: a pattern search around the best run alternating with expected
+//    improvement of a Gaussian process (gaussian_process.hpp),
 //    (a batch of J points per iteration by the "kriging believer": each chosen point is
 //    added with its predicted value before the next is chosen),
 //  - boundary: adaptive refinement of a sparse grid: a coarse grid, then every cell whose
@@ -22,15 +23,22 @@ namespace orch::batch {
 using Point = std::vector<double>;
 
 // A deterministic random source (splitmix64): the same numbers on every platform, unlike the
-// standard library's distributions.
+// standard library's distributions. The seed is mixed first: splitmix's state advances by a
+// constant, so seeding it with a multiple of that constant made seed s + 1's numbers those of
+// seed s shifted by one draw (nearly the same candidates, nearly the same search).
 class SearchRng {
  public:
-  explicit SearchRng(std::uint64_t seed) : state_(seed * 0x9E3779B97F4A7C15ULL + 0x632BE59BD9B4E019ULL) {}
+  explicit SearchRng(std::uint64_t seed) : state_(mix(seed ^ 0x632BE59BD9B4E019ULL)) {}
   std::uint64_t next();
   double uniform();  // [0, 1)
   double normal();   // standard normal
 
  private:
+  static std::uint64_t mix(std::uint64_t z) {
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
+    return z ^ (z >> 31);
+  }
   std::uint64_t state_;
 };
 
@@ -56,8 +64,9 @@ std::size_t grid_levels(std::size_t budget, std::size_t dims);
 // hypercube to `n`; initial_design_size: how many (at least `jobs`).
 std::vector<Proposal> initial_design(std::size_t n, std::size_t dims, SearchRng& rng, const SnapPoint& snap);
 std::size_t initial_design_size(std::size_t dims, std::size_t jobs);
-// `count` points, alternately maximising expected improvement below the smallest of `y`
-// over the box and minimising the lower confidence bound around the best run.
+// `count` points: every other iteration (the first after the initial design) a pattern
+// search's poll around the best run, the others the largest expected improvement below the
+// smallest of `y` over the box (filled up with it when the poll has fewer points).
 std::vector<Proposal> propose_minimum(const std::vector<Point>& x, const std::vector<double>& y, std::size_t count,
                                       SearchRng& rng, const SnapPoint& snap);
 // Up to `count` corners the sparse grid needs next (`pass[i]` is the outcome of x[i]), the

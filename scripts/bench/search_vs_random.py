@@ -115,6 +115,8 @@ def main():
     ap.add_argument("--budget", type=int, default=40, help="search budget (falsification)")
     ap.add_argument("--boundary-budget", type=int, default=150)
     ap.add_argument("--fraction", type=float, default=0.05, help="boundary: misclassified fraction to reach")
+    ap.add_argument("--no-random-boundary", action="store_true",
+                    help="skip random sampling's boundary runs (the longest part: seeds x budget runs)")
     a = ap.parse_args()
     exe = os.path.abspath(a.orchestrator)
     os.makedirs(a.work, exist_ok=True)
@@ -156,6 +158,8 @@ def main():
               f"{[fmt(runs_to_boundary(s, truth, f), a.boundary_budget) for f in fractions]} "
               f"(after all {len(runs_of(s))} runs: {100 * misclassified(final['boundary'], truth):.1f} %); "
               f"and stays there from: {[fmt(runs_to_stay_below(s, truth, f), a.boundary_budget) for f in fractions]}")
+        if a.no_random_boundary:
+            continue
         rand = []
         for seed in range(1, a.seeds + 1):
             r = search(exe, a.work, f"case{n}_boundary_random_seed{seed}", case,

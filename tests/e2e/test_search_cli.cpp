@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fstream>
+#include <iterator>
 #include <map>
 
 #include "support/cli_runner.hpp"
@@ -40,12 +42,17 @@ TEST(SearchCli, FalsificationImprovesOnItsInitialDesignAndResumesExactly) {
   EXPECT_EQ(s["fixed"]["lead.brake_time"], 30.0);
   const auto runs = runs_of(s);
   ASSERT_EQ(runs.size(), 10u);
-  // The initial design, then expected-improvement batches of --jobs points.
-  ASSERT_GE(s["iterations"].size(), 2u);
+  // The initial design, then batches of --jobs points: a poll around the best corner (both of
+  // its directions along the box's faces), then expected improvement.
+  ASSERT_GE(s["iterations"].size(), 3u);
   EXPECT_EQ(s["iterations"][0]["points"][0]["why"], "corner of the box");
   EXPECT_EQ(s["iterations"][1]["points"].size(), 2u);
-  EXPECT_EQ(s["iterations"][1]["points"][0]["why"], "expected improvement");
-  EXPECT_GT(s["iterations"][1]["points"][0]["acquisition"].get<double>(), 0);
+  for (const auto& p : s["iterations"][1]["points"]) {
+    EXPECT_EQ(p["why"], "pattern search around the best");
+    EXPECT_EQ(p["acquisition"].get<double>(), 0.25);  // the poll's first step
+  }
+  EXPECT_EQ(s["iterations"][2]["points"][0]["why"], "expected improvement");
+  EXPECT_GT(s["iterations"][2]["points"][0]["acquisition"].get<double>(), 0);
   const double initial_best = s["iterations"][0]["best_so_far"]["objective"].get<double>();
   const double final_best = s["iterations"].back()["best_so_far"]["objective"].get<double>();
   EXPECT_LT(final_best, initial_best);
@@ -58,6 +65,14 @@ TEST(SearchCli, FalsificationImprovesOnItsInitialDesignAndResumesExactly) {
   }
   for (const char* f : {"batch.json", "summary.json", "junit.xml", "report.html", "search.html", "search_parameters.json"})
     EXPECT_TRUE(fs::exists(dir / "full" / f)) << f;
+  // The page: axes with units, the most critical run ringed, runs numbered (not by their
+  // shortened ids, which all begin with the logical scenario's uuid) and linked.
+  std::ifstream page_file(dir / "full" / "search.html");
+  const std::string page((std::istreambuf_iterator<char>(page_file)), std::istreambuf_iterator<char>());
+  EXPECT_NE(page.find("lead.speed (km/h)"), std::string::npos);
+  EXPECT_NE(page.find(R"(class="best")"), std::string::npos);
+  EXPECT_NE(page.find("\">run 1</a>"), std::string::npos);
+  EXPECT_NE(page.find(runs[0]["run_dir"].get<std::string>() + "/report.html"), std::string::npos);
 
   // Stopped after 6 runs, then resumed to 10: the same runs, with the same values.
   const CliResult first = run_cli(search_args(dir / "part", 6));

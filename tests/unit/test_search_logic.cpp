@@ -4,8 +4,10 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 
 #include "batch/gaussian_process.hpp"
 #include "batch/search_objective.hpp"
@@ -35,6 +37,19 @@ double bowl_min() {  // on a fine lattice
   return m;
 }
 
+// Criticality monotone in one parameter (the minimum on the face y = 1) and not in the other:
+// the minimum at x = 0.2, the nearest corner (0, 1) 0.03 above it.
+double face_minimum(const Point& p) { return 0.6 * std::pow(1 - p[1], 1.5) + 0.75 * (p[0] - 0.2) * (p[0] - 0.2); }
+// The minimum in the middle of an edge, every corner far above it.
+double edge_minimum(const Point& p) {
+  return 0.6 * (1 - p[1]) * (1 - p[1]) + 0.3 * (1 - p[1]) + 0.8 * (p[0] - 0.6) * (p[0] - 0.6);
+}
+// A narrow diagonal valley inside the box (no help from the faces).
+double valley(const Point& p) {
+  const double u = p[0] - 0.65, v = p[1] - 0.3;
+  return 3 * (u + v) * (u + v) + 0.3 * (u - v) * (u - v);
+}
+
 // Passes outside a circle of radius 0.3 around (0.5, 0.4).
 bool outside_circle(const Point& p) { return std::hypot(p[0] - 0.5, p[1] - 0.4) > 0.3; }
 
@@ -45,21 +60,44 @@ double misclassified(const std::vector<Point>& x, const std::vector<bool>& pass,
   return static_cast<double>(wrong) / static_cast<double>(b.lattice.size());
 }
 
-// Runs the loop of search_runner.cpp on a function: the corners, then batches of 2.
-double search_minimum(std::uint64_t seed, std::size_t budget) {
+// Runs the loop of search_runner.cpp on a function: the corners, then batches of 2; the values
+// in the order the points were proposed.
+std::vector<double> search_values(const std::function<double(const Point&)>& f, std::uint64_t seed, std::size_t budget) {
   SearchRng rng(seed);
   std::vector<Point> x;
   std::vector<double> y;
   for (const auto& p : initial_design(initial_design_size(2, 2), 2, rng, kNoSnap)) {
     x.push_back(p.point);
-    y.push_back(bowl(p.point));
+    y.push_back(f(p.point));
   }
   while (x.size() < budget)
     for (const auto& p : propose_minimum(x, y, 2, rng, kNoSnap)) {
       x.push_back(p.point);
-      y.push_back(bowl(p.point));
+      y.push_back(f(p.point));
     }
+  return y;
+}
+double search_minimum(std::uint64_t seed, std::size_t budget) {
+  const std::vector<double> y = search_values(bowl, seed, budget);
   return *std::min_element(y.begin(), y.end());
+}
+
+// The proof's measure (scripts/bench/search_vs_random.py) on a function: the value below which
+// a fraction `p` of the box lies (on a 201 x 201 lattice), and the runs the search needs to
+// get there, averaged over seeds 1..5; uniform random sampling needs 1 / p on average.
+double mean_runs_to_fraction(const std::function<double(const Point&)>& f, double p) {
+  std::vector<double> all;
+  for (int i = 0; i <= 200; ++i)
+    for (int j = 0; j <= 200; ++j) all.push_back(f({i / 200.0, j / 200.0}));
+  std::sort(all.begin(), all.end());
+  const double target = all[static_cast<std::size_t>(p * static_cast<double>(all.size()))];
+  double total = 0;
+  for (std::uint64_t seed = 1; seed <= 5; ++seed) {
+    const std::vector<double> y = search_values(f, seed, 40);
+    const auto hit = std::find_if(y.begin(), y.end(), [&](double v) { return v <= target; });
+    total += hit == y.end() ? 41.0 : static_cast<double>(hit - y.begin() + 1);
+  }
+  return total / 5;
 }
 
 double random_minimum(std::uint64_t seed, std::size_t budget) {
@@ -165,14 +203,44 @@ TEST(SearchProposal, FindsAKnownMinimumBetterThanRandomSamplingWithTheSameBudget
   EXPECT_LT(search_error * 5, random_error);
 }
 
+// The goal, 5x fewer runs than random sampling, on the shapes criticality takes: the
+// goal is the best 3.6 % of the box (the lead brake's tolerance in docs/search.md); random
+// sampling needs 27.8 runs on average. A minimum on a face is found by the poll along the
+// face from the best corner; one inside the box by expected improvement, with fewer gains.
+TEST(SearchProposal, FindsMinimaOnAFaceAnEdgeAndInsideTheBoxInFewRuns) {
+  const double random_runs = 1 / 0.036;
+  const double face = mean_runs_to_fraction(face_minimum, 0.036);
+  const double edge = mean_runs_to_fraction(edge_minimum, 0.036);
+  const double inside = mean_runs_to_fraction(bowl, 0.036);
+  const double narrow = mean_runs_to_fraction(valley, 0.036);
+  std::printf("runs to the best 3.6 %%: face %.1f, edge %.1f, bowl %.1f, valley %.1f; random %.1f\n", face, edge, inside,
+              narrow, random_runs);
+  EXPECT_LE(face * 5, random_runs);
+  EXPECT_LE(edge * 5, random_runs);
+  EXPECT_LE(inside * 3, random_runs);
+  EXPECT_LE(narrow * 2, random_runs);
+}
+
+TEST(SearchProposal, SeedsGiveUnrelatedNumbers) {
+  // splitmix64 seeded with seed * its increment made seed 2's numbers seed 1's shifted by one.
+  SearchRng one(1), two(2);
+  const std::uint64_t first_of_one = one.next();
+  const std::uint64_t second_of_one = one.next();
+  const std::uint64_t first_of_two = two.next();
+  EXPECT_NE(first_of_two, second_of_one);
+  EXPECT_NE(first_of_two, first_of_one);
+}
+
 TEST(SearchProposal, FindsAKnownBoundaryBetterThanRandomSamplingWithTheSameBudget) {
-  // The sparse grid is deterministic: no seed. Random sampling: the mean over four seeds.
+  // The sparse grid is deterministic: no seed. Random sampling: the mean over eight seeds
+  // (1.7 % against 4.9 %; with four seeds of the random source before its seed was mixed,
+  // nearly one seed four times, random sampling had looked worse: 6.7 %).
   const double search = search_boundary(0, 100, true);
   double random = 0;
-  for (std::uint64_t seed = 1; seed <= 4; ++seed) random += search_boundary(seed, 100, false) / 4;
+  for (std::uint64_t seed = 1; seed <= 8; ++seed) random += search_boundary(seed, 100, false) / 8;
   std::printf("misclassified after 100 runs: sparse grid %.4f, random %.4f\n", search, random);
   EXPECT_LT(search, 0.02);
-  EXPECT_LT(search * 3, random);
+  EXPECT_LT(search * 2.5, random);
 }
 
 // A straight boundary (fail left of x = 0.3): after the 3 x 3 grid, the two cells it crosses
@@ -206,6 +274,50 @@ TEST(SearchProposal, BisectsOnlyTheEdgesTheBoundaryCrosses) {
   for (std::size_t i = 0; i < b.lattice.size(); ++i)
     if (std::abs(b.lattice[i][0] - 0.3) > 0.13) wrong += b.pass[i] != passes(b.lattice[i]);
   EXPECT_EQ(wrong, 0u);
+}
+
+// A large failing block and a small failing island (1.7 % of the box) in a corner, as the
+// lead brake's verdict has (docs/search.md): the 3 x 3 grid sees the island at one corner
+// only; refining the cells whose corners disagree resolves both, and the estimate ends
+// within 1 % of the truth, against random sampling's (Gaussian-process classifier, same runs)
+// 2 % or more.
+TEST(SearchProposal, ResolvesASmallFailingIslandInACorner) {
+  const auto passes = [](const Point& p) {
+    const bool block = p[0] > 0.45 + 0.25 * p[1] * p[1] && p[1] < 0.75;
+    const bool island = p[0] < 0.13 && p[1] > 0.87;
+    return !(block || island);
+  };
+  std::vector<Point> x;
+  std::vector<bool> pass;
+  for (int round = 0; round < 500; ++round) {
+    const auto next = propose_boundary(2, x, pass, 2, 1.0 / 32, kNoSnap);
+    if (next.empty()) break;
+    for (const auto& p : next) {
+      x.push_back(p.point);
+      pass.push_back(passes(p.point));
+    }
+  }
+  const auto wrong = [&](const BoundaryEstimate& b) {
+    std::size_t n = 0;
+    for (std::size_t i = 0; i < b.lattice.size(); ++i) n += b.pass[i] != passes(b.lattice[i]);
+    return static_cast<double>(n) / static_cast<double>(b.lattice.size());
+  };
+  const BoundaryEstimate b = estimate_boundary(x, pass, 41, kNoSnap);
+  EXPECT_LT(wrong(b), 0.01) << x.size() << " runs";
+  EXPECT_FALSE(b.pass[1 * 41 + 39]) << "the island at (0.025, 0.975)";
+  double random = 0;
+  for (std::uint64_t seed = 1; seed <= 3; ++seed) {
+    SearchRng rng(seed);
+    std::vector<Point> xr;
+    std::vector<bool> pr;
+    for (const auto& p : uniform_random(x.size(), 2, rng, kNoSnap)) {
+      xr.push_back(p.point);
+      pr.push_back(passes(p.point));
+    }
+    random += wrong(estimate_boundary_gp(xr, pr, 41)) / 3;
+  }
+  std::printf("island: sparse grid %zu runs, misclassified %.4f; random %.4f\n", x.size(), wrong(b), random);
+  EXPECT_LT(wrong(b) * 2, random);
 }
 
 TEST(SearchProposal, BoundaryRefinementStopsAtTheStatedResolution) {
