@@ -3,6 +3,8 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 #include <map>
 #include <set>
 #include <tuple>
@@ -82,6 +84,46 @@ std::pair<double, double> farthest_from(const WaypointRoute& route, const Juncti
   return worst;
 }
 
+// cos 150 deg: a route turning back on itself sharper than this at a waypoint draws a spike.
+constexpr double kSpikeCos = -0.866;
+constexpr double kSpikeLeg = 0.01;  // m: shorter legs are a repeated point, no direction
+
+// Arc-length stretches of the route drawn out and back over itself: around each waypoint where
+// it turns back (a 180-degree spike's tip, and the point where it turns forward again), as far
+// as the shorter leg there. A detour lane cut inside one would run out and back (seed 200: its
+// two halves met at the tip, the second pointing backwards, joined by a U-turn of no length).
+std::vector<std::pair<double, double>> spike_stretches(const WaypointRoute& route) {
+  std::vector<std::pair<double, double>> out;
+  const Polyline& l = route.line;
+  for (std::size_t i = 1; i + 1 < l.size(); ++i) {
+    const Vec2 in = l.point(i) - l.point(i - 1);
+    const Vec2 on = l.point(i + 1) - l.point(i);
+    if (in.norm() < kSpikeLeg || on.norm() < kSpikeLeg || in.dot(on) > kSpikeCos * in.norm() * on.norm()) continue;
+    const double leg = std::min(in.norm(), on.norm());
+    out.emplace_back(l.s_at_index(i) - leg, l.s_at_index(i) + leg);
+  }
+  return out;
+}
+
+// The middle of a detour lane of half length `half` nearest to m in [lo, hi] whose lane
+// [middle - half, middle + half] (arc lengths from the passage's start s0) crosses no spike;
+// none: NaN.
+double clear_of_spikes(const WaypointRoute& route, double s0, double m, double half, double lo, double hi) {
+  const std::vector<std::pair<double, double>> spikes = spike_stretches(route);
+  const auto clear = [&](double c) {
+    return std::none_of(spikes.begin(), spikes.end(), [&](const auto& z) {
+      return s0 + c + half > z.first && s0 + c - half < z.second;
+    });
+  };
+  if (clear(m)) return m;
+  // Candidates: just beyond either end of each spike stretch.
+  double best = std::numeric_limits<double>::quiet_NaN();
+  for (const auto& [z0, z1] : spikes)
+    for (const double c : {z1 - s0 + half + 0.01, z0 - s0 - half - 0.01})
+      if (c >= lo && c <= hi && clear(c) && (std::isnan(best) || std::abs(c - m) < std::abs(best - m))) best = c;
+  return best;
+}
+
 }  // namespace
 
 void add_detour_lanes(const WaypointFile& wf, JunctionPieces& out) {
@@ -136,7 +178,10 @@ void add_detour_lanes(const WaypointFile& wf, JunctionPieces& out) {
         if (half < kMinDetourHalf) continue;
         const double lo = half + connection;
         const double hi = line.length() - lo;
-        const double m = std::clamp(farthest_from(route, p, paths.front().line, before, after).first - p.s0, lo, hi);
+        const double m = clear_of_spikes(
+            route, p.s0, std::clamp(farthest_from(route, p, paths.front().line, before, after).first - p.s0, lo, hi),
+            half, lo, hi);
+        if (std::isnan(m)) continue;
         a = m - half;
         b = m + half;
         std::string id = fmt::format("{}.J{}", route.id, p.zone);

@@ -397,7 +397,18 @@ JunctionPieces cut_into_pieces(const WaypointFile& wf, const JunctionZones& zone
       pt.x = sum.x() / n;
       pt.y = sum.y() / n;
     }
-    WaypointRoute averaged = make_line(out.pieces[p].line.id, std::move(pts));
+    // Points nearer than kSameStation to the one before go, as netconvert drops them: judged
+    // with them, the line fitted a route it no longer fits in the net (seed 154: the lane's
+    // second point, 2 cm after its first and moved 6 cm towards a route merging onto it).
+    std::vector<WaypointPoint> kept_pts;
+    for (std::size_t k = 0; k < pts.size(); ++k) {
+      if (!kept_pts.empty() && std::hypot(kept_pts.back().x - pts[k].x, kept_pts.back().y - pts[k].y) < kSameStation) {
+        if (k + 1 < pts.size()) continue;
+        if (kept_pts.size() >= 2) kept_pts.pop_back();  // the lane's last point stays
+      }
+      kept_pts.push_back(pts[k]);
+    }
+    WaypointRoute averaged = make_line(out.pieces[p].line.id, std::move(kept_pts));
     const auto fits = [&](const Polyline& line) {
       return std::all_of(line.points().begin(), line.points().end(),
                          [&](const Vec2& q) { return averaged.line.project(q).distance <= kPlannedLaneMiss; });

@@ -21,6 +21,8 @@ namespace {
 
 constexpr int kOverridePriority = 100;
 constexpr double kParallelCos = 0.9848;  // cos 10 deg
+// m: netconvert keeps shape points this far apart (POSITION_EPS); nearer ones it drops.
+constexpr double kDistinctPoint = 0.1;
 
 std::string junction_id(int zone) { return fmt::format("J{}", zone); }
 
@@ -56,7 +58,12 @@ std::vector<Vec2> passage_shape(const WaypointRoute& route, const JunctionPassag
   for (int lap = 0; lap < 2; ++lap)
     for (std::size_t i = 0; i < route.line.size(); ++i) {
       const double s = route.line.s_at_index(i) + lap * length;
-      if (s > a + 0.05 && s < b - 0.05) pts.push_back(route.line.point(i));
+      // (A waypoint within 5 cm along of a lane end but beside it, 0.1 m or more from it, is
+      // kept: a route attached to a lane that ends 0.12 m to its side, seed 142, left the
+      // chord from the lane end to its next waypoint 0.11 m off it.)
+      const Vec2& q = route.line.point(i);
+      const bool apart = (q - from).norm() >= kDistinctPoint && (q - to).norm() >= kDistinctPoint;
+      if ((s > a + 0.05 && s < b - 0.05) || (s > a && s < b && apart)) pts.push_back(q);
     }
   if (p.s1 >= length && b >= length - 1e-6 && own_end(route.line.size() - 1, to)) pts.push_back(route.line.points().back());
   pts.push_back(to);

@@ -278,8 +278,23 @@ RouteLanes LaneMap::walk(const WaypointRoute& route, const std::string& net_file
           "route \"{}\" cannot be driven as one connected path: at wp_idx {} ({:.2f}, {:.2f}) it leaves lane \"{}\", "
           "which leads nowhere ({:.2f} m past its end)",
           route.id, i, p.x(), p.y(), lanes_[static_cast<std::size_t>(lane)].id, place_on_lane(lane, p).distance));
-    rl.points.push_back(place_on_lane(lane, p));
-    rl.visits.push_back(static_cast<int>(rl.lanes.size()) - 1);
+    LanePlace place = place_on_lane(lane, p);
+    int visit = static_cast<int>(rl.lanes.size()) - 1;
+    // Short of the lane's start, off it: a route drawn with a 180-degree spike across a lane's
+    // end (the line overshoots into the junction and comes back, seed 137) lies back on a lane
+    // it has driven; that waypoint is placed there (the walk goes on from the current lane).
+    if (place.distance > kOffLane && lanes_[static_cast<std::size_t>(lane)].shape.project(p).before_start) {
+      for (int back = visit - 1; back >= std::max(0, visit - kMaxChain); --back) {
+        const int earlier = rl.lanes[static_cast<std::size_t>(back)];
+        const LanePlace there = place_on_lane(earlier, p);
+        if (there.distance < place.distance && !lanes_[static_cast<std::size_t>(earlier)].shape.project(p).after_end) {
+          place = there;
+          visit = back;
+        }
+      }
+    }
+    rl.points.push_back(place);
+    rl.visits.push_back(visit);
   }
   return rl;
 }

@@ -65,6 +65,10 @@ namespace {
 // route ending inside a junction ends on the connection its last waypoints lie on; 225, 286:
 // dead-end lanes from a 1.4 m passage; 278: routes drawn too far apart for one lane get their
 // junction at a route's own start too.
+// Then (fix F, three of the four failures left of 1-300): 137: a 180-degree spike across a
+// lane's end (the waypoint after the tip lies back on the lane before); 142: a connection keeps
+// a waypoint just past a lane end that lies beside the route; 154: a shared lane's averaged
+// line is judged without the points netconvert drops (under 0.1 m apart).
 // To keep the set's time (~70 s), three of the 42 first seeds tied to no fix left it (26, 36,
 // 43: 9.6 s), and for the nine above eight more (17, 20, 30, 59, 63, 72, 79, 81);
 // scripts/map_soak.py --seeds 1-300 still runs them.
@@ -73,7 +77,8 @@ constexpr int kCiSeeds[] = {7,  10, 11, 12, 13, 14, 16, 21, 27, 28, 33, 34, 38, 
                             3,  6,  8,  15, 24, 32, 41, 56, 58, 118, 138, 151, 152, 155, 158, 184, 195, 205,
                             207, 218, 23, 35, 113, 127, 90, 133, 143, 150, 165, 208, 229, 246, 263,
                             1,  19, 42, 46, 5, 9, 116,
-                            92, 171, 257, 190, 239, 62, 225, 286, 278};
+                            92, 171, 257, 190, 239, 62, 225, 286, 278,
+                            137, 142, 154};
 
 constexpr double kTolerance = 0.10;  // m, as `map check`
 
