@@ -33,7 +33,7 @@ function(orch_clang_fuzzer name main)
   endforeach()
   add_custom_command(OUTPUT ${CMAKE_CURRENT_BINARY_DIR}/${name}
     COMMAND ${ORCH_CLANGXX} -fsanitize=fuzzer,address,undefined ${objects} -o ${CMAKE_CURRENT_BINARY_DIR}/${name}
-            -lfmt -lpugixml -lcrypto -lpthread -lyaml-cpp -lboost_filesystem
+            -lfmt -lpugixml -lcrypto -lpthread -lyaml-cpp -lboost_filesystem -lproj
     DEPENDS ${objects}
     COMMENT "Linking the libFuzzer target ${name}" VERBATIM)
   add_custom_target(${name}_build ALL DEPENDS ${CMAKE_CURRENT_BINARY_DIR}/${name})
