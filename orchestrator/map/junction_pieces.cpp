@@ -26,8 +26,8 @@ constexpr double kMaxEndGap = 3.0;
 // connection of their lane's other route (or of their own earlier lap), 0.16-0.25 m off it.
 constexpr double kMinLooseLane = 0.7;
 // m: points of a shared lane's best fit closer than this to the previous one are dropped
-// (netconvert drops them from a lane's shape anyway: POSITION_EPS, 0.1 m).
-constexpr double kSameStation = 0.1;
+// (netconvert drops them from a lane's shape anyway).
+constexpr double kSameStation = kNetconvertPointGap;
 // m: `map check`'s tolerance. A route ending (starting) inside a junction whose waypoints on
 // the lane it would continue on (come from) lie farther from it gets a dead-end lane of its own
 // instead, where its passage is long enough for one.
@@ -84,6 +84,19 @@ bool lies_along(const RoutePiece& inner, const RoutePiece& outer) {
   return true;
 }
 
+// Appends `p` to a lane's points unless it lies nearer than kSameStation to the last one kept
+// (netconvert would drop it); the lane's `last` point stays, in place of the one kept before
+// it. When that one is the lane's only point, `keep_two` keeps both (a line needs two points),
+// else the last goes.
+void add_station(std::vector<WaypointPoint>& pts, const WaypointPoint& p, bool last, bool keep_two) {
+  if (!pts.empty() && std::hypot(pts.back().x - p.x, pts.back().y - p.y) < kSameStation) {
+    if (!last) return;
+    if (pts.size() >= 2) pts.pop_back();
+    else if (!keep_two) return;
+  }
+  pts.push_back(p);
+}
+
 // The line of a lane shared by `owner` and the pieces drawn along it (`others`): the one that
 // keeps every route's waypoints nearest. At each waypoint of any of them (not only the
 // owner's: on a curve, another route's waypoints lie between the owner's, up to a chord's
@@ -128,11 +141,7 @@ std::vector<WaypointPoint> shared_lane_points(const WaypointRoute& owner, const 
   std::vector<WaypointPoint> pts;
   for (std::size_t k = 0; k < stations.size(); ++k) {
     const auto& [s, p] = stations[k];
-    if (!pts.empty() && std::hypot(pts.back().x - p.x(), pts.back().y - p.y()) < kSameStation) {
-      if (k + 1 < stations.size() || pts.size() < 2) continue;
-      pts.pop_back();  // the lane's last point stays
-    }
-    pts.push_back({p.x(), p.y(), 0.0, owner.speed_at(s)});
+    add_station(pts, {p.x(), p.y(), 0.0, owner.speed_at(s)}, k + 1 == stations.size(), false);
   }
   return pts;
 }
@@ -401,13 +410,7 @@ JunctionPieces cut_into_pieces(const WaypointFile& wf, const JunctionZones& zone
     // with them, the line fitted a route it no longer fits in the net (seed 154: the lane's
     // second point, 2 cm after its first and moved 6 cm towards a route merging onto it).
     std::vector<WaypointPoint> kept_pts;
-    for (std::size_t k = 0; k < pts.size(); ++k) {
-      if (!kept_pts.empty() && std::hypot(kept_pts.back().x - pts[k].x, kept_pts.back().y - pts[k].y) < kSameStation) {
-        if (k + 1 < pts.size()) continue;
-        if (kept_pts.size() >= 2) kept_pts.pop_back();  // the lane's last point stays
-      }
-      kept_pts.push_back(pts[k]);
-    }
+    for (std::size_t k = 0; k < pts.size(); ++k) add_station(kept_pts, pts[k], k + 1 == pts.size(), true);
     WaypointRoute averaged = make_line(out.pieces[p].line.id, std::move(kept_pts));
     const auto fits = [&](const Polyline& line) {
       return std::all_of(line.points().begin(), line.points().end(),

@@ -13,6 +13,10 @@
 
 namespace orch {
 
+// m: netconvert keeps a lane's shape points at least this far apart and drops nearer ones
+// (its POSITION_EPS).
+inline constexpr double kNetconvertPointGap = 0.1;
+
 struct RoutePiece {
   WaypointRoute line;               // the stretch's points; id "<route>" or "<route>.<k>"
   std::size_t route = 0;            // the waypoint route it was cut from

@@ -21,8 +21,6 @@ namespace {
 
 constexpr int kOverridePriority = 100;
 constexpr double kParallelCos = 0.9848;  // cos 10 deg
-// m: netconvert keeps shape points this far apart (POSITION_EPS); nearer ones it drops.
-constexpr double kDistinctPoint = 0.1;
 
 std::string junction_id(int zone) { return fmt::format("J{}", zone); }
 
@@ -62,7 +60,7 @@ std::vector<Vec2> passage_shape(const WaypointRoute& route, const JunctionPassag
       // kept: a route attached to a lane that ends 0.12 m to its side, seed 142, left the
       // chord from the lane end to its next waypoint 0.11 m off it.)
       const Vec2& q = route.line.point(i);
-      const bool apart = (q - from).norm() >= kDistinctPoint && (q - to).norm() >= kDistinctPoint;
+      const bool apart = (q - from).norm() >= kNetconvertPointGap && (q - to).norm() >= kNetconvertPointGap;
       if ((s > a + 0.05 && s < b - 0.05) || (s > a && s < b && apart)) pts.push_back(q);
     }
   if (p.s1 >= length && b >= length - 1e-6 && own_end(route.line.size() - 1, to)) pts.push_back(route.line.points().back());
