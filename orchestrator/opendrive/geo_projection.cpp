@@ -18,8 +18,8 @@ namespace {
 // linked, PROJ and the ~36 libraries it needs (SQLite, libtiff, curl, GnuTLS, Kerberos, ...)
 // sit in the program's global symbol scope, which the dynamic loader searches first for every
 // symbol of every library loaded later; libsumocpp.so binds ~56,000 symbols at load (most of
-// them its own), so they made loading libsumo ~10 % of a short run's instructions
-// (docs/performance.md, "OpenSCENARIO against esmini"). libsumocpp.so needs PROJ too and loads
+// them its own), so they cost 10-16 % of a short run's instructions (docs/performance.md,
+// "The corpus against esmini"). libsumocpp.so needs PROJ too and loads
 // it in its own scope; opening it here afterwards (or before) gives the same library, matched
 // by its soname, which the build takes from PROJ's CMake package (ORCH_PROJ_SONAME).
 struct ProjApi {
@@ -40,7 +40,7 @@ struct ProjApi {
 };
 
 template <typename F>
-void bind(void* library, F& function, const char* name, std::string& missing) {
+void bind_symbol(void* library, F& function, const char* name, std::string& missing) {
   function = reinterpret_cast<F>(dlsym(library, name));
   if (!function) missing += missing.empty() ? name : std::string(", ") + name;
 }
@@ -58,20 +58,20 @@ const ProjApi& proj_api() {
       return;
     }
     std::string missing;
-    bind(library, api.context_create, "proj_context_create", missing);
-    bind(library, api.context_destroy, "proj_context_destroy", missing);
-    bind(library, api.context_errno, "proj_context_errno", missing);
-    bind(library, api.context_errno_string, "proj_context_errno_string", missing);
-    bind(library, api.log_level, "proj_log_level", missing);
-    bind(library, api.create, "proj_create", missing);
-    bind(library, api.create_crs_to_crs, "proj_create_crs_to_crs", missing);
-    bind(library, api.normalize_for_visualization, "proj_normalize_for_visualization", missing);
-    bind(library, api.is_crs, "proj_is_crs", missing);
-    bind(library, api.destroy, "proj_destroy", missing);
-    bind(library, api.trans, "proj_trans", missing);
-    bind(library, api.coord, "proj_coord", missing);
-    bind(library, api.torad, "proj_torad", missing);
-    bind(library, api.todeg, "proj_todeg", missing);
+    bind_symbol(library, api.context_create, "proj_context_create", missing);
+    bind_symbol(library, api.context_destroy, "proj_context_destroy", missing);
+    bind_symbol(library, api.context_errno, "proj_context_errno", missing);
+    bind_symbol(library, api.context_errno_string, "proj_context_errno_string", missing);
+    bind_symbol(library, api.log_level, "proj_log_level", missing);
+    bind_symbol(library, api.create, "proj_create", missing);
+    bind_symbol(library, api.create_crs_to_crs, "proj_create_crs_to_crs", missing);
+    bind_symbol(library, api.normalize_for_visualization, "proj_normalize_for_visualization", missing);
+    bind_symbol(library, api.is_crs, "proj_is_crs", missing);
+    bind_symbol(library, api.destroy, "proj_destroy", missing);
+    bind_symbol(library, api.trans, "proj_trans", missing);
+    bind_symbol(library, api.coord, "proj_coord", missing);
+    bind_symbol(library, api.torad, "proj_torad", missing);
+    bind_symbol(library, api.todeg, "proj_todeg", missing);
     if (!missing.empty())
       failure = fmt::format("PROJ ({}) lacks {}: not the PROJ this program was built with", ORCH_PROJ_SONAME, missing);
   });
