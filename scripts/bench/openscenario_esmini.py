@@ -131,16 +131,18 @@ def table(rows):
     lines = ["| file | road | simulated (orchestrator / esmini) | orchestrator wall | esmini wall | "
              "orch / esmini, wall | orchestrator CPU | esmini CPU | orch / esmini, CPU |",
              "|---|---|---|---|---|---|---|---|---|"]
-    medians = []
+    medians, cpu_medians = [], []
     for r in rows:
         if "orch" not in r:
             note = " ".join(r["note"].split())  # one table row: netconvert's errors span lines
             lines.append("| %s | %s | %s | | | | | | |" % (r["file"], r["road"], note))
             continue
         wall, med = ratio_text(r["orch"], r["esmini"], 0)
-        cpu, _ = ratio_text(r["orch"], r["esmini"], 1)
+        cpu, cpu_med = ratio_text(r["orch"], r["esmini"], 1)
         if med is not None and "note" not in r:
             medians.append((med, r["file"]))
+        if cpu_med is not None and "note" not in r:
+            cpu_medians.append((cpu_med, r["file"]))
         et = r.get("esmini_time")
         lines.append("| %s | %s | %.2f s / %s%s | %.2f s | %.2f s | %s | %.2f s | %.2f s | %s |" % (
             r["file"], r["road"], r["sim_time"] or 0, "%.2f s" % et if et is not None else "?",
@@ -150,9 +152,15 @@ def table(rows):
     if medians:
         medians.sort()
         over = [f for m, f in medians if m > 1.0]
+        cpu_medians.sort()
+        cpu_over = [f for m, f in cpu_medians if m > 1.0]
         summary = ("\n%d files timed; median of the per-file wall ratios %.2f, largest %.2f (%s); %d above 1.00%s" % (
             len(medians), statistics.median(m for m, _ in medians), medians[-1][0], medians[-1][1], len(over),
             ": " + ", ".join(over) if over else ""))
+        if cpu_medians:  # CPU time: the steadier figure on a loaded machine
+            summary += ("\nCPU: median of the per-file ratios %.2f, largest %.2f (%s); %d above 1.00; at most 1.00: %s" % (
+                statistics.median(m for m, _ in cpu_medians), cpu_medians[-1][0], cpu_medians[-1][1], len(cpu_over),
+                ", ".join(f for m, f in cpu_medians if m <= 1.0) or "none"))
     return "\n".join(lines) + summary
 
 

@@ -13,7 +13,8 @@ function(orch_clang_fuzzer name main)
   set(flags -std=c++20 -O1 -g -fno-omit-frame-pointer -fsanitize=fuzzer-no-link,address,undefined
             -fno-sanitize-recover=undefined -I${CMAKE_SOURCE_DIR}/orchestrator -I${CMAKE_SOURCE_DIR}/tests
             -isystem /usr/include/eigen3 -DORCH_VERSION="${PROJECT_VERSION}"
-            -DORCH_SOURCE_MAPS_DIR="${ORCH_SOURCE_MAPS_DIR}" -DORCH_FUZZ_MAPS_DIR="${ORCH_FUZZ_MAPS_DIR}")
+            -DORCH_SOURCE_MAPS_DIR="${ORCH_SOURCE_MAPS_DIR}" -DORCH_FUZZ_MAPS_DIR="${ORCH_FUZZ_MAPS_DIR}"
+            -DORCH_PROJ_SONAME="$<TARGET_SONAME_FILE_NAME:PROJ::proj>")  # geo_projection.cpp opens PROJ
   set(objects)
   foreach(source ${main} ${ARGN})
     get_filename_component(stem ${source} NAME_WE)
