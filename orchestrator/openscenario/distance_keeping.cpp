@@ -72,19 +72,21 @@ void longitudinal_distance(const LongitudinalDistanceAction& a, EntityState& sta
 
 // With DynamicConstraints: the entity stays in its lane and sets its speed for the next
 // step towards the distance. The standard gives the constraints only as limits and leaves the
-// law to the controller; without jerk limits it is esmini's damped spring (as esmini, which the
-// standard allows): a = k e - 2 sqrt(k) (v - v_ref), critically damped, e the metres short of
-// the target, v_ref the referenced speed, the stiffness k = 0.4 1/m times maxDeceleration
-// while behind the target (e > 0: it will brake on arriving), times maxAcceleration while
-// beyond it (either stands in for the other when absent; with neither, the speed jumps to
-// [0, maxSpeed]'s end towards the target). With maxAccelerationRate / maxDecelerationRate a
-// spring that stiff would swing round the target within the rates, so the loop is slowed to
-// what the acceleration can follow: k = w^2, w = J / (the larger acceleration limit), J the
-// smaller rate, and the acceleration changes by at most maxAccelerationRate (growing) /
-// maxDecelerationRate (falling) per second (the same reading of the rates as a
-// SpeedProfileAction's). Always within the acceleration limits and [0, maxSpeed], each capped
-// by the vehicle's Performance. True once
-// within kDistanceReached m and m/s of the target and the referenced speed.
+// law to the controller; it is esmini's damped spring (as esmini, which the standard allows):
+// a = k e - 2 sqrt(k) (v - v_ref), critically damped, e the metres short of the target, v_ref
+// the referenced speed, the stiffness k = 0.4 1/m times maxDeceleration while behind the
+// target (e > 0: it will brake on arriving), times maxAcceleration while beyond it (either
+// stands in for the other when absent; with neither, the speed jumps to [0, maxSpeed]'s end
+// towards the target). The jerk limits are read as esmini applies them (the standard gives
+// no more than their names: "maxAccelerationRate: Maximum acceleration rate the distance
+// controller is allowed to use for keeping the distance", the same for deceleration): while
+// the law asks for an acceleration (a >= 0), maxAccelerationRate bounds how fast the
+// acceleration rises towards it; while it asks for a deceleration (a < 0),
+// maxDecelerationRate bounds how fast it falls; easing off (an acceleration falling towards
+// a smaller one, a deceleration rising towards a smaller one) is not bounded.
+// Always within the acceleration limits and [0, maxSpeed], each capped by the vehicle's
+// Performance. True once within kDistanceReached m and m/s of the target and the referenced
+// speed.
 constexpr double kDistanceReached = 0.1;
 constexpr double kSpringPerAcceleration = 0.4;  // esmini's spring constant, 1/m
 bool approach_distance(const LongitudinalDistanceAction& a, EntityState& state, ActionContext& ctx,
@@ -105,19 +107,12 @@ bool approach_distance(const LongitudinalDistanceAction& a, EntityState& state, 
   const double v_ref = target.ref->speed;
   double tension = error > 0 ? decelerate : accelerate;
   if (std::isinf(tension)) tension = error > 0 ? accelerate : decelerate;
-  const bool jerk_limited = a.max_acceleration_rate || a.max_deceleration_rate;
   if (!(ctx.dt > 0)) {
     acceleration = 0;  // no step to limit the change over: the speed stays
   } else {
     const double before = state.speed;
     double change = 0;
-    if (jerk_limited) {
-      const double rate = std::min(a.max_acceleration_rate.value_or(unlimited), a.max_deceleration_rate.value_or(unlimited));
-      double range = std::max(std::isinf(accelerate) ? 0.0 : accelerate, std::isinf(decelerate) ? 0.0 : decelerate);
-      if (!(range > 0)) range = rate;  // no acceleration limit: a 1 s loop
-      const double w = rate / range;
-      change = w * w * error - 2 * w * (before - v_ref);
-    } else if (std::isinf(tension)) {
+    if (std::isinf(tension)) {
       const double wanted = error > 0 ? max_speed : error < 0 ? 0.0 : v_ref;  // no limit to ease in by
       change = (std::clamp(wanted, 0.0, max_speed) - before) / ctx.dt;
     } else {
@@ -125,12 +120,16 @@ bool approach_distance(const LongitudinalDistanceAction& a, EntityState& state, 
       change = k * error - 2 * std::sqrt(k) * (before - v_ref);
     }
     change = std::clamp(change, -decelerate, accelerate);
-    change = std::clamp(change, acceleration - a.max_deceleration_rate.value_or(unlimited) * ctx.dt,
-                        acceleration + a.max_acceleration_rate.value_or(unlimited) * ctx.dt);
-    change = std::clamp(change, -decelerate, accelerate);
+    // The jerk limits, on a build-up only (from the step before's acceleration).
+    if (change < 0 && change < acceleration)
+      change = std::max(change, acceleration - a.max_deceleration_rate.value_or(unlimited) * ctx.dt);
+    else if (change >= 0 && change > acceleration)
+      change = std::min(change, acceleration + a.max_acceleration_rate.value_or(unlimited) * ctx.dt);
     // Within [0, maxSpeed] (an entity already beyond either slows or speeds up into it).
     state.speed = std::clamp(before + change * ctx.dt, std::min(0.0, before), std::max(max_speed, before));
-    acceleration = (state.speed - before) / ctx.dt;
+    acceleration = change;  // the law's, the next step's jerk limits start from it (as esmini's)
+    state.acceleration = (state.speed - before) / ctx.dt;
+    return std::abs(error) <= kDistanceReached && std::abs(state.speed - v_ref) <= kDistanceReached;
   }
   state.acceleration = acceleration;
   return std::abs(error) <= kDistanceReached && std::abs(state.speed - v_ref) <= kDistanceReached;

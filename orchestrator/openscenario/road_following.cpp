@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "opendrive/lane_graph.hpp"
 
@@ -94,6 +95,29 @@ void follow_links(EntityState& state, const opendrive::RoadNetwork& roads, std::
     state.s = next->s + next->direction * path_left / stretch(to, next->s, state.t);
     section = next->direction > 0 ? 0 : to.sections.size() - 1;
   }
+}
+
+void leave_vanished_lane(EntityState& state, const opendrive::RoadNetwork& roads) {
+  constexpr double kVanished = 1e-9;  // m: a lane this narrow holds no entity
+  if (state.road_id.empty() || state.lane == 0 || state.lateral_profile) return;
+  const opendrive::Road& road = roads.road(state.road_id);
+  const double s = std::clamp(state.s, 0.0, road.length);
+  const opendrive::LaneSection& section = road.section_at(s);
+  const opendrive::Lane* lane = section.lane(state.lane);
+  if (lane == nullptr || lane->width(s - section.s) > kVanished) return;
+  const double t = road.lane_center_t(state.lane, s) + state.offset;
+  std::optional<int> nearest;
+  double best = 0;
+  for (const auto* side : {&section.left, &section.right})
+    for (const opendrive::Lane& other : *side) {
+      if (other.type != lane->type || other.width(s - section.s) <= kVanished) continue;
+      const double d = std::abs(road.lane_center_t(other.id, s) - t);
+      if (!nearest || d < best) {
+        nearest = other.id;
+        best = d;
+      }
+    }
+  if (nearest) state.lane = *nearest;
 }
 
 bool at_dead_end(const EntityState& state, const opendrive::RoadNetwork& roads) {

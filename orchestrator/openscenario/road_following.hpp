@@ -16,6 +16,15 @@ namespace orch::openscenario {
 // across the sections passed and drives on past the road's end. Pose not updated.
 void follow_links(EntityState& state, const opendrive::RoadNetwork& roads, std::size_t section_before);
 
+// Where the entity's lane has narrowed to width 0 (a lane that ends without a lane section
+// of its own: esmini's multi_intersections.xodr road 209, lane -2 from s = 59), it goes on in
+// the nearest lane of the same type that still has a width (by the distance between its
+// place and that lane's centre), keeping its offset; not during a lane change or a lane
+// offset (their target is set). OpenDRIVE does not say where a lane of width 0 leaves its
+// traffic; esmini does this (an entity is never on a lane of width 0: it snaps to the
+// nearest lane of a drivable type with a width, in the step the width reaches 0).
+void leave_vanished_lane(EntityState& state, const opendrive::RoadNetwork& roads);
+
 // True when the entity stands at the end of its road in its direction of travel and no
 // lane continues its lane there (EndOfRoadCondition).
 bool at_dead_end(const EntityState& state, const opendrive::RoadNetwork& roads);

@@ -61,6 +61,47 @@ TEST(RoadFollowing, DrivesOnAcrossARoadEndWithTheRemainingDistance) {
   EXPECT_NEAR(car.odometer, 10.0, 1e-9);
 }
 
+// The traveled distance is the sum of the straight steps between successive positions (as
+// esmini's odometer): on a curve of radius 20 m each 0.5 m step along the lane is a chord
+// L^3 / (24 R^2) = 1.3e-5 m shorter, so 10 steps at 10 m/s fall short of 5 m and a
+// TraveledDistanceCondition of 5 m fires a step later (esmini's pedestrian.xosc).
+TEST(RoadFollowing, TheOdometerAddsTheStraightStepsBetweenPositions) {
+  test::XodrRoad curve;
+  curve.id = "1";
+  curve.curvature = 0.05;
+  const auto roads = opendrive::read_xodr_text(test::xodr_file(test::xodr_road(curve)), "curve.xodr");
+  EntityState car = on_lane(roads, "1", -1, 10, 10);
+  drive(car, roads, 0.5);
+  const double step = 10.0 * 0.05;  // along the lane
+  const double radius = 20.0 + 1.75;  // lane -1's centre, on the outside of the left curve
+  const double chord = 2 * radius * std::sin(step / (2 * radius));
+  EXPECT_NEAR(car.odometer, 10 * chord, 1e-6);
+  EXPECT_LT(car.odometer, 5.0 - 1e-6);
+  drive(car, roads, 0.05);
+  EXPECT_GT(car.odometer, 5.0);
+}
+
+// A lane that narrows to width 0 within its section (no lane section of its own where it
+// ends): the entity on it goes on in the nearest lane of its type that has a width, in the
+// step the width reaches 0 (as esmini: trailers.xosc on multi_intersections.xodr road 209).
+TEST(RoadFollowing, AnEntityOnALaneNarrowedToNothingGoesOnInTheNearestLane) {
+  const std::string road = R"(<road id="1" length="100" junction="-1"><link/>
+<planView><geometry s="0" x="0" y="0" hdg="0" length="100"><line/></geometry></planView>
+<lanes><laneSection s="0"><center><lane id="0" type="none"/></center><right>
+<lane id="-1" type="driving"><width sOffset="0" a="3.5" b="0" c="0" d="0"/></lane>
+<lane id="-2" type="driving"><width sOffset="0" a="3.5" b="0" c="0" d="0"/><width sOffset="50" a="0" b="0" c="0" d="0"/></lane>
+<lane id="-3" type="sidewalk"><width sOffset="0" a="2" b="0" c="0" d="0"/></lane>
+</right></laneSection></lanes></road>)";
+  const auto roads = opendrive::read_xodr_text(test::xodr_file(road), "narrowing.xodr");
+  EntityState car = on_lane(roads, "1", -2, 40, 10);
+  drive(car, roads, 0.95);
+  EXPECT_EQ(car.lane, -2);
+  EXPECT_NEAR(car.pose.y, -5.25, 1e-9);
+  drive(car, roads, 0.1);  // past s = 50
+  EXPECT_EQ(car.lane, -1);  // not the sidewalk, whose centre is nearer
+  EXPECT_NEAR(car.pose.y, -1.75, 1e-9);
+}
+
 TEST(RoadFollowing, AStandingEntityKeepsTheHeadingItWasPlacedWithUntilItDrivesOff) {
   const auto roads = opendrive::read_xodr_text(test::xodr_two_in_a_row(), "row.xodr");
   EntityState car = on_lane(roads, "1", -1, 50, 0);
