@@ -25,6 +25,10 @@ constexpr double kMaxEndGap = 3.0;
 // It was 1.0 m: routes ending 1.5-1.8 m into a junction (seeds 225, 286) then drove the
 // connection of their lane's other route (or of their own earlier lap), 0.16-0.25 m off it.
 constexpr double kMinLooseLane = 0.7;
+// m: the same where the route lies off the path of every route going on through the junction
+// on its lane, whose connection it would otherwise drive (seed 383: a route starting 1.2 m
+// inside a junction beside the turn of a route going on along its lane, 0.30 m off it).
+constexpr double kMinMisfitLooseLane = 0.4;
 // m: points of a shared lane's best fit closer than this to the previous one are dropped
 // (netconvert drops them from a lane's shape anyway).
 constexpr double kSameStation = kNetconvertPointGap;
@@ -211,6 +215,28 @@ void attach_loose_ends(const WaypointFile& wf, JunctionPieces& out) {
   }
 }
 
+// Whether the waypoints of passage jp lie within kLaneFit of the path through the zone of some
+// other route that goes on through it on lane piece k (after it where jp starts there, before
+// it where jp ends there): the connection the route would drive without a lane of its own.
+bool fits_a_path_on(const WaypointFile& wf, const std::vector<JunctionPassage>& passages, const JunctionPassage& jp,
+                    int k, bool loose_end) {
+  const WaypointRoute& route = wf.routes[jp.route];
+  for (const JunctionPassage& other : passages) {
+    if (&other == &jp || other.zone != jp.zone ||
+        !(loose_end ? other.before == k && other.after >= 0 : other.after == k && other.before >= 0))
+      continue;
+    const WaypointRoute& along = wf.routes[other.route];
+    const WaypointRoute path = make_line(along.id, stretch(along, other.s0, other.s1));
+    double worst = 0;
+    for (std::size_t i = 0; i < route.points.size(); ++i) {
+      const double s = route.line.s_at_index(i);
+      if (s >= jp.s0 && s <= jp.s1) worst = std::max(worst, path.line.project(route.line.point(i)).distance);
+    }
+    if (worst <= kLaneFit) return true;
+  }
+  return false;
+}
+
 // A route that still ends (starts) inside a junction, with no lane there to continue it
 // (a street drawn to end on a crossing road, at the edge of the map), would leave its last
 // (first) waypoints on no lane. Its own lane goes on to the route's end instead, as a dead
@@ -258,7 +284,8 @@ void end_lanes_in_junctions(const WaypointFile& wf, JunctionPieces& out) {
       // Its lane is driven by other routes too, which go on through the junction: the route
       // gets a dead-end lane of its own for the second half of its passage (the first half
       // is its connection from the shared lane), or the first half when it starts there.
-      if (jp.s1 - jp.s0 >= 2 * kMinLooseLane) {
+      const double shortest = fits_a_path_on(wf, out.passages, jp, k, loose_end) ? kMinLooseLane : kMinMisfitLooseLane;
+      if (jp.s1 - jp.s0 >= 2 * shortest) {
         JunctionPassage cut = jp;
         const double mid = (jp.s0 + jp.s1) / 2;
         const int index = static_cast<int>(out.pieces.size());

@@ -13,6 +13,7 @@
 #include "core/process.hpp"
 #include "core/sumo_output.hpp"
 #include "map/junction_plan.hpp"
+#include "map/junction_right_of_way.hpp"
 #include "map/net_picture.hpp"
 #include "map/net_plan.hpp"
 
@@ -127,9 +128,10 @@ NetBuildReport build_net(const MapManifest& manifest, const WaypointFile& waypoi
     throw MapError(fmt::format("netconvert failed for map \"{}\" (exit status {}); its plain input is in {}:\n{}",
                                manifest.id, result.exit_code, (manifest.dir / plain_dir).string(), result.output));
   const std::filesystem::path net_path = manifest.net_path();
-  write_file_atomically(net_path, without_generation_date(read_file(net_path)));
-
   NetBuildReport report;
+  // Lanes of one road whose connections cross may yield to each other (junction_right_of_way.hpp).
+  write_file_atomically(net_path, without_mutual_yields(without_generation_date(read_file(net_path)), report.notes));
+
   report.corridors = plan.corridors;
   report.junctions = plan.junctions;
   report.edges = static_cast<int>(plan.edges.size());
@@ -140,7 +142,7 @@ NetBuildReport build_net(const MapManifest& manifest, const WaypointFile& waypoi
   }
   report.picture = manifest.dir / "map.svg";
   write_file_atomically(report.picture, net_picture_svg(plan, waypoints));
-  report.notes = plan.notes;
+  report.notes.insert(report.notes.begin(), plan.notes.begin(), plan.notes.end());
   const auto warnings = lines_starting_with(result.output, "Warning:");
   for (std::size_t i = 0; i < warnings.size() && i < kMaxReportedWarnings; ++i)
     report.notes.push_back("netconvert: " + warnings[i]);
