@@ -192,3 +192,61 @@ TEST(BatchSlurm, JobArrayOfShardsMergesToTheSingleMachineResult) {
   EXPECT_EQ(merged["totals"], read_json(tmp / "single" / "summary.json")["totals"]);
   EXPECT_TRUE(fs::exists(out / "merged" / "junit.xml"));
 }
+
+// A search on Slurm (scripts/cluster/slurm_search.sbatch): its loop runs in one job of two
+// tasks and starts every run as a job step (srun_step.sh); the search must propose, run and
+// find exactly what the same search finds on this machine (proposals are a pure function of
+// the seed and the results before them), and every run must have been a job step.
+TEST(SearchSlurm, EachRunIsAJobStepAndTheSearchIsTheSingleMachineOne) {
+  const std::string missing = missing_prerequisites();
+  ASSERT_TRUE(missing.empty()) << missing;
+  TempDir tmp;
+  SingleNodeSlurm slurm(tmp / "slurm");
+  ASSERT_TRUE(slurm.ok()) << "could not start Slurm:\n" << slurm.problem();
+
+  const std::string lead_brake = source_path("scenarios/nightly/logical_9202dd94-2666-4583-a45c-f8396b848ae9.json");
+  const std::vector<std::string> options{"--objective", "min_ttc", "--minimize", "--budget", "6", "--seed", "3",
+                                         "--set", "lead.brake_time=30", "--max-time", "45"};
+  std::vector<std::string> single_args{"search", lead_brake, "--jobs", "2", "--out", (tmp / "single").string()};
+  single_args.insert(single_args.end(), options.begin(), options.end());
+  const auto single = run_cli(single_args);
+  ASSERT_EQ(single.exit_code, 0) << single.output;
+
+  const fs::path out = tmp / "cluster";
+  std::string words;
+  for (const auto& o : options) words += " " + shell_quote(o);
+  const auto submit = shell("ORCHESTRATOR=" + shell_quote(ORCH_BINARY) + " ORCH_CLUSTER_SCRIPTS=" +
+                            shell_quote(source_path("scripts/cluster")) + " sbatch --parsable --ntasks=2 --chdir=" +
+                            shell_quote(tmp.path().string()) + " --export=ALL " +
+                            shell_quote(source_path("scripts/cluster/slurm_search.sbatch")) + " " +
+                            shell_quote(out.string()) + " " + shell_quote(lead_brake) + words);
+  ASSERT_EQ(submit.exit_code, 0) << submit.output;
+  ASSERT_TRUE(slurm.wait_idle(300)) << "jobs still queued:\n" << shell("squeue").output << slurm.logs();
+  const std::string job = submit.output.substr(0, submit.output.find_first_of(";\n"));
+  ASSERT_TRUE(fs::exists(out / "search.json"))
+      << submit.output << "\n" << shell("cat " + tmp.path().string() + "/orch-search-*.out").output << slurm.logs();
+
+  const auto cluster = read_json(out / "search.json");
+  const auto local = read_json(tmp / "single" / "search.json");
+  EXPECT_TRUE(cluster["finished"].get<bool>());
+  ASSERT_EQ(cluster["iterations"].size(), local["iterations"].size());
+  int runs = 0;
+  for (std::size_t i = 0; i < local["iterations"].size(); ++i) {
+    const auto& a = cluster["iterations"][i]["points"];
+    const auto& b = local["iterations"][i]["points"];
+    ASSERT_EQ(a.size(), b.size()) << "iteration " << i;
+    for (std::size_t k = 0; k < a.size(); ++k, ++runs) {
+      EXPECT_EQ(a[k]["values"], b[k]["values"]) << "iteration " << i << " point " << k;
+      EXPECT_EQ(a[k]["objective"], b[k]["objective"]) << "iteration " << i << " point " << k;
+      EXPECT_EQ(a[k]["verdict"], b[k]["verdict"]) << "iteration " << i << " point " << k;
+    }
+  }
+  EXPECT_EQ(runs, 6);
+  EXPECT_EQ(cluster["critical"][0]["objective"], local["critical"][0]["objective"]);
+  // Every run process was a step of the job (the search forks an iteration's runs into one
+  // process where they share a prefix: at least one step per iteration, at most one per run).
+  const auto steps = shell("grep -c 'launch task StepId=" + job + "\\.[0-9]' " + (tmp / "slurm" / "log" / "slurmd.log").string());
+  const int step_count = std::atoi(steps.output.c_str());
+  EXPECT_GE(step_count, static_cast<int>(local["iterations"].size())) << steps.output << slurm.logs();
+  EXPECT_LE(step_count, runs) << steps.output;
+}
