@@ -109,6 +109,7 @@ bool approach_distance(const LongitudinalDistanceAction& a, EntityState& state, 
   if (std::isinf(tension)) tension = error > 0 ? accelerate : decelerate;
   if (!(ctx.dt > 0)) {
     acceleration = 0;  // no step to limit the change over: the speed stays
+    state.acceleration = 0;
   } else {
     const double before = state.speed;
     double change = 0;
@@ -129,9 +130,7 @@ bool approach_distance(const LongitudinalDistanceAction& a, EntityState& state, 
     state.speed = std::clamp(before + change * ctx.dt, std::min(0.0, before), std::max(max_speed, before));
     acceleration = change;  // the law's, the next step's jerk limits start from it (as esmini's)
     state.acceleration = (state.speed - before) / ctx.dt;
-    return std::abs(error) <= kDistanceReached && std::abs(state.speed - v_ref) <= kDistanceReached;
   }
-  state.acceleration = acceleration;
   return std::abs(error) <= kDistanceReached && std::abs(state.speed - v_ref) <= kDistanceReached;
 }
 

@@ -12,6 +12,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <memory>
 #include <thread>
 
 #include "e2e/test_batch_support.hpp"
@@ -152,12 +153,26 @@ std::map<std::string, std::string> outcomes(const fs::path& summary) {
 
 }  // namespace
 
-TEST(BatchSlurm, JobArrayOfShardsMergesToTheSingleMachineResult) {
-  const std::string missing = missing_prerequisites();
-  ASSERT_TRUE(missing.empty()) << missing;
+// A test on its own single-node Slurm, in a temporary folder (stopped before the folder goes).
+class OnSlurm : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const std::string missing = missing_prerequisites();
+    ASSERT_TRUE(missing.empty()) << missing;
+    cluster_ = std::make_unique<SingleNodeSlurm>(tmp / "slurm");
+    ASSERT_TRUE(cluster_->ok()) << "could not start Slurm:\n" << cluster_->problem();
+  }
+  [[nodiscard]] const SingleNodeSlurm& slurm() const { return *cluster_; }
+
   TempDir tmp;
-  SingleNodeSlurm slurm(tmp / "slurm");
-  ASSERT_TRUE(slurm.ok()) << "could not start Slurm:\n" << slurm.problem();
+
+ private:
+  std::unique_ptr<SingleNodeSlurm> cluster_;
+};
+using BatchSlurm = OnSlurm;
+using SearchSlurm = OnSlurm;
+
+TEST_F(BatchSlurm, JobArrayOfShardsMergesToTheSingleMachineResult) {
 
   const auto sets = mixed_sets(6);
   const auto logical = write_quick_batch(tmp, sets);
@@ -169,11 +184,11 @@ TEST(BatchSlurm, JobArrayOfShardsMergesToTheSingleMachineResult) {
                             shell_quote(source_path("scripts/cluster/slurm_submit.sh")) + " 2 " +
                             shell_quote(out.string()) + " " + shell_quote(logical.string()));
   ASSERT_EQ(submit.exit_code, 0) << submit.output;
-  ASSERT_TRUE(slurm.wait_idle(300)) << "jobs still queued:\n" << shell("squeue").output << slurm.logs();
+  ASSERT_TRUE(slurm().wait_idle(300)) << "jobs still queued:\n" << shell("squeue").output << slurm().logs();
 
   ASSERT_TRUE(fs::exists(out / "merged" / "summary.json"))
       << submit.output << "\n" << shell("cat " + out.string() + "/*.out " + out.string() + "/shard_*/*.out").output
-      << slurm.logs();
+      << slurm().logs();
   // Slurm ran them: one log per array task (orch-nightly-JOB_TASK.out) ...
   int task_logs = 0;
   for (const auto& e : fs::directory_iterator(out))
@@ -197,12 +212,7 @@ TEST(BatchSlurm, JobArrayOfShardsMergesToTheSingleMachineResult) {
 // tasks and starts every run as a job step (srun_step.sh); the search must propose, run and
 // find exactly what the same search finds on this machine (proposals are a pure function of
 // the seed and the results before them), and every run must have been a job step.
-TEST(SearchSlurm, EachRunIsAJobStepAndTheSearchIsTheSingleMachineOne) {
-  const std::string missing = missing_prerequisites();
-  ASSERT_TRUE(missing.empty()) << missing;
-  TempDir tmp;
-  SingleNodeSlurm slurm(tmp / "slurm");
-  ASSERT_TRUE(slurm.ok()) << "could not start Slurm:\n" << slurm.problem();
+TEST_F(SearchSlurm, EachRunIsAJobStepAndTheSearchIsTheSingleMachineOne) {
 
   const std::string lead_brake = source_path("scenarios/nightly/logical_9202dd94-2666-4583-a45c-f8396b848ae9.json");
   const std::vector<std::string> options{"--objective", "min_ttc", "--minimize", "--budget", "6", "--seed", "3",
@@ -221,10 +231,10 @@ TEST(SearchSlurm, EachRunIsAJobStepAndTheSearchIsTheSingleMachineOne) {
                             shell_quote(source_path("scripts/cluster/slurm_search.sbatch")) + " " +
                             shell_quote(out.string()) + " " + shell_quote(lead_brake) + words);
   ASSERT_EQ(submit.exit_code, 0) << submit.output;
-  ASSERT_TRUE(slurm.wait_idle(300)) << "jobs still queued:\n" << shell("squeue").output << slurm.logs();
+  ASSERT_TRUE(slurm().wait_idle(300)) << "jobs still queued:\n" << shell("squeue").output << slurm().logs();
   const std::string job = submit.output.substr(0, submit.output.find_first_of(";\n"));
   ASSERT_TRUE(fs::exists(out / "search.json"))
-      << submit.output << "\n" << shell("cat " + tmp.path().string() + "/orch-search-*.out").output << slurm.logs();
+      << submit.output << "\n" << shell("cat " + tmp.path().string() + "/orch-search-*.out").output << slurm().logs();
 
   const auto cluster = read_json(out / "search.json");
   const auto local = read_json(tmp / "single" / "search.json");
@@ -247,6 +257,6 @@ TEST(SearchSlurm, EachRunIsAJobStepAndTheSearchIsTheSingleMachineOne) {
   // process where they share a prefix: at least one step per iteration, at most one per run).
   const auto steps = shell("grep -c 'launch task StepId=" + job + "\\.[0-9]' " + (tmp / "slurm" / "log" / "slurmd.log").string());
   const int step_count = std::atoi(steps.output.c_str());
-  EXPECT_GE(step_count, static_cast<int>(local["iterations"].size())) << steps.output << slurm.logs();
+  EXPECT_GE(step_count, static_cast<int>(local["iterations"].size())) << steps.output << slurm().logs();
   EXPECT_LE(step_count, runs) << steps.output;
 }
