@@ -263,6 +263,10 @@ std::vector<std::string> start_action(const PrivateAction& action, const std::st
           state.lane = target;
           state.offset = start_offset;
           state.lateral_profile = LateralProfile{ctx.t, duration, start_offset, end_offset, a.dynamics.shape};
+          if (a.dynamics.dimension == DynamicsDimension::Distance && duration > 0) {
+            state.lateral_profile->distance = a.dynamics.value;  // run by the distance travelled
+            state.lateral_profile->odometer_start = state.odometer;
+          }
           take_over(MotionDomain::Lateral, duration > 0, false);
           if (duration <= 0) {
             state.offset = end_offset;
@@ -291,10 +295,13 @@ std::vector<std::string> start_action(const PrivateAction& action, const std::st
             // Its speed for the coming step is set now, as every other action started now acts
             // from the coming step on (a SpeedAction's profile starts now); it is kept from the
             // end of each step on (update_running_actions). Before the first step (no step
-            // size yet: Init, or an event at 0 s) the first step's end sets it.
+            // size yet: Init, or an event at 0 s) the first step's start sets it.
             if (!running.empty() && running.back().entity == entity && running.back().spec == &action) {
               running.back().distance_acceleration = state.acceleration;
-              if (ctx.dt > 0) (void)approach_distance(a, state, ctx, entity, running.back().distance_acceleration);
+              if (ctx.dt > 0)
+                (void)approach_distance(a, state, ctx, entity, running.back().distance_acceleration);
+              else
+                running.back().distance_unstepped = true;  // step_unstepped_distances, at the first step
             }
           } else {
             longitudinal_distance(a, state, ctx, entity);
@@ -447,9 +454,7 @@ std::vector<std::string> update_running_actions(ActionContext& ctx, std::vector<
         state.speed = state.speed_profile->to;
         state.speed_profile.reset();
         done = !it->continuous;
-      } else if (!state.speed_profile && it->continuous) {
-        state.speed = target_speed(std::get<SpeedAction>(*it->spec), ctx);  // follows the reference
-      }
+      }  // a relative target follows its reference before each move (follow_relative_speeds)
     } else if (it->domain == MotionDomain::Route) {
       count_passed_waypoints(state, ctx.roads);
       done = !state.placed || state.route_passed >= state.route.size();
@@ -471,7 +476,8 @@ std::vector<std::string> update_running_actions(ActionContext& ctx, std::vector<
         state.pose.heading = heading;
         done = true;
       }
-    } else if (state.lateral_profile && state.lateral_profile->done(state.lateral_profile->clock(ctx.t, ctx.dt))) {
+    } else if (state.lateral_profile &&
+               state.lateral_profile->done(state.lateral_profile->clock(ctx.t, ctx.dt, state.odometer))) {
       state.offset = state.lateral_profile->to;
       state.lateral_profile.reset();
       state.lateral_rate = 0;
