@@ -423,6 +423,19 @@ TEST_F(StoryboardActions, LongitudinalDistanceEndsWhenTheDistanceIsReached) {
   EXPECT_GT(entity("A").speed - entity("B").speed, 0.1);
 }
 
+// A speed change over a distance is no steeper than the vehicle's Performance allows, as one
+// in a time: 15 to 35 m/s "cubic over 40 m" is 1.6 s at the mean speed, peaking at
+// 18.75 m/s^2; the car of 10 m/s^2 takes 3 s (as esmini stretches it).
+TEST_F(StoryboardActions, ASpeedChangeOverADistanceKeepsWithinThePerformance) {
+  load(object("A"), place("A", 10, -1, 15),
+       event("Faster", R"(<LongitudinalAction><SpeedAction><SpeedActionDynamics dynamicsShape="cubic" dynamicsDimension="distance" value="40"/>
+<SpeedActionTarget><AbsoluteTargetSpeed value="35"/></SpeedActionTarget></SpeedAction></LongitudinalAction>)",
+             at_time(1)));
+  test::run_until(*runtime_, 6);
+  EXPECT_NEAR(first("FasterAction", "endTransition"), 1 + 3.0, 0.051);
+  EXPECT_NEAR(entity("A").speed, 35, 1e-9);
+}
+
 TEST_F(StoryboardActions, ElementsNotRunAreErrorsNamingThem) {
   EXPECT_NE(load_error(event("Profile", R"(<LongitudinalAction><SpeedProfileAction followingMode="position"/></LongitudinalAction>)", at_time(1)))
                 .find("a SpeedProfileAction needs at least one SpeedProfileEntry"),  // read and run (1.2)
