@@ -114,12 +114,20 @@ double target_speed(const SpeedAction& a, ActionContext& ctx) {
 // physical limit. At a rate, the rate is capped (acc-test.xosc asks a car of maxAcceleration
 // 5 m/s^2 for 10 m/s^2); in a time, the transition keeps its shape and takes as long as its
 // steepest point needs (lane_change_simple.xosc: 0 to 25 m/s "cubic in 4 s" peaks at
-// 9.4 m/s^2, so the car of 5 m/s^2 takes 7.5 s). esmini does both the same way.
-TransitionDynamics within_performance(TransitionDynamics dynamics, const Entity* entity, double change) {
+// 9.4 m/s^2, so the car of 5 m/s^2 takes 7.5 s); over a distance, the time the distance
+// gives at the mean of the two speeds is stretched the same way (a car of 4 m/s^2 asked for
+// 15 to 25 m/s "cubic over 60 m", 3 s, takes 3.75 s). esmini does all three the same way.
+TransitionDynamics within_performance(TransitionDynamics dynamics, const Entity* entity, double from, double to) {
+  const double change = to - from;
   if (entity == nullptr || !entity->performance || dynamics.shape == DynamicsShape::Step) return dynamics;
   const double limit = change >= 0 ? entity->performance->max_acceleration : entity->performance->max_deceleration;
   if (limit <= 0) return dynamics;
   if (dynamics.dimension == DynamicsDimension::Rate) dynamics.value = std::min(dynamics.value, limit);
+  if (dynamics.dimension == DynamicsDimension::Distance && dynamics.value > 0) {
+    const double needed = std::abs(change) * peak_slope(dynamics.shape) / limit;
+    if (transition_duration(dynamics, change, from, to) < needed)
+      dynamics = TransitionDynamics{dynamics.shape, DynamicsDimension::Time, needed};
+  }
   // A time of 0 asks for a jump (override_bb.xosc sets its start speed so): not stretched.
   if (dynamics.dimension == DynamicsDimension::Time && dynamics.value > 0)
     dynamics.value = std::max(dynamics.value, std::abs(change) * peak_slope(dynamics.shape) / limit);
@@ -234,7 +242,7 @@ std::vector<std::string> start_action(const PrivateAction& action, const std::st
         } else if constexpr (std::is_same_v<T, SpeedAction>) {
           const double to = target_speed(a, ctx);
           const double duration =
-              transition_duration(within_performance(a.dynamics, ctx.scenario.entity(entity), to - state.speed),
+              transition_duration(within_performance(a.dynamics, ctx.scenario.entity(entity), state.speed, to),
                                   to - state.speed, state.speed, to);
           const bool continuous = std::holds_alternative<RelativeTargetSpeed>(a.target) &&
                                   std::get<RelativeTargetSpeed>(a.target).continuous;
@@ -263,6 +271,10 @@ std::vector<std::string> start_action(const PrivateAction& action, const std::st
           state.lane = target;
           state.offset = start_offset;
           state.lateral_profile = LateralProfile{ctx.t, duration, start_offset, end_offset, a.dynamics.shape};
+          if (a.dynamics.dimension == DynamicsDimension::Distance && duration > 0) {
+            state.lateral_profile->distance = a.dynamics.value;  // run by the distance travelled
+            state.lateral_profile->odometer_start = state.odometer;
+          }
           take_over(MotionDomain::Lateral, duration > 0, false);
           if (duration <= 0) {
             state.offset = end_offset;
@@ -291,10 +303,13 @@ std::vector<std::string> start_action(const PrivateAction& action, const std::st
             // Its speed for the coming step is set now, as every other action started now acts
             // from the coming step on (a SpeedAction's profile starts now); it is kept from the
             // end of each step on (update_running_actions). Before the first step (no step
-            // size yet: Init, or an event at 0 s) the first step's end sets it.
+            // size yet: Init, or an event at 0 s) the first step's start sets it.
             if (!running.empty() && running.back().entity == entity && running.back().spec == &action) {
               running.back().distance_acceleration = state.acceleration;
-              if (ctx.dt > 0) (void)approach_distance(a, state, ctx, entity, running.back().distance_acceleration);
+              if (ctx.dt > 0)
+                (void)approach_distance(a, state, ctx, entity, running.back().distance_acceleration);
+              else
+                running.back().distance_unstepped = true;  // step_unstepped_distances, at the first step
             }
           } else {
             longitudinal_distance(a, state, ctx, entity);
@@ -447,9 +462,7 @@ std::vector<std::string> update_running_actions(ActionContext& ctx, std::vector<
         state.speed = state.speed_profile->to;
         state.speed_profile.reset();
         done = !it->continuous;
-      } else if (!state.speed_profile && it->continuous) {
-        state.speed = target_speed(std::get<SpeedAction>(*it->spec), ctx);  // follows the reference
-      }
+      }  // a relative target follows its reference before each move (follow_relative_speeds)
     } else if (it->domain == MotionDomain::Route) {
       count_passed_waypoints(state, ctx.roads);
       done = !state.placed || state.route_passed >= state.route.size();
@@ -471,7 +484,8 @@ std::vector<std::string> update_running_actions(ActionContext& ctx, std::vector<
         state.pose.heading = heading;
         done = true;
       }
-    } else if (state.lateral_profile && state.lateral_profile->done(state.lateral_profile->clock(ctx.t, ctx.dt))) {
+    } else if (state.lateral_profile &&
+               state.lateral_profile->done(state.lateral_profile->clock(ctx.t, ctx.dt, state.odometer))) {
       state.offset = state.lateral_profile->to;
       state.lateral_profile.reset();
       state.lateral_rate = 0;

@@ -73,6 +73,7 @@ struct RunningAction {
   std::optional<SpeedProfileRun> speed_profile;  // a SpeedProfileAction's segments and progress
   LateralDistanceRun lateral_distance;            // a LateralDistanceAction's distance kept, its speed
   double distance_acceleration = 0;              // a LongitudinalDistanceAction's last acceleration (its jerk limits)
+  bool distance_unstepped = false;  // a LongitudinalDistanceAction started before the first step (no step size yet)
   bool synchronized = false;  // a SynchronizeAction done (steer_synchronize, before the step's move)
 };
 
@@ -88,6 +89,26 @@ std::vector<std::string> start_action(const PrivateAction& action, const std::st
 // the move, it lagged one step behind, 0.15 m at 0.5 s for an NPC starting from standstill in
 // esmini's synchronize.xosc).
 void steer_synchronize(ActionContext& ctx, std::vector<RunningAction>& running);
+
+// Before the entities move to ctx.t: the first speed of each LongitudinalDistanceAction with
+// DynamicConstraints started before the first step (Init, or an event at 0 s: no step size
+// to limit the change over then), so that it moves the entity in the first step already, as
+// one started later moves it in the step after its start (esmini's distance_test.xosc: the
+// Dummy 15.25 m/s in the first step, not 15; 0.126 m at 0.5 s when it waited a step).
+void step_unstepped_distances(ActionContext& ctx, std::vector<RunningAction>& running);
+
+// Before the entities move to ctx.t: each SpeedAction with a RelativeTargetSpeed takes its
+// target from the reference entity's speed, during its transition (the shape runs towards it)
+// and, continuous, after it (the entity moves at it): the reference's speed in this step when
+// the reference is declared before the entity in Entities, in the step before otherwise. The
+// standard gives the target "relative to the speed of the reference entity", not when it is
+// taken; this is esmini's, which takes it every step, continuous or not, and steps the
+// entities in their declared order (measured with scenarios/openscenario/
+// condition_combinations.xosc: a car reaching a lead's 20 m/s in 3 s while the lead brakes to
+// 14 m/s arrives at 14 m/s, where a target taken at the start left it at 20 and a continuous
+// one then jumped 6 m/s in one step; a follower declared after its reference moves with the
+// reference's new speed in the same step, one declared before it a step later).
+void follow_relative_speeds(ActionContext& ctx, std::vector<RunningAction>& running);
 
 // After the entities moved to ctx.t: ends the actions whose motion is done (returns their
 // names once no actor of theirs is still running them) and keeps continuous ones on target.

@@ -85,8 +85,11 @@ void longitudinal_distance(const LongitudinalDistanceAction& a, EntityState& sta
 // maxDecelerationRate bounds how fast it falls; easing off (an acceleration falling towards
 // a smaller one, a deceleration rising towards a smaller one) is not bounded.
 // Always within the acceleration limits and [0, maxSpeed], each capped by the vehicle's
-// Performance. True once within kDistanceReached m and m/s of the target and the referenced
-// speed.
+// Performance. True once within kDistanceReached m of the target: the standard ends a
+// non-continuous one when the distance is reached (its speed need not be the referenced one
+// yet), as esmini (distance_test.xosc: ended 0.094 m from the distance, 0.147 m/s faster than
+// the referenced car; measured on four more distances and limits, always as the distance
+// falls below 0.1 m).
 constexpr double kDistanceReached = 0.1;
 constexpr double kSpringPerAcceleration = 0.4;  // esmini's spring constant, 1/m
 bool approach_distance(const LongitudinalDistanceAction& a, EntityState& state, ActionContext& ctx,
@@ -131,7 +134,7 @@ bool approach_distance(const LongitudinalDistanceAction& a, EntityState& state, 
     acceleration = change;  // the law's, the next step's jerk limits start from it (as esmini's)
     state.acceleration = (state.speed - before) / ctx.dt;
   }
-  return std::abs(error) <= kDistanceReached && std::abs(state.speed - v_ref) <= kDistanceReached;
+  return std::abs(error) < kDistanceReached;
 }
 
 }  // namespace orch::openscenario

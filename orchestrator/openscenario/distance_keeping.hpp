@@ -16,7 +16,7 @@ void check_distance_entities(const LongitudinalDistanceAction& a, const EntitySt
 void longitudinal_distance(const LongitudinalDistanceAction& a, EntityState& state, ActionContext& ctx,
                            const std::string& entity);
 // With them: the speed for the coming step towards the distance; true once there (within
-// 0.1 m and 0.1 m/s). `acceleration`: the one of the step before, its jerk limits' start
+// 0.1 m, whatever the speed). `acceleration`: the one of the step before, its jerk limits' start
 // (updated).
 bool approach_distance(const LongitudinalDistanceAction& a, EntityState& state, ActionContext& ctx,
                        const std::string& entity, double& acceleration);

@@ -146,9 +146,10 @@ void move_one_step(EntityState& state, const opendrive::RoadNetwork& roads, doub
   state.acceleration = dt > 0 ? (state.speed - previous_speed) / dt : 0.0;
   state.lateral_rate = 0.0;
   if (state.lateral_profile) {
-    const double clock = state.lateral_profile->clock(t, dt);
+    // By distance: where the step's travel takes the entity's odometer.
+    const double clock = state.lateral_profile->clock(t, dt, state.odometer + std::abs(state.speed) * dt);
     state.offset = state.lateral_profile->at(clock);
-    state.lateral_rate = state.lateral_profile->rate(clock);
+    state.lateral_rate = state.lateral_profile->rate_at(clock, state.speed);
   }
   // Standing still, nothing moves it: it keeps its pose, also a heading across its lane that
   // its position's Orientation gave it (a parked car, esmini's parking_demo.xosc, faces the

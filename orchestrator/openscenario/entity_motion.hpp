@@ -1,4 +1,5 @@
 #pragma once
+#include <cmath>
 // How the storyboard moves a scripted entity, in the OpenDRIVE road frame: along its lane
 // at the speed its speed profile gives, shifted laterally by lane changes and lane offsets.
 // The speed is the speed along the path: during a lateral shift the progress along s is
@@ -34,11 +35,24 @@ struct LateralProfile {
   // OSC-ALKS 4.1_2 chains four sinusoidal swerves by endTransition; each takes one step
   // more than its duration in esmini.
   bool lane_offset = false;
+  // A LaneChangeAction whose dynamicsDimension is distance: its shape runs over `distance`
+  // metres travelled from `odometer_start` (the entity's odometer then), whatever its speed
+  // on the way (a slowing car takes longer); `duration` is the distance at its speed at the
+  // start, the clock's scale. 0: the shape runs in time.
+  double distance = 0, odometer_start = 0;
   [[nodiscard]] double at(double t) const;
-  [[nodiscard]] double rate(double t) const;  // m/s, positive to the left of the road
+  [[nodiscard]] double rate(double t) const;  // m/s of the clock, positive to the left of the road
   [[nodiscard]] bool done(double t) const { return t - start >= duration - 1e-9; }
-  // The time on the shape's clock at t, after a step of dt.
-  [[nodiscard]] double clock(double t, double dt) const { return lane_offset ? t - dt : t; }
+  // The time on the shape's clock at t, after a step of dt that brought the entity's
+  // odometer to `odometer`.
+  [[nodiscard]] double clock(double t, double dt, double odometer) const {
+    if (distance > 0) return start + duration * (odometer - odometer_start) / distance;
+    return lane_offset ? t - dt : t;
+  }
+  // The lateral speed (m/s) at clock time c for an entity at `speed`.
+  [[nodiscard]] double rate_at(double c, double speed) const {
+    return distance > 0 && duration > 0 ? rate(c) * std::abs(speed) * duration / distance : rate(c);
+  }
 };
 
 struct EntityState {

@@ -11,8 +11,9 @@
 // for, "left" and "right" as seen in the other entity's direction of travel; "any" keeps the
 // side the entity is on. Without a distance the one at the start is kept. Without
 // DynamicConstraints the entity is put there at once; with them it moves there with a
-// lateral speed up to maxSpeed, sped up by at most maxAcceleration and slowed by at most
-// maxDeceleration (braking in time to stop on the target).
+// lateral speed up to maxSpeed: with maxAcceleration by esmini's damped spring (within
+// +-maxAcceleration, slowing within maxDeceleration), without it straight at up to maxSpeed,
+// slowed by at most maxDeceleration (braking in time to stop on the target).
 #include <optional>
 #include <string>
 

@@ -289,6 +289,8 @@ void StoryboardRuntime::Impl::step(double dt) {
   lane_change_motion_order();
   ActionContext ctx = context();
   steer_synchronize(ctx, running);  // its speed moves the entity in this step
+  step_unstepped_distances(ctx, running);  // as theirs (the first step)
+  follow_relative_speeds(ctx, running);    // the reference's speed in this step
   for (auto& [name, state] : entities)
     if (!is_towed(trailers, name)) advance(state, roads, t, dt);  // a towed trailer only follows its bar
   pull_trailers(scenario, entities, trailers, roads, dt);

@@ -84,6 +84,21 @@ TEST_F(DistanceKeeping, ItActsFromTheStepAfterItsStart) {
   EXPECT_NEAR(entity("A").s - s, (10 + 2 * kStep) * kStep, 1e-9);
 }
 
+// Started at 0 s (no step size before the first step): the speed stays as it is until the
+// first step, which sets it within the limits (no jump to the spring's pull of 0.4 * 2 * 70
+// m/s^2) and moves A with it, as one started later moves in the step after its start
+// (esmini's distance_test.xosc: 0.126 m behind at 0.5 s when it waited a step).
+TEST_F(DistanceKeeping, StartedAtZeroItActsFromTheFirstStep) {
+  load(110, keep_distance(30, R"(maxAcceleration="2" maxDeceleration="3" maxSpeed="20")", 0));
+  ASSERT_FALSE(test::transition_times(*runtime_, "KeepAction", "startTransition").empty());
+  EXPECT_DOUBLE_EQ(entity("A").speed, 10.0);
+  const double s = entity("A").s;
+  runtime_->step(kStep);
+  EXPECT_NEAR(entity("A").s - s, (10 + 2 * kStep) * kStep, 1e-9);
+  runtime_->step(kStep);
+  EXPECT_NEAR(entity("A").s - s, (10 + 2 * kStep) * kStep + (10 + 4 * kStep) * kStep, 1e-9);
+}
+
 // The same with jerk limits of 1 m/s^3, read as esmini reads them: while the law asks for an
 // acceleration, it rises by at most 0.05 m/s^2 a step; while it asks for a deceleration, it
 // falls by at most that; easing off is not bounded (the law's 2 m/s^2 drops by more than
@@ -175,17 +190,6 @@ TEST_F(DistanceKeeping, TheSpringSettlesAtTheDistanceWithoutSwinging) {
   EXPECT_GT(closest, 30.0 - 0.5);
   EXPECT_NEAR(entity("B").s - entity("A").s, 30.0, 0.1);
   EXPECT_NEAR(entity("A").speed, 10.0, 0.1);
-}
-
-// Started before the first step (at 0 s: no step size yet), the speed stays as it is until
-// the first step's end, and then changes within the limits (no jump to the spring's pull of
-// 0.4 * 3 * 70 m/s^2).
-TEST_F(DistanceKeeping, StartedBeforeTheFirstStepTheSpeedDoesNotJump) {
-  load(110, keep_distance(30, R"(maxAcceleration="2" maxDeceleration="3" maxSpeed="40")", 0));
-  ASSERT_FALSE(test::transition_times(*runtime_, "KeepAction", "startTransition").empty());
-  EXPECT_DOUBLE_EQ(entity("A").speed, 10.0);
-  runtime_->step(kStep);
-  EXPECT_NEAR(entity("A").speed, 10 + 2 * kStep, 1e-9);
 }
 
 TEST_F(DistanceKeeping, ARateThatIsNotPositiveIsAnError) {

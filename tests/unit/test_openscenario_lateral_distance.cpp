@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <map>
 
 #include "opendrive/xodr_reader.hpp"
 #include "openscenario/lateral_distance.hpp"
@@ -20,16 +21,41 @@ using test::run_until;
 using test::transition_times;
 using test::vehicle;
 
-TEST(LateralSpeedStep, LimitsTheSpeedItsChangeAndBrakesToStopOnTheTarget) {
+TEST(LateralSpeedStep, WithoutMaxAccelerationLimitsTheSpeedAndBrakesToStopOnTheTarget) {
   EXPECT_DOUBLE_EQ(lateral_speed_step(1.0, 0, 0.05, std::nullopt, std::nullopt, std::nullopt), 20.0);  // at once
   EXPECT_DOUBLE_EQ(lateral_speed_step(1.0, 0, 0.05, 2.0, std::nullopt, std::nullopt), 2.0);
   EXPECT_DOUBLE_EQ(lateral_speed_step(-1.0, 0, 0.05, 2.0, std::nullopt, std::nullopt), -2.0);
-  EXPECT_NEAR(lateral_speed_step(1.0, 0, 0.05, 2.0, 4.0, 4.0), 0.2, 1e-12);          // speeding up: 4 m/s^2
-  EXPECT_NEAR(lateral_speed_step(1.0, 1.9, 0.05, 2.0, 4.0, 4.0), 2.0, 1e-12);
   // 0.02 m left at 1 m/s: braking at 4 m/s^2 stops within sqrt(2 * 4 * 0.02) = 0.4 m/s; one step brakes by 0.2.
-  EXPECT_NEAR(lateral_speed_step(0.02, 1.0, 0.05, 2.0, 4.0, 4.0), 0.8, 1e-12);
+  EXPECT_NEAR(lateral_speed_step(0.02, 1.0, 0.05, 2.0, std::nullopt, 4.0), 0.8, 1e-12);
   // Moving away from the target: braking (the deceleration limit) before turning back.
-  EXPECT_NEAR(lateral_speed_step(1.0, -1.0, 0.05, 2.0, 10.0, 4.0), -0.8, 1e-12);
+  EXPECT_NEAR(lateral_speed_step(1.0, -1.0, 0.05, 2.0, std::nullopt, 4.0), -0.8, 1e-12);
+}
+
+TEST(LateralSpeedStep, WithMaxAccelerationIsADampedSpringWithinTheLimits) {
+  // k = 0.4 x 5 = 2 1/s^2: 4 m away asks for 8 m/s^2, limited to 5.
+  EXPECT_NEAR(lateral_speed_step(4.0, 0, 0.05, 3.0, 5.0, std::nullopt), 0.25, 1e-12);
+  EXPECT_NEAR(lateral_speed_step(10.0, 2.9, 0.05, 3.0, 5.0, std::nullopt), 3.0, 1e-12);  // maxSpeed
+  // 1 m away at 1 m/s: 2 x 1 - 2 sqrt(2) x 1 = -0.828 m/s^2, it eases in before the target.
+  EXPECT_NEAR(lateral_speed_step(1.0, 1.0, 0.05, std::nullopt, 5.0, std::nullopt), 1 - 0.05 * (2 * std::sqrt(2.0) - 2),
+              1e-12);
+  // Slowing down stays within maxDeceleration (esmini ignores it): -7.66 -> -5 -> -1 m/s^2.
+  EXPECT_NEAR(lateral_speed_step(-1.0, 2.0, 0.05, 3.0, 5.0, 1.0), 1.95, 1e-12);
+}
+
+TEST(LateralSpeedStep, FollowsEsminisLateralPositions) {
+  // esmini 3.6 (--fixed_timestep 0.05), straight_500m.xodr: the entity at t = 1.535 keeps
+  // 4 m to the right of one at t = -1.535 (target -5.535), maxSpeed 3, maxAcceleration 5,
+  // from 1.10 s; esmini's t (its CSV, to the mm) at 2.5, 3.0 and 4.0 s.
+  double t = 1.535, speed = 0;
+  std::map<int, double> at_step;
+  for (int step = 1; step <= 58; ++step) {
+    speed = lateral_speed_step(-5.535 - t, speed, 0.05, 3.0, 5.0, std::nullopt);
+    t += speed * 0.05;
+    at_step[step] = t;
+  }
+  EXPECT_NEAR(at_step[28], -1.834, 0.0015);
+  EXPECT_NEAR(at_step[38], -3.130, 0.0015);
+  EXPECT_NEAR(at_step[58], -4.643, 0.0015);
 }
 
 // Road 0 along +x, three lanes to the right: centres at t = -1.75, -5.25, -8.75.
@@ -101,10 +127,11 @@ TEST_F(LateralDistance, TheLateralSpeedBuildsUpStepByStepWithinMaxAcceleration) 
           <DynamicConstraints maxSpeed="3.0" maxAcceleration="2.0" maxDeceleration="2.0"/></LateralDistanceAction>)");
   run_until(*runtime_, 1.05);
   const double before = t_of("A");
-  // Moving from 1.10 s: after 0.5 s at 2 m/s^2 (10 steps, each 0.1 m/s faster) it has gone
-  // 0.005 (1 + 2 + ... + 10) = 0.275 m; a speed lost between the steps would give 10 x 0.005 m.
-  run_until(*runtime_, 1.55);
-  EXPECT_NEAR(t_of("A") - before, 0.275, 1e-9);
+  // Moving from 1.10 s, 4 m from the target: the spring (k = 0.8) asks for more than 2 m/s^2
+  // for the first 5 steps, each 0.1 m/s faster: 0.005 (1 + 2 + 3 + 4 + 5) = 0.075 m; a speed
+  // lost between the steps would give 5 x 0.005 m.
+  run_until(*runtime_, 1.30);
+  EXPECT_NEAR(t_of("A") - before, 0.075, 1e-9);
 }
 
 TEST_F(LateralDistance, MovingSidewaysTakesItsShareOfTheSpeedAlongTheLane) {
