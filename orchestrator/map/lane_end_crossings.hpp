@@ -11,16 +11,14 @@
 //
 // For such a lane end (only those: every other net keeps its bytes) the lane is extended
 // kLaneEndOverlap straight into the junction, so that the shape crosses it there for certain
-// and netconvert cuts it back to where it was planned to end; where the lane end is a corner
-// of the shape (an uncut tree's leaf), that corner becomes a short bar across the lane, so
-// that the crossing lies inside one of the shape's sides.
+// and netconvert cuts it back to where it was planned to end. Where the lane end is a corner
+// of the shape (an uncut tree's leaf), nothing changes (lane_end_crossings.cpp says why).
 #include "map/net_plan.hpp"
 
 namespace orch {
 
 inline constexpr double kLaneEndOverlap = 0.05;  // m: well above the plain XML's 0.1 mm, below kMaxShapeCut
 inline constexpr double kNetconvertExtrapolation = 100.0;  // m: NBEdge::startShapeAt's lb.extrapolate2D(100)
-inline constexpr double kLaneEndBarHalf = 0.25;  // m each side of the lane's centre line
 
 // Whether netconvert's straight extension beyond the far end of `lane` (the end away from
 // the junction; `incoming`: the lane ends at the junction) crosses the closed `shape`.
