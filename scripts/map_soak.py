@@ -5,7 +5,9 @@ scripts/city_waypoints.py, one test process per seed, and prints the failing see
 with the command that reproduces each. A failing seed, once fixed, goes into the test's
 fixed seed set as a regression fixture.
 
-Usage: scripts/map_soak.py [--seeds 1-200] [--jobs 2] [--build build]
+Usage: scripts/map_soak.py [--seeds 1-200] [--jobs 2] [--build build] [--scripted]
+           --scripted: also drive every route by an orchestrator-scripted actor
+           (tests/integration/test_generated_city_scripted.cpp) on every seed
        scripts/map_soak.py --measure [--scales 1,2,4,10] [--build build]
            times `orchestrator map build` on generated maps of growing size (figures for docs/maps.md)
 Exit status 1 when any seed fails."""
@@ -27,6 +29,10 @@ KINDS = [  # (kind, pattern in the test's output), first match wins
     ("build refused the map", r"map build refused the map"),
     ("route not one connected path", r"cannot be driven as one connected path"),
     ("waypoint off its lane", r"m from lane"),
+    # the scripted test (--scripted): the assertion's own text, not the run log it prints
+    ("scripted run did not reach its end", r'log\.find\("ending scene 2"\)'),
+    ("scripted actor off its route's lanes", r'log\.find\("SUMO placed actor"\)'),
+    ("scripted actor not at its last waypoint", r"the actor of route"),
     ("lanes not connected in drawn order", r" -> "),
     ("degenerate lane", r": lane .* Expected: \(l.length\)"),
     ("vehicle teleported or did not arrive", r"d\.(teleports|running|inserted|loaded)"),
@@ -46,10 +52,11 @@ def parse_seeds(text):
     return out
 
 
-def run_seed(binary, seed):
+def run_seed(binary, seed, scripted=False):
     env = dict(os.environ, ORCH_CITY_SEEDS=str(seed))
     t0 = time.monotonic()
-    p = subprocess.run([binary, "--gtest_filter=Seeds/GeneratedCityMaps.*"], env=env, cwd=ROOT,
+    tests = "Seeds/GeneratedCityMaps.*" + (":Scripted/ScriptedCityDrives.*" if scripted else "")
+    p = subprocess.run([binary, "--gtest_filter=" + tests], env=env, cwd=ROOT,
                        stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
     elapsed = time.monotonic() - t0
     if p.returncode == 0:
@@ -68,7 +75,7 @@ def soak(args):
     failures = {}
     times = []
     with ThreadPoolExecutor(max_workers=args.jobs) as pool:
-        for seed, kind, elapsed, out in pool.map(lambda s: run_seed(binary, s), seeds):
+        for seed, kind, elapsed, out in pool.map(lambda s: run_seed(binary, s, args.scripted), seeds):
             times.append(elapsed)
             status = "ok" if kind is None else "FAIL: " + kind
             print(f"seed {seed}: {status} ({elapsed:.1f} s)", flush=True)
@@ -138,6 +145,8 @@ def main():
     ap.add_argument("--jobs", type=int, default=2)
     ap.add_argument("--build", default="build")
     ap.add_argument("--verbose", action="store_true", help="print the test output of failing seeds")
+    ap.add_argument("--scripted", action="store_true",
+                    help="also drive every route by an orchestrator-scripted actor (orchestrator run on libsumo)")
     ap.add_argument("--measure", action="store_true")
     ap.add_argument("--scales", default="1,2,3,4")
     ap.add_argument("--seed", type=int, default=1, help="--measure: the seed of every size")

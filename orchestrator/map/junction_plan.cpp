@@ -14,6 +14,7 @@
 #include "map/junction_pieces.hpp"
 #include "map/junction_shape.hpp"
 #include "map/junction_zones.hpp"
+#include "map/lane_end_crossings.hpp"
 
 namespace orch {
 
@@ -346,6 +347,7 @@ NetPlan plan_net(const WaypointFile& waypoints, const NetPlanSettings& settings,
     } catch (const CorridorCutError& e) {
       throw name_waypoint(e, waypoints.routes[e.line()]);
     }
+    secure_lane_end_crossings(plan);
     return plan;
   }
   WaypointFile lines;
@@ -365,6 +367,7 @@ NetPlan plan_net(const WaypointFile& waypoints, const NetPlanSettings& settings,
     throw name_waypoint(e, waypoints.routes[pieces.pieces[e.line()].route]);
   }
   JunctionPlanner(waypoints, pieces, zones.count, junctions).plan(plan);
+  secure_lane_end_crossings(plan);  // last: after every node's shape
   if (pieces.merged > 0)
     plan.notes.push_back(fmt::format("{} stretches of routes drawn along another route's lane share its lane",
                                      pieces.merged));

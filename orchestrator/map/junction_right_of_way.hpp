@@ -1,5 +1,6 @@
 #pragma once
-// Right of way between two lanes of one road whose connections cross inside a junction.
+// Right of way that netconvert 1.15 leaves deadlocked: two lanes of one road whose connections
+// cross inside a junction, and links that yield to each other in a cycle.
 #include <string>
 #include <vector>
 
@@ -18,6 +19,10 @@ namespace orch {
 // it then yields to nothing, its state becomes major ("M", as netconvert writes it). Only
 // the affected attributes change (same length, so the rest of the file keeps its bytes).
 // One line per resolved pair is added to `notes`.
+// Also, on priority junctions: links that yield to each other in a cycle (A to B, B to C, C to
+// A; seed 449's J0, five approaches each waiting for the next) are put in one order, the link
+// yielding to the fewest first, a yield against that order turned round (junction_right_of_way.cpp,
+// break_yield_cycles); one note per cycle.
 std::string without_mutual_yields(std::string net, std::vector<std::string>& notes);
 
 }  // namespace orch
