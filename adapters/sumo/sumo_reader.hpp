@@ -3,7 +3,8 @@
 // cost does not grow with the background traffic (docs/performance.md):
 //   - the simulation: time, the vehicles and persons that departed, how many arrived and
 //     whether any collided (the running count is kept from departures and arrivals:
-//     Vehicle::getIDCount builds the list of every vehicle id, O(n) each step);
+//     Vehicle::getIDCount builds the list of every vehicle id, O(n) each step); on libsumo
+//     by their getters right after the step;
 //   - each scenario actor, once SUMO has inserted it: its pose and lane (on libsumo a
 //     vehicle's by its getters right after the step, read_vehicle; a person's and every
 //     actor's over TraCI by a subscription);
@@ -66,7 +67,7 @@ std::string text(const sumo::TraCIResults& r, int var) {
   if (const auto* s = dynamic_cast<const sumo::TraCIString*>(it->second.get())) return s->value;
   return it->second->getString();
 }
-std::vector<std::string> strings(const sumo::TraCIResults& r, int var) {
+[[maybe_unused]] std::vector<std::string> strings(const sumo::TraCIResults& r, int var) {  // libtraci
   const auto it = r.find(var);
   if (it == r.end()) return {};
   if (const auto* l = dynamic_cast<const sumo::TraCIStringList*>(it->second.get())) return l->value;
@@ -88,17 +89,14 @@ class WorldReader {
   // Once, after SUMO started and before the first step.
   void start() {
     contexts::shared_contexts().reset();
-#ifdef LIBTRACI
-    const std::vector<int> vars = {tc::VAR_TIME, tc::VAR_DEPARTED_VEHICLES_IDS, tc::VAR_ARRIVED_VEHICLES_NUMBER,
-                                   tc::VAR_COLLIDING_VEHICLES_NUMBER};
-#else
-    // The arrivals by id: scenario vehicles are read directly, not through a subscription
-    // that SUMO would empty when they leave (read_vehicle).
-    const std::vector<int> vars = {tc::VAR_TIME, tc::VAR_DEPARTED_VEHICLES_IDS, tc::VAR_ARRIVED_VEHICLES_IDS,
-                                   tc::VAR_COLLIDING_VEHICLES_NUMBER};
-#endif
     gone_.clear();
-    sumo::Simulation::subscribe(vars);
+#ifdef LIBTRACI
+    sumo::Simulation::subscribe(std::vector<int>{tc::VAR_TIME, tc::VAR_DEPARTED_VEHICLES_IDS,
+                                                 tc::VAR_ARRIVED_VEHICLES_NUMBER, tc::VAR_COLLIDING_VEHICLES_NUMBER});
+#endif
+    // On libsumo the simulation's values are read by their getters right after the step
+    // (after_step), the calls SUMO's subscription would make there, without wrapping each
+    // value in a result object every step.
     edges_.clear();
     for (const auto& e : sumo::Edge::getIDList())
       if (e.empty() || e.front() != ':') edges_.push_back(e);
@@ -117,16 +115,21 @@ class WorldReader {
   // After every step (whether or not the step is read): departures and arrivals are only
   // reported for the step that just ran.
   void after_step() {
+#ifdef LIBTRACI
     const sumo::TraCIResults simulation = sumo::Simulation::getSubscriptionResults();
     time_ = number(simulation, tc::VAR_TIME);
     const auto departed = strings(simulation, tc::VAR_DEPARTED_VEHICLES_IDS);
-#ifdef LIBTRACI
     running_ += static_cast<long long>(departed.size()) - integer(simulation, tc::VAR_ARRIVED_VEHICLES_NUMBER);
-#else
-    const auto arrived = strings(simulation, tc::VAR_ARRIVED_VEHICLES_IDS);
-    running_ += static_cast<long long>(departed.size()) - static_cast<long long>(arrived.size());
-#endif
     colliding_ = integer(simulation, tc::VAR_COLLIDING_VEHICLES_NUMBER);
+#else
+    time_ = sumo::Simulation::getTime();
+    const auto departed = sumo::Simulation::getDepartedIDList();
+    // The arrivals by id: scenario vehicles are read directly, not through a subscription
+    // that SUMO would empty when they leave (read_vehicle).
+    const auto arrived = sumo::Simulation::getArrivedIDList();
+    running_ += static_cast<long long>(departed.size()) - static_cast<long long>(arrived.size());
+    colliding_ = sumo::Simulation::getCollidingVehiclesNumber();
+#endif
     for (const auto& id : departed) {
       if (actor_kind_.count(id)) follow(id, false);
       else if (traffic_.count(id)) follow_traffic(id);
