@@ -3,13 +3,17 @@
 // cost does not grow with the background traffic (docs/performance.md):
 //   - the simulation: time, the vehicles and persons that departed, how many arrived and
 //     whether any collided (the running count is kept from departures and arrivals:
-//     Vehicle::getIDCount builds the list of every vehicle id, O(n) each step);
+//     Vehicle::getIDCount builds the list of every vehicle id, O(n) each step); on libsumo
+//     by their getters right after the step;
 //   - each scenario actor, once SUMO has inserted it: its pose and lane (on libsumo a
 //     vehicle's by its getters right after the step, read_vehicle; a person's and every
 //     actor's over TraCI by a subscription);
 //   - around each actor, a context subscription: the vehicles within kNearbyRange of it
 //     (SUMO finds them through its lane tree, looking only at lanes near the actor; the
-//     subscription is shared with an ego plug-in's, sumo_contexts.hpp).
+//     subscription is shared with an ego plug-in's, sumo_contexts.hpp). On libsumo it is
+//     made only once SUMO holds a vehicle that is not a scenario actor (contexts_needed):
+//     until then every context holds actors only, which the reader drops, and SUMO would
+//     search its lanes around every actor after every step for nothing.
 // On libsumo subscription results are computed in-process after each step; on libtraci
 // they arrive with the answer to the step command, so reading costs no extra round trip.
 //
@@ -63,7 +67,7 @@ std::string text(const sumo::TraCIResults& r, int var) {
   if (const auto* s = dynamic_cast<const sumo::TraCIString*>(it->second.get())) return s->value;
   return it->second->getString();
 }
-std::vector<std::string> strings(const sumo::TraCIResults& r, int var) {
+[[maybe_unused]] std::vector<std::string> strings(const sumo::TraCIResults& r, int var) {  // libtraci
   const auto it = r.find(var);
   if (it == r.end()) return {};
   if (const auto* l = dynamic_cast<const sumo::TraCIStringList*>(it->second.get())) return l->value;
@@ -85,17 +89,14 @@ class WorldReader {
   // Once, after SUMO started and before the first step.
   void start() {
     contexts::shared_contexts().reset();
-#ifdef LIBTRACI
-    const std::vector<int> vars = {tc::VAR_TIME, tc::VAR_DEPARTED_VEHICLES_IDS, tc::VAR_ARRIVED_VEHICLES_NUMBER,
-                                   tc::VAR_COLLIDING_VEHICLES_NUMBER};
-#else
-    // The arrivals by id: scenario vehicles are read directly, not through a subscription
-    // that SUMO would empty when they leave (read_vehicle).
-    const std::vector<int> vars = {tc::VAR_TIME, tc::VAR_DEPARTED_VEHICLES_IDS, tc::VAR_ARRIVED_VEHICLES_IDS,
-                                   tc::VAR_COLLIDING_VEHICLES_NUMBER};
-#endif
     gone_.clear();
-    sumo::Simulation::subscribe(vars);
+#ifdef LIBTRACI
+    sumo::Simulation::subscribe(std::vector<int>{tc::VAR_TIME, tc::VAR_DEPARTED_VEHICLES_IDS,
+                                                 tc::VAR_ARRIVED_VEHICLES_NUMBER, tc::VAR_COLLIDING_VEHICLES_NUMBER});
+#endif
+    // On libsumo the simulation's values are read by their getters right after the step
+    // (after_step), the calls SUMO's subscription would make there, without wrapping each
+    // value in a result object every step.
     edges_.clear();
     for (const auto& e : sumo::Edge::getIDList())
       if (e.empty() || e.front() != ':') edges_.push_back(e);
@@ -105,6 +106,7 @@ class WorldReader {
     // vehicles: the run is no longer the scenario's (collisions with background traffic go
     // unseen), but the benchmark can tell what the contexts cost.
     contexts_off_ = std::getenv("ORCH_BENCH_NO_CONTEXTS") != nullptr;
+    contexts_needed_ = false;
   }
 
   [[nodiscard]] double time() const { return time_; }
@@ -113,16 +115,21 @@ class WorldReader {
   // After every step (whether or not the step is read): departures and arrivals are only
   // reported for the step that just ran.
   void after_step() {
+#ifdef LIBTRACI
     const sumo::TraCIResults simulation = sumo::Simulation::getSubscriptionResults();
     time_ = number(simulation, tc::VAR_TIME);
     const auto departed = strings(simulation, tc::VAR_DEPARTED_VEHICLES_IDS);
-#ifdef LIBTRACI
     running_ += static_cast<long long>(departed.size()) - integer(simulation, tc::VAR_ARRIVED_VEHICLES_NUMBER);
-#else
-    const auto arrived = strings(simulation, tc::VAR_ARRIVED_VEHICLES_IDS);
-    running_ += static_cast<long long>(departed.size()) - static_cast<long long>(arrived.size());
-#endif
     colliding_ = integer(simulation, tc::VAR_COLLIDING_VEHICLES_NUMBER);
+#else
+    time_ = sumo::Simulation::getTime();
+    const auto departed = sumo::Simulation::getDepartedIDList();
+    // The arrivals by id: scenario vehicles are read directly, not through a subscription
+    // that SUMO would empty when they leave (read_vehicle).
+    const auto arrived = sumo::Simulation::getArrivedIDList();
+    running_ += static_cast<long long>(departed.size()) - static_cast<long long>(arrived.size());
+    colliding_ = sumo::Simulation::getCollidingVehiclesNumber();
+#endif
     for (const auto& id : departed) {
       if (actor_kind_.count(id)) follow(id, false);
       else if (traffic_.count(id)) follow_traffic(id);
@@ -228,7 +235,8 @@ class WorldReader {
       sumo::Vehicle::subscribe(id, off_road_.count(id) ? off_road_vars : vehicle_vars);
     else
       gone_.erase(id);
-    if (!contexts_off_)
+    // On libsumo the context is subscribed by read_nearby, once it can hold anything.
+    if (!contexts_off_ && kVehicleSubscriptions)
       contexts::shared_contexts().subscribe(id, person, tc::CMD_GET_VEHICLE_VARIABLE, kNearbyRange, kNeighbourVars);
     followed_[id] = person;
   }
@@ -354,6 +362,10 @@ class WorldReader {
   // backend).
   void read_nearby(const std::vector<sim::TrackedActor>& actors, sim::WorldSnapshot& snap) {
     if (contexts_off_) return;
+    if (!contexts_needed(snap)) {
+      ++reads_;
+      return;
+    }
     std::map<std::string, sim::NearbyVehicle> found;
     for (const auto& a : actors) {
       const auto it = followed_.find(a.sumo_id);
@@ -375,6 +387,22 @@ class WorldReader {
     snap.nearby.reserve(found.size());
     for (auto& [id, v] : found) snap.nearby.push_back(std::move(v));
     if (++reads_ % kSizeSweepEvery == 0) forget_sizes_unseen_since(reads_ - kSizeSweepEvery);
+  }
+
+  // Whether the actors' contexts can hold a vehicle the reader keeps: one that is not a
+  // scenario actor. Their subscriptions are made when it first can (read_nearby's `within`
+  // subscribes, and SUMO answers a new subscription at once, from the state the step left, as
+  // it would have answered a standing one after the step) and stay from then on. SUMO's
+  // contexts find vehicles on lanes, all of which Vehicle::getIDList lists; it is asked only
+  // while the running count says the actors are alone (a handful of ids, not the traffic).
+  // Over TraCI the contexts are subscribed as actors depart (follow): the list would be a
+  // round trip, and the subscription's results come with the step's answer anyway.
+  bool contexts_needed(const sim::WorldSnapshot& snap) {
+    if (kVehicleSubscriptions || contexts_needed_) return true;
+    if (snap.other_vehicles > 0) return contexts_needed_ = true;
+    for (const auto& id : sumo::Vehicle::getIDList())
+      if (!actor_kind_.count(id)) return contexts_needed_ = true;
+    return false;
   }
 
   // A background vehicle's length and width do not change while it drives: asked once when
@@ -427,6 +455,7 @@ class WorldReader {
   int colliding_ = 0;                                      // vehicles in a collision in the last step
   double time_ = 0;
   bool contexts_off_ = false;  // ORCH_BENCH_NO_CONTEXTS (measurement only)
+  bool contexts_needed_ = false;  // libsumo: a vehicle other than the actors was in SUMO
   std::unordered_map<std::string, Size> sizes_;  // background vehicles near an actor
   long long reads_ = 0;
 };

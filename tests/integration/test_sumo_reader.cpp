@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 #include <libsumo/libsumo.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <set>
@@ -76,6 +77,55 @@ TEST(SumoReader, CountsAndNearbyVehiclesMatchLibsumosExhaustiveAnswers) {
     checked_nearby += static_cast<int>(expected.size());
   }
   EXPECT_GT(checked_nearby, 20);  // the comparison saw real neighbours
+  sim->close();
+}
+
+// On libsumo the actors' context subscriptions wait until SUMO holds a vehicle that is not
+// an actor (sumo_reader.hpp, contexts_needed): none while the ego is alone, and a vehicle
+// inserted later is nearby from the step it enters, exactly as libsumo's exhaustive answer.
+TEST(SumoReader, ContextsWaitForAVehicleThatIsNotAnActor) {
+  test::TempDir dir("sumo_reader_contexts");
+  const std::string maps = std::string(ORCH_SOURCE_DIR) + "/sumo_nets/highway/";
+  SimulatorConfig config;
+  config.net_file = maps + "highway.net.xml";
+  config.log_file = (dir.path() / "sumo.log").string();
+  auto sim = make_libsumo_simulator();
+  sim->start(config);
+  const auto spawn = ego_command();
+  sim->apply({spawn});
+  const std::vector<sim::TrackedActor> tracked{spawn.actor};
+  for (int step = 1; step <= 20; ++step) {
+    sim->advance();
+    const sim::WorldSnapshot snap = sim->read(tracked);
+    ASSERT_TRUE(snap.actors.at(0).present);
+    EXPECT_TRUE(snap.nearby.empty());
+    EXPECT_TRUE(libsumo::Vehicle::getContextSubscriptionResults("ego").empty()) << "step " << step;
+  }
+  // A car 30 m ahead of the ego on the lane next to it.
+  libsumo::Route::add("other.route", spawn.route);
+  const double ego_front = libsumo::Vehicle::getLanePosition("ego");
+  libsumo::Vehicle::add("other", "other.route", "DEFAULT_VEHTYPE", "now", "0", std::to_string(ego_front + 30), "20");
+  int seen = 0;
+  for (int step = 1; step <= 40; ++step) {
+    sim->advance();
+    const sim::WorldSnapshot snap = sim->read(tracked);
+    SCOPED_TRACE(step);
+    const auto ids = libsumo::Vehicle::getIDList();
+    const bool in_sumo = std::find(ids.begin(), ids.end(), "other") != ids.end();
+    bool expected = false;
+    if (in_sumo) {
+      const auto a = libsumo::Vehicle::getPosition("ego");
+      const auto b = libsumo::Vehicle::getPosition("other");
+      expected = std::hypot(a.x - b.x, a.y - b.y) <= 75.0;
+    }
+    ASSERT_EQ(snap.nearby.size(), expected ? 1U : 0U);
+    if (expected) {
+      EXPECT_EQ(snap.nearby.front().sumo_id, "other");
+      EXPECT_NEAR(snap.nearby.front().speed, libsumo::Vehicle::getSpeed("other"), 1e-9);
+      ++seen;
+    }
+  }
+  EXPECT_GT(seen, 30);  // it entered in the first steps and stayed near
   sim->close();
 }
 
