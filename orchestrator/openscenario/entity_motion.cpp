@@ -172,8 +172,9 @@ void move_one_step(EntityState& state, const opendrive::RoadNetwork& roads, doub
   // curvature k that path is (1 - k t) times as long as the reference line.
   const double stretch = 1.0 - road.plan_view.curvature(state.s) * state.t;
   const std::size_t section = opendrive::section_index(road, std::clamp(state.s, 0.0, road.length));
+  const double s_before = state.s;
   state.s += travel_direction(state, road) * along * dt / (stretch > 0.1 ? stretch : 0.1);
-  follow_links(state, roads, section);  // lane sections, and on past the road's end
+  follow_links(state, roads, section, s_before);  // lane sections, and on past the road's end
   leave_vanished_lane(state, roads);
   update_pose(state, roads);
 }

@@ -51,7 +51,8 @@ std::optional<opendrive::LaneEntry> choose(EntityState& state, const opendrive::
 
 }  // namespace
 
-void follow_links(EntityState& state, const opendrive::RoadNetwork& roads, std::size_t section_before) {
+void follow_links(EntityState& state, const opendrive::RoadNetwork& roads, std::size_t section_before,
+                  double s_before) {
   std::size_t section = section_before;
   for (int hops = 0; hops < 64; ++hops) {  // a bound against zero-length loops
     const opendrive::Road& road = roads.road(state.road_id);
@@ -70,9 +71,14 @@ void follow_links(EntityState& state, const opendrive::RoadNetwork& roads, std::
     const auto next = with_lane ? choose(state, roads, opendrive::next_lanes(roads, road.id, state.lane)) : std::nullopt;
     if (!next) {
       // Stuck at the end: standing, as in esmini (lane_change_simple.xosc counts on a car
-      // "stuck at end of road" having speed zero until an action sets a new one).
+      // "stuck at end of road" having speed zero until an action sets a new one). Not in the
+      // step it gets there: it keeps its speed until a step finds it at the end already, so
+      // an action the arrival triggers (EndOfRoadCondition, duration 0: a TeleportAction back
+      // to the road's start) finds the speed it came with, as in esmini (its car teleported
+      // so drives on at 25 m/s). The standard says nothing of an entity at a dead end.
+      const bool arrived_now = hops > 0 || (direction > 0 ? s_before < road.length : s_before > 0.0);
       state.s = direction > 0 ? road.length : 0.0;
-      state.speed = 0;
+      if (!arrived_now) state.speed = 0;
       return;
     }
     // Offsets are measured along t (to the left of the road): against the travel direction

@@ -12,9 +12,10 @@
 
 namespace orch::openscenario {
 
-// After `state.s` moved along its lane from section `section_before`: renumbers the lane
-// across the sections passed and drives on past the road's end. Pose not updated.
-void follow_links(EntityState& state, const opendrive::RoadNetwork& roads, std::size_t section_before);
+// After `state.s` moved along its lane from `s_before` in section `section_before`: renumbers
+// the lane across the sections passed and drives on past the road's end. Pose not updated.
+void follow_links(EntityState& state, const opendrive::RoadNetwork& roads, std::size_t section_before,
+                  double s_before);
 
 // Where the entity's lane has narrowed to width 0 (a lane that ends without a lane section
 // of its own: esmini's multi_intersections.xodr road 209, lane -2 from s = 59), it goes on in

@@ -375,5 +375,20 @@ TEST(RoadFollowing, EndOfRoadHoldsOnlyAtADeadEndInTheDirectionOfTravel) {
   EXPECT_FALSE(at_dead_end(on_lane(roads, "2", -1, 99, 10), roads));
 }
 
+// At a dead end the car stops, but not in the step it gets there: an action the arrival
+// triggers (a TeleportAction on EndOfRoadCondition, esmini's lane_change_simple.xosc) finds
+// the speed it came with; a step later, still at the end, it stands.
+TEST(RoadFollowing, ACarArrivingAtADeadEndKeepsItsSpeedForThatStepThenStands) {
+  const auto roads = opendrive::read_xodr_text(test::xodr_three_way(), "junction.xodr");
+  EntityState car = on_lane(roads, "2", -1, 99.7, 10);
+  advance(car, roads, 0.05, 0.05);  // 0.5 m: past the end
+  EXPECT_DOUBLE_EQ(car.s, 100.0);
+  EXPECT_DOUBLE_EQ(car.speed, 10.0);
+  EXPECT_TRUE(at_dead_end(car, roads));
+  advance(car, roads, 0.10, 0.05);
+  EXPECT_DOUBLE_EQ(car.s, 100.0);
+  EXPECT_DOUBLE_EQ(car.speed, 0.0);
+}
+
 }  // namespace
 }  // namespace orch::openscenario
