@@ -37,17 +37,22 @@ sim::SpawnVehicle ego_command() {
   return c;
 }
 
+// The shipped highway net, with its dense traffic or none.
+SimulatorConfig highway_config(const std::string& log_file, bool dense_traffic) {
+  const std::string maps = std::string(ORCH_SOURCE_DIR) + "/sumo_nets/highway/";
+  SimulatorConfig config;
+  config.net_file = maps + "highway.net.xml";
+  if (dense_traffic) config.route_files = {maps + "traffic/dense.rou.xml"};
+  config.log_file = log_file;
+  return config;
+}
+
 }  // namespace
 
 TEST(SumoReader, CountsAndNearbyVehiclesMatchLibsumosExhaustiveAnswers) {
   test::TempDir dir("sumo_reader");
-  const std::string maps = std::string(ORCH_SOURCE_DIR) + "/sumo_nets/highway/";
-  SimulatorConfig config;
-  config.net_file = maps + "highway.net.xml";
-  config.route_files = {maps + "traffic/dense.rou.xml"};
-  config.log_file = (dir.path() / "sumo.log").string();
   auto sim = make_libsumo_simulator();
-  sim->start(config);
+  sim->start(highway_config((dir.path() / "sumo.log").string(), true));
   const auto spawn = ego_command();
   sim->apply({spawn});
   const std::vector<sim::TrackedActor> tracked{spawn.actor};
@@ -85,12 +90,8 @@ TEST(SumoReader, CountsAndNearbyVehiclesMatchLibsumosExhaustiveAnswers) {
 // inserted later is nearby from the step it enters, exactly as libsumo's exhaustive answer.
 TEST(SumoReader, ContextsWaitForAVehicleThatIsNotAnActor) {
   test::TempDir dir("sumo_reader_contexts");
-  const std::string maps = std::string(ORCH_SOURCE_DIR) + "/sumo_nets/highway/";
-  SimulatorConfig config;
-  config.net_file = maps + "highway.net.xml";
-  config.log_file = (dir.path() / "sumo.log").string();
   auto sim = make_libsumo_simulator();
-  sim->start(config);
+  sim->start(highway_config((dir.path() / "sumo.log").string(), false));
   const auto spawn = ego_command();
   sim->apply({spawn});
   const std::vector<sim::TrackedActor> tracked{spawn.actor};
@@ -133,12 +134,8 @@ TEST(SumoReader, ContextsWaitForAVehicleThatIsNotAnActor) {
 // subscription (sumo_reader.hpp, read_vehicle): the same snapshots step by step, also when
 // the vehicle reaches its route's end and leaves SUMO (absent from then on on both).
 std::vector<sim::ActorState> drive_to_the_route_end(const std::string& backend, const std::string& dir) {
-  const std::string maps = std::string(ORCH_SOURCE_DIR) + "/sumo_nets/highway/";
-  SimulatorConfig config;
-  config.net_file = maps + "highway.net.xml";
-  config.log_file = dir + "/sumo_" + backend + ".log";
   auto sim = make_sumo_simulator(backend);
-  sim->start(config);
+  sim->start(highway_config(dir + "/sumo_" + backend + ".log", false));
   auto spawn = ego_command();
   spawn.route = {kNorth + "6", kNorth + "7"};
   spawn.edge = kNorth + "6";
