@@ -90,6 +90,10 @@ std::vector<std::string> start_action(const PrivateAction& action, const std::st
 // esmini's synchronize.xosc).
 void steer_synchronize(ActionContext& ctx, std::vector<RunningAction>& running);
 
+// Counts the route waypoints (EntityState::route) the entity has reached or passed along its
+// road in its direction of travel (running_actions.cpp).
+void count_passed_waypoints(EntityState& state, const opendrive::RoadNetwork& roads);
+
 // Before the entities move to ctx.t: the first speed of each LongitudinalDistanceAction with
 // DynamicConstraints started before the first step (Init, or an event at 0 s: no step size
 // to limit the change over then), so that it moves the entity in the first step already, as
