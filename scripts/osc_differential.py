@@ -27,7 +27,7 @@ import tempfile
 import time
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
-from differential import compare, expected, players  # noqa: E402
+from differential import compare, departures, expected, players  # noqa: E402
 from doc_tables import write_between  # noqa: E402
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
@@ -71,14 +71,19 @@ def run_pair(xosc: pathlib.Path, folder: pathlib.Path, orchestrator: pathlib.Pat
     # Without controllers esmini drops the Activate/AssignControllerActions from the storyboard
     # (no transitions); ours runs them: theirs are not compared then.
     left_out = frozenset() if controllers else frozenset(players.controller_action_names(xosc))
-    c = compare.compare_runs(ours.folder, peer.folder, ours.end_time, min(peer.end_time, MAX_TIME), left_out)
+    c = compare.compare_runs(ours.folder, peer.folder, ours.end_time, min(peer.end_time, MAX_TIME), left_out,
+                             departures.empty_groups(xosc))
     out["comparison"] = c
     if ours.error:
         out.update(status="ours-error", detail=f"stopped at {ours.end_time:.2f} s: {ours.error}")
+    elif c.departs_only:
+        out.update(status="departs", detail=f"esmini's departures from the standard: {departures.summary(c.departures)}")
     elif c.differences:
-        first = c.differences[0]
-        more = f" (+{len(c.differences) - 1} more)" if len(c.differences) > 1 else ""
-        out.update(status="differs", detail=f"{first.what} {first.text()}{more}")
+        # The first difference the peer's departures do not account for.
+        first = c.beyond_departures[0]
+        more = f" (+{len(c.beyond_departures) - 1} more)" if len(c.beyond_departures) > 1 else ""
+        cited = f"; and esmini's departures: {departures.summary(c.departures)}" if c.departures else ""
+        out.update(status="differs", detail=f"{first.what} {first.text()}{more}{cited}")
     else:
         out.update(status="match", detail="")
     return out
@@ -138,8 +143,9 @@ def storyboard_only_text(result: dict) -> str:
     off = result.get("storyboard_only")
     if not off:
         return ""
-    if off["status"] == "match":
-        return f"controllers off in both: match ({summary_of(off['comparison'])})"
+    if off["status"] in ("match", "departs"):
+        why = f"; {off['detail']}" if off["detail"] else ""
+        return f"controllers off in both: {off['status']} ({summary_of(off['comparison'])}{why})"
     return f"controllers off in both: {off['status']}: {off['detail']}"
 
 
@@ -151,11 +157,15 @@ def storyboard_only_figure(results: list) -> str:
     return f"{matching} of {len(with_controllers)} files with controllers match with controllers off in both"
 
 
+# Statuses of a file both players ran to the end of the comparison.
+COMPARED = ("match", "departs", "differs")
+
+
 def positions_match(result: dict) -> bool:
     """Every compared point of the file within the tolerance (its transitions aside): the
     file ran to a comparison and no difference is a position's."""
     c = result.get("comparison")
-    return result["status"] in ("match", "differs") and c is not None and c.positions > 0 and \
+    return result["status"] in COMPARED and c is not None and c.positions > 0 and \
         not any(d.what == "position" for d in c.differences)
 
 
@@ -163,20 +173,23 @@ def positions_figure(results: list) -> str:
     """'positions: N of M compared files within 0.10 m everywhere (esmini's examples: A of B)':
     what the players agree on where a file differs only in its storyboard transitions (mostly
     where esmini departs from the standard's transitions; the table gives each reason)."""
-    compared = [r for r in results if r["status"] in ("match", "differs")]
+    compared = [r for r in results if r["status"] in COMPARED]
     examples = [r for r in compared if "/esmini_examples/" in r["file"]]
     return (f"positions: {sum(map(positions_match, compared))} of {len(compared)} compared files within the "
             f"tolerance at every point (esmini's examples: {sum(map(positions_match, examples))} of {len(examples)})")
 
 
 def judge(result: dict, listed) -> tuple:
-    """(ok, line) for one file against its entry in the table (or none)."""
+    """(ok, line) for one file against its entry in the table (or none). A file that differs
+    only by the peer's departures (departures.py, each with the standard's text) is not
+    listed: the rules are its reason, and its line names the ones it needed."""
     file, status, detail = result["file"], result["status"], result["detail"]
     summary = summary_of(result["comparison"])
-    if status == "match":
+    if status in ("match", "departs"):
         if listed:
-            return False, f"FAIL {file}: listed as {listed.category} but now matches the peer ({summary}): remove its line"
-        return True, f"match {file} ({summary})"
+            now = "matches the peer" if status == "match" else "differs only by esmini's cited departures"
+            return False, f"FAIL {file}: listed as {listed.category} but now {now} ({summary}): remove its line"
+        return True, f"{status} {file} ({summary})" + (f": {detail}" if detail else "")
     if not listed:
         return False, f"FAIL {file}: {status}: {detail}" + (f" [{summary}]" if summary else "")
     if listed.category != status:
@@ -271,7 +284,7 @@ def main() -> int:
             if r["file"] in extra_names:
                 continue
             old = entries.get(r["file"])
-            if r["status"] == "match":
+            if r["status"] in ("match", "departs"):
                 entries.pop(r["file"], None)
             elif not old or old.category != r["status"]:
                 entries[r["file"]] = expected.Entry(r["file"], r["status"], r["detail"])

@@ -19,6 +19,8 @@ import math
 import pathlib
 import re
 
+from . import departures
+
 SAMPLE = 0.5        # s between compared positions
 TOLERANCE = 0.10    # m
 STEP = 0.05         # s: transitions agree within one step
@@ -60,10 +62,19 @@ class Comparison:
     positions: int              # compared points
     transitions: int            # compared transitions
     differences: list           # Difference, the first of each entity / element first, by time
+    # The peer's departures from the standard's transitions that account for differences
+    # (departures.py), and the differences left once they are accounted for.
+    departures: list = dataclasses.field(default_factory=list)
+    beyond_departures: list = dataclasses.field(default_factory=list)
 
     @property
     def matches(self) -> bool:
         return not self.differences
+
+    @property
+    def departs_only(self) -> bool:
+        """Differs, but only by the peer's cited departures from the standard."""
+        return bool(self.differences) and not self.beyond_departures
 
 
 def _key(t: float) -> int:
@@ -97,8 +108,9 @@ def read_peer_trace(sim_csv: pathlib.Path):
     return points
 
 
-def read_our_transitions(result_json: pathlib.Path) -> list:
-    """[(time, name, transition)] from result.json events ("<type> <name> <transition>")."""
+def read_our_transitions(result_json: pathlib.Path, types: dict = None) -> list:
+    """[(time, name, transition)] from result.json events ("<type> <name> <transition>");
+    `types`, when given, gets each element's type by name."""
     result = json.loads(result_json.read_text())
     out = []
     for e in result.get("events", []):
@@ -108,6 +120,8 @@ def read_our_transitions(result_json: pathlib.Path) -> list:
         if len(parts) < 3 or parts[-1] not in TRANSITIONS:
             continue
         name = " ".join(parts[1:-1]).strip() or (STORYBOARD if parts[0] == "storyboard" else "")
+        if types is not None:
+            types[name] = parts[0]
         out.append((float(e["time"]), name, parts[-1]))
     return out
 
@@ -211,15 +225,27 @@ def compare_transitions(ours: list, peer: list, end_time: float):
 
 
 def compare_runs(our_folder: pathlib.Path, peer_folder: pathlib.Path, our_end: float, peer_end: float,
-                 left_out_actions: frozenset = frozenset()) -> Comparison:
+                 left_out_actions: frozenset = frozenset(), empty_groups: dict = None) -> Comparison:
     """`left_out_actions`: names of our actions whose transitions are not compared (the
-    controller actions esmini drops with --disable_controllers)."""
+    controller actions esmini drops with --disable_controllers); `empty_groups`: the file's
+    ManeuverGroups without Maneuvers (departures.empty_groups)."""
     ours, drivers = read_our_trace(our_folder / "trace.csv")
     peer = read_peer_trace(peer_folder / "sim.csv")
     end = min(our_end, peer_end)
     pos_diff, compared, not_compared, positions = compare_positions(ours, drivers, peer, end)
-    our_transitions = [tr for tr in read_our_transitions(our_folder / "result.json") if tr[1] not in left_out_actions]
-    tr_diff, transitions = compare_transitions(our_transitions,
-                                               read_peer_transitions(peer_folder / "log.txt"), end)
+    types = {}
+    our_transitions = [tr for tr in read_our_transitions(our_folder / "result.json", types)
+                       if tr[1] not in left_out_actions]
+    peer_transitions = read_peer_transitions(peer_folder / "log.txt")
+    tr_diff, transitions = compare_transitions(our_transitions, peer_transitions, end)
     differences = sorted(pos_diff + tr_diff, key=lambda d: (d.time, d.what, d.subject))
-    return Comparison(compared, not_compared, end, positions, transitions, differences)
+    found, beyond = [], differences
+    if tr_diff:
+        ours_std, peer_std, found = departures.standard_view(our_transitions, peer_transitions, types,
+                                                             empty_groups or {})
+        beyond = sorted(pos_diff + compare_transitions(ours_std, peer_std, end)[0],
+                        key=lambda d: (d.time, d.what, d.subject))
+        # Only the departures of elements that made a difference (in the compared time).
+        subjects = {d.subject.rsplit(" ", 1)[0] for d in tr_diff}
+        found = [f for f in found if f.element in subjects]
+    return Comparison(compared, not_compared, end, positions, transitions, differences, found, beyond)

@@ -10,7 +10,7 @@ import unittest
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT / "scripts"))
-from differential import compare, expected, players  # noqa: E402
+from differential import compare, departures, expected, players  # noqa: E402
 import osc_differential  # noqa: E402
 
 OUR_HEADER = "time,scene_id,actor_id,x,y,heading,speed,accel,edge,lane,lane_pos,lat_offset,signals,siren,driver\n"
@@ -300,6 +300,78 @@ class ControllersOff(unittest.TestCase):
         self.assertEqual(osc_differential.storyboard_only_text({"storyboard_only": None}), "")
 
 
+def peer_line(t, name, transition):
+    before, after = {"startTransition": ("initState", "runningState")}.get(transition, ("runningState", "completeState"))
+    return f"[{t:.3f}] [info] {name} {before} -> {transition} -> {after}\n"
+
+
+class PeerDepartures(unittest.TestCase):
+    """esmini's departures from the standard's transitions (departures.py) account for the
+    transition they name differently, and for nothing else."""
+
+    def setUp(self):
+        self.tmp = tempfile.TemporaryDirectory()
+        self.root = pathlib.Path(self.tmp.name)
+        self.count = 0
+
+    def tearDown(self):
+        self.tmp.cleanup()
+
+    def compare(self, ours, peer, groups=None):
+        self.count += 1
+        folder = self.root / str(self.count)
+        folder.mkdir()
+        events = [(t, "action" if kind == "action" else "storyboard", f"{kind} {name} {tr}") for t, kind, name, tr in ours]
+        out = Outputs(folder, ours_events=events, peer_log="".join(peer_line(*p) for p in peer))
+        return compare.compare_runs(out.ours, out.peer, 2.0, 2.0, empty_groups=groups)
+
+    def test_an_overridden_event_the_peer_ends_is_a_departure_only_when_something_overrode_it(self):
+        ours = [(0.5, "event", "E", "startTransition"), (0.5, "action", "A", "startTransition"),
+                (1.5, "action", "A", "stopTransition"), (1.5, "event", "E", "stopTransition"),
+                (1.5, "event", "F", "startTransition")]
+        peer = [(0.5, "E", "startTransition"), (0.5, "A", "startTransition"), (1.5, "A", "endTransition"),
+                (1.5, "E", "endTransition"), (1.5, "F", "startTransition")]
+        c = self.compare(ours, peer)
+        self.assertEqual(len(c.differences), 4)
+        self.assertTrue(c.departs_only)
+        self.assertEqual(departures.summary(c.departures), "STOPPED_ENDS x2 (A, E)")
+        # Nothing starts or stops the storyboard in that step: no cited cause, a difference.
+        c = self.compare([o for o in ours if o[2] != "F"], [p for p in peer if p[1] != "F"])
+        self.assertFalse(c.departs_only)
+        self.assertEqual(c.beyond_departures[0].text(), "A endTransition at 1.50 s: ours none, peer 1.50 s")
+        # Two steps apart: a difference whatever the peer names it.
+        late = [(1.6 if p[1] == "A" and p[2] == "endTransition" else p[0],) + p[1:] for p in peer]
+        c = self.compare(ours, late)
+        self.assertFalse(c.departs_only)
+
+    def test_an_instant_action_the_peer_stops_is_a_departure_one_that_ran_is_not(self):
+        peer = [(1.0, "P", "startTransition"), (1.0, "P", "stopTransition")]
+        c = self.compare([(1.0, "action", "P", "startTransition"), (1.0, "action", "P", "endTransition")], peer)
+        self.assertTrue(c.departs_only)
+        self.assertEqual(departures.summary(c.departures), "INSTANT_STOPS x1 (P)")
+        c = self.compare([(0.5, "action", "P", "startTransition"), (1.0, "action", "P", "endTransition")],
+                         [(0.5, "P", "startTransition"), (1.0, "P", "stopTransition")])
+        self.assertFalse(c.departs_only)
+
+    def test_an_empty_maneuver_group_the_peer_keeps_running_until_the_stop_trigger(self):
+        xosc = self.root / "f.xosc"
+        xosc.write_text('<OpenSCENARIO><Storyboard><Story name="S"><Act name="Act1">'
+                        '<ManeuverGroup name="G"/><ManeuverGroup name="H"><Maneuver name="M"/></ManeuverGroup>'
+                        '</Act></Story></Storyboard></OpenSCENARIO>')
+        groups = departures.empty_groups(xosc)
+        self.assertEqual(groups, {"G": ("Act1", "S")})
+        ours = [(0.0, "maneuverGroup", "G", "startTransition"), (0.0, "maneuverGroup", "G", "endTransition"),
+                (0.0, "act", "Act1", "endTransition"), (0.0, "story", "S", "endTransition")]
+        peer = [(0.0, "G", "startTransition"), (2.0, "G", "stopTransition"), (2.0, "Act1", "endTransition"),
+                (2.0, "S", "endTransition")]
+        c = self.compare(ours, peer, groups)
+        self.assertTrue(c.departs_only)
+        self.assertEqual(departures.summary(c.departures), "EMPTY_GROUP_RUNS x1 (G)")
+        self.assertFalse(self.compare(ours, peer).departs_only)   # a group with Maneuvers: differs
+        # The group's start is still compared.
+        self.assertFalse(self.compare(ours, [(0.5, "G", "startTransition")] + peer[1:], groups).departs_only)
+
+
 class Judgement(unittest.TestCase):
     def result(self, status, detail=""):
         return {"file": "f.xosc", "status": status, "detail": detail, "comparison": None}
@@ -314,6 +386,10 @@ class Judgement(unittest.TestCase):
         self.assertFalse(ok)
         self.assertIn("listed as unreadable, now differs", line)
         self.assertTrue(osc_differential.judge(self.result("unreadable", "error"), listed)[0])
+        self.assertTrue(osc_differential.judge(self.result("departs", "STOPPED_ENDS x1 (A)"), None)[0])
+        ok, line = osc_differential.judge(self.result("departs", "STOPPED_ENDS x1 (A)"), listed)
+        self.assertFalse(ok)
+        self.assertIn("differs only by esmini's cited departures", line)
         ok, line = osc_differential.judge(self.result("differs", "position A at 1.00 s"), None)
         self.assertFalse(ok)
         self.assertIn("position A at 1.00 s", line)
