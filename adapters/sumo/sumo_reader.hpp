@@ -196,10 +196,34 @@ class WorldReader {
     snap.long_waiting = long_waiting_;
     read_nearby(actors, snap);
     read_traffic(snap);
-    if (colliding_ > 0)
-      for (const auto& c : sumo::Simulation::getCollisions())
-        snap.collisions.push_back({c.collider, c.victim, c.type, c.lane, c.pos});
+    if (colliding_ > 0) read_collisions(snap);
     return snap;
+  }
+
+  // SUMO's collisions of the last step. libtraci (SUMO 1.15) answers getCollisions() with an
+  // empty list (the client does not implement it; Python's traci does), so over TraCI they
+  // are rebuilt from the colliding vehicles' ids, which SUMO lists as victim then collider
+  // for each collision (checked against libsumo's getCollisions() on the same run); the type
+  // is then "junction" where the two are on different lanes, one of them a junction's
+  // internal lane (SUMO's check of foe lanes), and "collision" elsewhere (SUMO's rarer
+  // "frontal" and "swap" only come through libsumo).
+  void read_collisions(sim::WorldSnapshot& snap) {
+#ifdef LIBTRACI
+    const auto ids = sumo::Simulation::getCollidingVehiclesIDList();
+    for (std::size_t i = 0; i + 1 < ids.size(); i += 2) {
+      const std::string& victim = ids[i];
+      const std::string& collider = ids[i + 1];
+      const std::string lane = sumo::Vehicle::getLaneID(collider);
+      const std::string victim_lane = sumo::Vehicle::getLaneID(victim);
+      const auto internal = [](const std::string& l) { return !l.empty() && l.front() == ':'; };
+      const bool junction = lane != victim_lane && (internal(lane) || internal(victim_lane));
+      snap.collisions.push_back({collider, victim, junction ? "junction" : "collision", lane,
+                                 sumo::Vehicle::getLanePosition(collider)});
+    }
+#else
+    for (const auto& c : sumo::Simulation::getCollisions())
+      snap.collisions.push_back({c.collider, c.victim, c.type, c.lane, c.pos});
+#endif
   }
 
  private:

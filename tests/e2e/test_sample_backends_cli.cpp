@@ -17,15 +17,6 @@ using namespace orch::test;
 
 namespace {
 
-// Samples whose outputs the two backends are known not to agree on, each with the reason (an
-// open bug, docs/backends.md "Known differences"): left out here so the rest stays checked.
-bool known_backend_difference(const std::string& sample) {
-  // Its TeleportActions put cars onto the storyboard ego's lane next to it: SUMO reports the
-  // collision (stage remoteControl, 7.20 s) in both backends' sumo.log, but only the libsumo
-  // run's snapshot holds it, so result.json's verdict differs (traces are identical).
-  return sample == "scenarios/openscenario/relative_positions.xosc";
-}
-
 std::vector<std::string> shipped_samples() {
   std::vector<std::string> out;
   const std::vector<std::pair<std::string, std::string>> folders = {
@@ -33,8 +24,7 @@ std::vector<std::string> shipped_samples() {
   for (const auto& [folder, extension] : folders)
     for (const auto& e : std::filesystem::directory_iterator(source_path(folder)))
       if (e.is_regular_file() && e.path().extension() == extension) {
-        std::string sample = std::filesystem::relative(e.path(), source_path("")).string();
-        if (!known_backend_difference(sample)) out.push_back(std::move(sample));
+        out.push_back(std::filesystem::relative(e.path(), source_path("")).string());
       }
   std::sort(out.begin(), out.end());
   return out;

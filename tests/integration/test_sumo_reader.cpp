@@ -183,6 +183,58 @@ TEST(SumoReader, BothBackendsReadAVehicleAlikeUntilAndAfterItLeaves) {
   EXPECT_FALSE(direct.back().present);
 }
 
+// SUMO's collisions reach the snapshot on both backends alike: a scripted car put onto the
+// SUMO-driven ego (stage remoteControl), who collided with whom and of which type. libtraci
+// answers getCollisions() with nothing, so the traci backend rebuilds them from the colliding
+// vehicles' ids (sumo_reader.hpp, read_collisions); before that it saw none at all.
+std::vector<sim::SimCollision> drive_into_the_ego(const std::string& backend, const std::string& dir) {
+  auto sim = make_sumo_simulator(backend);
+  sim->start(highway_config(dir + "/sumo_" + backend + ".log", false));
+  const auto ego = ego_command();
+  auto car = ego_command();
+  car.actor = {1, "car", ActorKind::Vehicle, 4.5, 2.0};
+  car.scripted = true;
+  car.lane_pos = 10;
+  const std::vector<sim::TrackedActor> tracked{ego.actor, car.actor};
+  sim->apply({ego, car});
+  std::vector<sim::SimCollision> seen;
+  for (int step = 1; step <= 40; ++step) {
+    sim->advance();
+    const auto snap = sim->read(tracked);
+    seen.insert(seen.end(), snap.collisions.begin(), snap.collisions.end());
+    const auto& e = snap.actors.at(0);
+    if (step < 5 || !e.present) continue;
+    sim::SetPose pose;  // the car's centre 2 m behind the ego's, on its lane: they overlap
+    pose.sumo_id = "car";
+    pose.length = 4.5;
+    pose.position = e.position - 2.0 * Vec2(std::cos(e.heading), std::sin(e.heading));
+    pose.heading = e.heading;
+    pose.speed = e.speed;
+    pose.edge = e.edge;
+    pose.lane = e.lane;
+    pose.centred = true;
+    sim->apply({pose});
+  }
+  sim->close();
+  return seen;
+}
+
+TEST(SumoReader, BothBackendsReportSumosCollisionsAlike) {
+  test::TempDir dir("sumo_reader_collisions");
+  const auto direct = drive_into_the_ego("libsumo", dir.path().string());
+  const auto over_traci = drive_into_the_ego("traci", dir.path().string());
+  ASSERT_FALSE(direct.empty());
+  ASSERT_EQ(direct.size(), over_traci.size());
+  for (std::size_t i = 0; i < direct.size(); ++i) {
+    SCOPED_TRACE(i);
+    EXPECT_EQ(direct[i].collider, over_traci[i].collider);
+    EXPECT_EQ(direct[i].victim, over_traci[i].victim);
+    EXPECT_EQ(direct[i].type, over_traci[i].type);
+    EXPECT_EQ(direct[i].lane, over_traci[i].lane);
+  }
+  EXPECT_TRUE(direct.front().collider == "car" || direct.front().victim == "car");
+}
+
 TEST(SumoErrors, SumosErrorLinesWithTheirContinuationsBecomeOneLine) {
   const std::string log =
       "Loading net-file from 'x.net.xml' ... done (3ms).\n"
