@@ -41,6 +41,10 @@ CORPUS = [SHARED / "data" / "openscenario", SHARED / "data" / "esmini_examples" 
 # 300 s, whose steps cost ~15 times 4.1_2's on its curved roads; esmini's examples that stop
 # at 1200 s) are compared over their first MAX_TIME s (the test's time budget on 2 cores).
 MAX_TIME = 60.0
+# A file whose StopTrigger fires after MAX_TIME and before this (acc-toggle at 117.8 s, OSC-ALKS
+# 4.1_1 at 300 s, sumo-test at 600 s) is run once more to the end, to compare when it stops;
+# esmini's examples without a StopTrigger end at 1200.05 s, esmini's own limit.
+STOP_CHECK_UNTIL = 1000.0
 PEER_TIMEOUT = 60.0      # s wall-clock: a file whose StopTrigger never fires
 OURS_TIMEOUT = 900.0
 
@@ -73,6 +77,8 @@ def run_pair(xosc: pathlib.Path, folder: pathlib.Path, orchestrator: pathlib.Pat
     left_out = frozenset() if controllers else frozenset(players.controller_action_names(xosc))
     c = compare.compare_runs(ours.folder, peer.folder, ours.end_time, min(peer.end_time, MAX_TIME), left_out,
                              departures.empty_groups(xosc))
+    if controllers and not ours.error:
+        compare_stop_time(c, xosc, folder, orchestrator, peer.folder)
     out["comparison"] = c
     if ours.error:
         out.update(status="ours-error", detail=f"stopped at {ours.end_time:.2f} s: {ours.error}")
@@ -87,6 +93,27 @@ def run_pair(xosc: pathlib.Path, folder: pathlib.Path, orchestrator: pathlib.Pat
     else:
         out.update(status="match", detail="")
     return out
+
+
+def compare_stop_time(c, xosc: pathlib.Path, folder: pathlib.Path, orchestrator: pathlib.Path,
+                      peer_folder: pathlib.Path) -> None:
+    """When the peer's Storyboard stops after the compared MAX_TIME s (and before
+    STOP_CHECK_UNTIL), runs ours once more to one step past that time and compares when the
+    Storyboard stops: a difference of the comparison when it is more than a step apart, or
+    never (its positions are not compared there)."""
+    peer_stop = [t for t, name, tr in compare.read_peer_transitions(peer_folder / "log.txt")
+                 if name == compare.STORYBOARD and tr == "stopTransition"]
+    if not peer_stop or not MAX_TIME < peer_stop[0] < STOP_CHECK_UNTIL:
+        return
+    long_run = players.run_ours(orchestrator, xosc, folder / "ours-to-the-stop", peer_stop[0] + compare.STEP + 0.01,
+                                OURS_TIMEOUT)
+    if not long_run.ok:
+        return  # the first run's comparison stands; this one adds only the stop
+    difference = compare.stop_time_difference(long_run.folder / "result.json", peer_stop[0])
+    c.transitions += 1
+    if difference:
+        c.differences.append(difference)
+        c.beyond_departures.append(difference)
 
 
 def runs_controllers(xosc: pathlib.Path, pair: dict) -> bool:

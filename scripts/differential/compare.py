@@ -143,6 +143,16 @@ def read_peer_transitions(log_txt: pathlib.Path) -> list:
     return out
 
 
+def stop_time_difference(result_json: pathlib.Path, peer_stop: float):
+    """The Difference of the Storyboard's stop in our run (result.json) from the peer's time,
+    or None within one step."""
+    ours = [t for t, name, tr in read_our_transitions(result_json) if name == STORYBOARD and tr == "stopTransition"]
+    if ours and abs(ours[0] - peer_stop) <= STEP + 1e-6:
+        return None
+    return Difference("transition", f"{STORYBOARD} stopTransition", min([peer_stop] + ours[:1]),
+                      f"{ours[0]:.2f} s" if ours else "none", f"{peer_stop:.2f} s")
+
+
 def _fmt_point(p) -> str:
     if not p:
         return "absent"

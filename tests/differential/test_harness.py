@@ -305,6 +305,24 @@ def peer_line(t, name, transition):
     return f"[{t:.3f}] [info] {name} {before} -> {transition} -> {after}\n"
 
 
+class StopTime(unittest.TestCase):
+    """A file whose StopTrigger fires after the compared window is run to its stop: when the
+    Storyboard stops is compared (one step)."""
+
+    def test_the_storyboards_stop_agrees_within_a_step_or_is_a_difference(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            result = pathlib.Path(tmp) / "result.json"
+            stop = lambda t: json.dumps({"events": [{"time": t, "kind": "storyboard", "text": "storyboard  stopTransition"}]})  # noqa: E731
+            result.write_text(stop(183.40))
+            self.assertIsNone(compare.stop_time_difference(result, 183.45))
+            result.write_text(stop(183.30))
+            self.assertEqual(compare.stop_time_difference(result, 183.45).text(),
+                             "Storyboard stopTransition at 183.30 s: ours 183.30 s, peer 183.45 s")
+            result.write_text(json.dumps({"events": []}))
+            self.assertEqual(compare.stop_time_difference(result, 364.2).text(),
+                             "Storyboard stopTransition at 364.20 s: ours none, peer 364.20 s")
+
+
 class PeerDepartures(unittest.TestCase):
     """esmini's departures from the standard's transitions (departures.py) account for the
     transition they name differently, and for nothing else."""
