@@ -101,6 +101,11 @@ def run_file(a, kind, xosc, work):
         row["note"] = "does not run in the orchestrator: " + result.get("reason", "")[:120]
         return row
     row["sim_time"] = result.get("sim_time")
+    args = result.get("sumo_args") or []
+    if "-n" in args:
+        net = args[args.index("-n") + 1]
+        row["floor"] = min(timed(["sumo", "-n", net, "--end", "0", "--no-step-log"], out + ".floor.log", a.timeout)[1]
+                           for _ in range(a.repeat))
     orch, esm = [], []
     for i in range(a.repeat):
         pair = [("esmini", esmini_cmd, esmini_log + ".out"), ("orch", orch_cmd, out + ".log")]
@@ -129,13 +134,13 @@ def ratio_text(num, den, index):
 
 def table(rows):
     lines = ["| file | road | simulated (orchestrator / esmini) | orchestrator wall | esmini wall | "
-             "orch / esmini, wall | orchestrator CPU | esmini CPU | orch / esmini, CPU |",
-             "|---|---|---|---|---|---|---|---|---|"]
+             "orch / esmini, wall | orchestrator CPU | esmini CPU | orch / esmini, CPU | floor: `sumo` loading the net, CPU |",
+             "|---|---|---|---|---|---|---|---|---|---|"]
     medians, cpu_medians = [], []
     for r in rows:
         if "orch" not in r:
             note = " ".join(r["note"].split())  # one table row: netconvert's errors span lines
-            lines.append("| %s | %s | %s | | | | | | |" % (r["file"], r["road"], note))
+            lines.append("| %s | %s | %s | | | | | | | |" % (r["file"], r["road"], note))
             continue
         wall, med = ratio_text(r["orch"], r["esmini"], 0)
         cpu, cpu_med = ratio_text(r["orch"], r["esmini"], 1)
@@ -144,10 +149,13 @@ def table(rows):
         if cpu_med is not None and "note" not in r:
             cpu_medians.append((cpu_med, r["file"]))
         et = r.get("esmini_time")
-        lines.append("| %s | %s | %.2f s / %s%s | %.2f s | %.2f s | %s | %.2f s | %.2f s | %s |" % (
+        floor = r.get("floor")
+        esmini_cpu = min(e[1] for e in r["esmini"])
+        lines.append("| %s | %s | %.2f s / %s%s | %.2f s | %.2f s | %s | %.2f s | %.2f s | %s | %s |" % (
             r["file"], r["road"], r["sim_time"] or 0, "%.2f s" % et if et is not None else "?",
             " (%s)" % r["note"] if "note" in r else "", min(o[0] for o in r["orch"]), min(e[0] for e in r["esmini"]),
-            wall, min(o[1] for o in r["orch"]), min(e[1] for e in r["esmini"]), cpu))
+            wall, min(o[1] for o in r["orch"]), esmini_cpu, cpu,
+            "-" if floor is None else "%.3f s%s" % (floor, " (above esmini's)" if floor > esmini_cpu else "")))
     summary = ""
     if medians:
         medians.sort()
@@ -161,6 +169,13 @@ def table(rows):
             summary += ("\nCPU: median of the per-file ratios %.2f, largest %.2f (%s); %d above 1.00; at most 1.00: %s" % (
                 statistics.median(m for m, _ in cpu_medians), cpu_medians[-1][0], cpu_medians[-1][1], len(cpu_over),
                 ", ".join(f for m, f in cpu_medians if m <= 1.0) or "none"))
+        timed_rows = [r for r in rows if "orch" in r and "note" not in r and r.get("floor") is not None]
+        bound = [r for r in timed_rows if r["floor"] > min(e[1] for e in r["esmini"])]
+        free = [r for r in timed_rows if r not in bound]
+        met = [r for r in free if min(o[1] for o in r["orch"]) <= min(e[1] for e in r["esmini"])]
+        summary += ("\nFloor: in %d of %d timed files `sumo` loading the net takes more CPU than esmini's whole run "
+                    "(no SUMO-based run can match esmini there); of the other %d, %d take at most esmini's CPU time"
+                    % (len(bound), len(timed_rows), len(free), len(met)))
     return "\n".join(lines) + summary
 
 
