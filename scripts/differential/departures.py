@@ -11,7 +11,8 @@ is OpenSCENARIO XML 1.3, the same citations as docs/openscenario.md "When an ele
 - STOPPED_ENDS: "A terminated Event moves to completeState with stopTransition" (8.4.2.2:
   terminated by an event of priority `override`, or by "a stop trigger ... issued by the
   enclosing Act or Storyboard"), and an action replaced by a new one of its entity and motion
-  domain is stopped, not ended. esmini logs endTransition. Counted where our run has the
+  domain is stopped, not ended. esmini logs endTransition (at a stop trigger sometimes an
+  endTransition and then a stopTransition: the end is not compared). Counted where our run has the
   element's stopTransition and the peer its endTransition in the same step, and in that step
   our run starts another element (the overriding event, the replacing action) or stops the
   Storyboard or an Act (a stop trigger).
@@ -80,13 +81,17 @@ def standard_view(ours: list, peer: list, our_types: dict, groups: dict) -> tupl
         if transition == "endTransition" and ours_has(name, "stopTransition", t) and not ours_has(name, "endTransition", t):
             started_other = any(_near(x, t) for x, n, tr in ours if tr == "startTransition" and n != name)
             if started_other or any(_near(x, t) for x in trigger_stops):
-                peer[i] = (t, name, "stopTransition")
+                # At a stop trigger esmini may log an endTransition and then a stopTransition
+                # for the same element: the stop is the standard's, the end is dropped.
+                also_stopped = any(p and p[1] == name and p[2] == "stopTransition" and _near(p[0], t) for p in peer)
+                peer[i] = None if also_stopped else (t, name, "stopTransition")
                 departures.append(Departure("STOPPED_ENDS", name, t))
         elif (transition == "stopTransition" and our_types.get(name) == "action"
               and ours_has(name, "endTransition", t) and ours_has(name, "startTransition", t)
               and not ours_has(name, "stopTransition", t)):
             peer[i] = (t, name, "endTransition")
             departures.append(Departure("INSTANT_STOPS", name, t))
+    peer = [p for p in peer if p is not None]
     for group, (act, story) in groups.items():
         peer_stops = [t for t, n, tr in peer if n == group and tr in ("stopTransition", "endTransition")]
         our_start = [t for t, n, tr in ours if n == group and tr == "startTransition"]

@@ -353,6 +353,11 @@ class PeerDepartures(unittest.TestCase):
         self.assertEqual(len(c.differences), 4)
         self.assertTrue(c.departs_only)
         self.assertEqual(departures.summary(c.departures), "STOPPED_ENDS x2 (A, E)")
+        # At the stop trigger esmini may end the event and then stop it too: the end is dropped.
+        stop = (1.5, "storyboard", "", "stopTransition")
+        c = self.compare([o for o in ours if o[2] != "F"] + [stop],
+                         [p for p in peer if p[1] != "F"] + [(1.5, "E", "stopTransition"), (1.5, "storyBoard", "stopTransition")])
+        self.assertTrue(c.departs_only, [d.text() for d in c.beyond_departures])
         # Nothing starts or stops the storyboard in that step: no cited cause, a difference.
         c = self.compare([o for o in ours if o[2] != "F"], [p for p in peer if p[1] != "F"])
         self.assertFalse(c.departs_only)
