@@ -181,7 +181,9 @@ def storyboard_only_figure(results: list) -> str:
     left out by the caller)."""
     with_controllers = [r for r in results if r.get("storyboard_only")]
     matching = sum(1 for r in with_controllers if r["storyboard_only"]["status"] == "match")
-    return f"{matching} of {len(with_controllers)} files with controllers match with controllers off in both"
+    departing = sum(1 for r in with_controllers if r["storyboard_only"]["status"] == "departs")
+    return (f"{matching} of {len(with_controllers)} files with controllers match with controllers off in both"
+            f" ({departing} more but for esmini's departures)")
 
 
 # Statuses of a file both players ran to the end of the comparison.
