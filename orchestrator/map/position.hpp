@@ -40,7 +40,10 @@ struct Orientation {
   bool relative = true;  // "relative" (to the road / reference) or "absolute"
   double h = 0;
 };
-struct WorldPosition { double x = 0, y = 0; std::optional<double> h; };
+// z: the height of the point in the world frame when the file gives it (a camera flying above
+// the road); without it the point is on the road surface (the storyboard keeps the height
+// above the road, the map resolves positions in the road plane).
+struct WorldPosition { double x = 0, y = 0; std::optional<double> h; std::optional<double> z = std::nullopt; };
 // WGS 84 latitude and longitude in degrees, placed through the road network's geoReference
 // (opendrive/geo_projection.hpp); a relative Orientation (or none) turns from the heading of
 // the road there.

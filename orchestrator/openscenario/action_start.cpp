@@ -53,16 +53,22 @@ bool faces_driving_direction(const position::Position& p) {
 }
 
 // The height above the road a position gives: dz above its reference entity (RelativeObject /
-// RelativeWorld: "relative position in the z axis"), else on the road.
-double height_of(const position::Position& p, ActionContext& ctx) {
+// RelativeWorld: "relative position in the z axis"); a WorldPosition's z (the world frame's
+// "z coordinate value") less the road surface under the point; else on the road (a
+// WorldPosition without z too: the standard gives no height, esmini aligns such a point to
+// the road).
+double height_of(const position::Position& p, const ResolvedPosition& r, ActionContext& ctx) {
   return std::visit(
       [&](const auto& kind) {
         using T = std::decay_t<decltype(kind)>;
         if constexpr (std::is_same_v<T, position::RelativeObjectPosition> ||
-                      std::is_same_v<T, position::RelativeWorldPosition>)
+                      std::is_same_v<T, position::RelativeWorldPosition>) {
           return ctx.entities.at(kind.entity).height + kind.dz;
-        else
+        } else if constexpr (std::is_same_v<T, position::WorldPosition>) {
+          return kind.z ? *kind.z - surface_height(ctx.roads, r.pose) : 0.0;
+        } else {
           return 0.0;
+        }
       },
       p);
 }
@@ -78,7 +84,7 @@ void teleport(const TeleportAction& a, EntityState& state, ActionContext& ctx) {
     state.s = state.t = state.offset = 0;
     state.lane = 0;
     state.pose = r.pose;
-    state.height = height_of(a.position, ctx);
+    state.height = height_of(a.position, r, ctx);
     state.lateral_profile.reset();
     state.lateral_rate = 0;
     return;
@@ -89,7 +95,7 @@ void teleport(const TeleportAction& a, EntityState& state, ActionContext& ctx) {
   state.s = r.road->s;
   state.lane = *r.lane;
   state.offset = r.road->t - road.lane_center_t(state.lane, state.s);
-  state.height = height_of(a.position, ctx);
+  state.height = height_of(a.position, r, ctx);
   const bool along_lane = faces_driving_direction(a.position);
   // A LanePosition faces its own lane's direction, also with an offset that puts the point in
   // the lane beside it (esmini's speed-profile.xosc: lane -1, offset 3.07 into lane 1).
@@ -330,6 +336,8 @@ std::vector<std::string> start_action(const PrivateAction& action, const std::st
             state.pose = state.path->pose_at(state.path->distance);
           state.placed = true;
           relocate(state, ctx.roads);
+          if (const std::optional<double> z = state.path->z_at(state.path->distance); z && !a.follow_mode)
+            state.height = *z - surface_height(ctx.roads, state.pose);
           // Timed: the trajectory sets the speed too; untimed: the speed actions keep it.
           if (a.timing) {
             state.speed_profile.reset();

@@ -95,6 +95,14 @@ void relocate(EntityState& state, const opendrive::RoadNetwork& roads) {
   state.offset = on_road->t - road.lane_center_t(*lane, on_road->s);
 }
 
+double surface_height(const opendrive::RoadNetwork& roads, const opendrive::Pose2& at) {
+  const auto c = roads.to_road(at.x, at.y);
+  if (!c) return 0.0;
+  const opendrive::Road& road = roads.road(c->road_id);
+  if (!road.lane_at(c->s, c->t)) return 0.0;
+  return opendrive::surface_pose(road, c->s, c->t, at.heading).z;
+}
+
 namespace {
 
 // Along a trajectory: timed paths give the distance (and so the speed), untimed ones are
@@ -133,6 +141,8 @@ void advance_on_path(EntityState& state, const opendrive::RoadNetwork& roads, do
   state.acceleration = dt > 0 ? (state.speed - previous_speed) / dt : 0.0;
   state.lateral_rate = 0.0;
   relocate(state, roads);
+  // A path through WorldPositions with z (a camera's flight): its height, over the road under it.
+  if (const std::optional<double> z = path.z_at(path.distance)) state.height = *z - surface_height(roads, state.pose);
 }
 
 // One step of the entity's motion: along its path, its lane or (on no road) its heading.

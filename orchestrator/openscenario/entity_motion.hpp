@@ -121,5 +121,9 @@ void update_pose(EntityState& state, const opendrive::RoadNetwork& roads);
 // placed by a trajectory or a simulator. Off every lane it keeps its last lane (s and offset
 // from it follow the pose while it stays beside the same road).
 void relocate(EntityState& state, const opendrive::RoadNetwork& roads);
+// The height of the road surface under a point: the lane's surface there, 0 off every lane
+// (trace.csv's z is this plus the entity's `height`). A position given in the world's z (a
+// WorldPosition's) becomes a height above it.
+double surface_height(const opendrive::RoadNetwork& roads, const opendrive::Pose2& at);
 
 }  // namespace orch::openscenario

@@ -58,7 +58,7 @@ std::vector<PathPoint> nurbs_points(const std::vector<NurbsControl>& controls, c
   std::vector<double> weights(n);
   for (int step = 0; step <= pieces; ++step) {
     const double u = std::min(u0 + (u1 - u0) * step / pieces, u1 - inside);
-    double total = 0, x = 0, y = 0;
+    double total = 0, x = 0, y = 0, z = 0;
     for (std::size_t i = 0; i < n; ++i) {
       weights[i] = basis(u, i, order, knots);
       total += weights[i] * controls[i].weight;
@@ -70,8 +70,10 @@ std::vector<PathPoint> nurbs_points(const std::vector<NurbsControl>& controls, c
     for (std::size_t i = 0; i < n; ++i) {
       x += weights[i] * controls[i].weight * controls[i].x / total;
       y += weights[i] * controls[i].weight * controls[i].y / total;
+      z += weights[i] * controls[i].weight * controls[i].z.value_or(0.0) / total;
     }
-    points.push_back({x, y, 0.0, std::nullopt, std::nullopt});
+    points.push_back({x, y, 0.0, std::nullopt, std::nullopt,
+                      controls.front().z ? std::optional<double>(z) : std::nullopt});
     params.push_back(u);
   }
   if (controls.front().time && n >= 2) {

@@ -21,6 +21,7 @@ struct NurbsControl {
   double x = 0, y = 0;
   double weight = 1;
   std::optional<double> time;  // all or none
+  std::optional<double> z = std::nullopt;  // height in the world frame: all or none, weighed as x and y
 };
 
 // Throws MapError for a shape the formula cannot take: order < 1, fewer control points than

@@ -95,8 +95,8 @@ Position read_kind(Element& p) {
   if (kind == "GeoPosition") return read_geo_position(p);
   if (kind == "TrajectoryPosition") return read_trajectory_position(p);
   if (kind == "WorldPosition") {
-    WorldPosition w{p.number("x"), p.number("y"), p.optional_number("h")};
-    p.ignore_attributes({"z", "p", "r"});
+    WorldPosition w{p.number("x"), p.number("y"), p.optional_number("h"), p.optional_number("z")};
+    p.ignore_attributes({"p", "r"});
     return w;
   }
   if (kind == "RelativeWorldPosition") {

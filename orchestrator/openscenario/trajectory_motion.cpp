@@ -55,7 +55,7 @@ void close_path(std::vector<PathPoint>& points) {
   const PathPoint first = points.front(), last = points.back();
   const double gap = std::hypot(first.x - last.x, first.y - last.y);
   if (gap < 1e-3) return;
-  PathPoint closing{first.x, first.y, 0.0, std::nullopt, std::nullopt};
+  PathPoint closing{first.x, first.y, 0.0, std::nullopt, std::nullopt, first.z};
   if (last.due) {
     double speed = 0;
     for (std::size_t i = points.size() - 1; i > 0 && speed <= 0; --i) {
@@ -109,6 +109,17 @@ opendrive::Pose2 PathMotion::pose_at(double d) const {
   return {a.x + f * (b.x - a.x), a.y + f * (b.y - a.y), heading};
 }
 
+std::optional<double> PathMotion::z_at(double d) const {
+  if (!points.front().z) return std::nullopt;
+  d = std::clamp(d, 0.0, length());
+  const auto next = std::upper_bound(points.begin() + 1, points.end() - 1, d,
+                                     [](double value, const PathPoint& p) { return value < p.distance; });
+  const PathPoint& b = *next;
+  const PathPoint& a = *(next - 1);
+  const double f = (d - a.distance) / (b.distance - a.distance);
+  return *a.z + f * (*b.z - *a.z);
+}
+
 double PathMotion::distance_at(double t) const {
   if (t <= *points.front().due) return 0.0;
   for (std::size_t i = 1; i < points.size(); ++i) {
@@ -146,16 +157,35 @@ std::vector<Position> shape_positions(const Trajectory& trajectory) {
   return out;
 }
 
+namespace {
+
+// The heights in the world frame the positions give (a WorldPosition's z), all or none: a
+// shape with a point on the road and one in the air has no height the standard defines
+// between them, so it stays on the road.
+std::vector<std::optional<double>> world_heights(const std::vector<Position>& positions) {
+  std::vector<std::optional<double>> out;
+  for (const Position& p : positions) {
+    const auto* world = std::get_if<position::WorldPosition>(&p);
+    if (world == nullptr || !world->z) return std::vector<std::optional<double>>(positions.size());
+    out.push_back(world->z);
+  }
+  return out;
+}
+
+}  // namespace
+
 std::vector<PathPoint> shape_points(const Trajectory& trajectory, const std::vector<opendrive::Pose2>& resolved,
                                     const opendrive::Pose2& entity) {
   std::vector<PathPoint> points;
   if (const auto* polyline = std::get_if<PolylineShape>(&trajectory.shape)) {
+    const std::vector<std::optional<double>> z = world_heights(shape_positions(trajectory));
     for (std::size_t i = 0; i < resolved.size(); ++i)
-      points.push_back({resolved[i].x, resolved[i].y, 0.0, polyline->vertices[i].time, std::nullopt});
+      points.push_back({resolved[i].x, resolved[i].y, 0.0, polyline->vertices[i].time, std::nullopt, z[i]});
   } else if (const auto* nurbs = std::get_if<NurbsShape>(&trajectory.shape)) {
+    const std::vector<std::optional<double>> z = world_heights(shape_positions(trajectory));
     std::vector<NurbsControl> controls;
     for (std::size_t i = 0; i < resolved.size(); ++i)
-      controls.push_back({resolved[i].x, resolved[i].y, nurbs->points[i].weight, nurbs->points[i].time});
+      controls.push_back({resolved[i].x, resolved[i].y, nurbs->points[i].weight, nurbs->points[i].time, z[i]});
     points = nurbs_points(controls, nurbs->knots, nurbs->order);
   } else if (const auto* spline = std::get_if<ClothoidSplineShape>(&trajectory.shape)) {
     std::vector<std::optional<opendrive::Pose2>> starts;

@@ -23,6 +23,9 @@ struct PathPoint {
   // trailer_connect.xosc's reversing quarter circle, and a trajectory relative to the
   // entity's pose after it inherits that).
   std::optional<double> heading;
+  // The point's height in the world frame, when every position of the shape gives one (a
+  // WorldPosition's z: esmini's parking_demo.xosc flies a camera 10-15 m up); else on the road.
+  std::optional<double> z = std::nullopt;
 };
 
 // followingMode "follow": the entity's own limits and the tracking state (trajectory_follow.hpp).
@@ -59,6 +62,8 @@ struct PathMotion {
   [[nodiscard]] double length() const { return points.back().distance; }
   // Reference point and heading (of the segment) at `d` along the path, clamped to it.
   [[nodiscard]] opendrive::Pose2 pose_at(double d) const;
+  // Height in the world frame at `d` (linear between points), when the points have one.
+  [[nodiscard]] std::optional<double> z_at(double d) const;
   // Timed paths: the distance due at simulation time `t` (linear between points; the first
   // point before its time, the last after it).
   [[nodiscard]] double distance_at(double t) const;

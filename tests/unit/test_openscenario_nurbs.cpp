@@ -49,6 +49,21 @@ TEST(Nurbs, TheRationalQuadraticWithWeightHalfRootTwoIsAQuarterCircle) {
   EXPECT_NEAR(*points[(points.size() - 1) / 4].due, 0.5, 0.02);
 }
 
+// Control points given with a world z (WorldPositions with z: esmini's parking_demo.xosc
+// flies its Camera 10-15 m up) weigh on the height as on x and y; without z, none.
+TEST(Nurbs, HeightsAreWeighedAsTheCoordinates) {
+  const auto points = nurbs_points({{0, 0, 1, std::nullopt, 10.0}, {10, 0, 1, std::nullopt, 20.0}, {10, 10, 1, std::nullopt, 15.0}},
+                                   {0, 0, 1, 2, 2}, 2);
+  for (const PathPoint& p : points) {
+    ASSERT_TRUE(p.z.has_value());
+    const double expected = std::abs(p.y) < 1e-9 ? 10.0 + p.x : 20.0 - p.y / 2;  // linear along each leg
+    EXPECT_NEAR(*p.z, expected, 1e-6) << p.x << ", " << p.y;
+  }
+  EXPECT_NEAR(*points.back().z, 15.0, 1e-6);
+  const auto flat = nurbs_points({{0, 0, 1, std::nullopt}, {10, 0, 1, std::nullopt}}, {0, 0, 1, 1}, 2);
+  EXPECT_FALSE(flat.front().z.has_value());
+}
+
 TEST(Nurbs, ShapesTheFormulaCannotTakeAreErrors) {
   const std::vector<NurbsControl> three{{0, 0, 1, std::nullopt}, {1, 0, 1, std::nullopt}, {2, 0, 1, std::nullopt}};
   EXPECT_THROW((void)nurbs_points(three, {0, 0, 1, 1}, 2), MapError);           // 4 knots, 5 needed

@@ -278,6 +278,62 @@ TEST_F(RuntimeValues, ARelativePositionsDzIsTheEntitysHeightAboveTheRoad) {
   EXPECT_NEAR(runtime_->entities().at("A").height, 0.1, 1e-12);  // 0.1 m below B
 }
 
+// A WorldPosition's z is the point's height in the world frame ("The z coordinate value"):
+// on a road 2 m up, z = 5 is 3 m above the lane's surface, and the entity keeps that height
+// as it drives; beside the road (no lane) z = 10 is 10 m up (esmini's parking_demo.xosc
+// Camera); without z the point is on the road. Before, z was ignored: every entity was on the
+// road.
+TEST_F(RuntimeValues, AWorldPositionsZIsTheEntitysHeightInTheWorld) {
+  const std::string raised_road = R"(<OpenDRIVE><header revMajor="1" revMinor="6"/>
+<road id="0" length="2000" junction="-1"><planView><geometry s="0" x="0" y="0" hdg="0" length="2000"><line/></geometry></planView>
+<elevationProfile><elevation s="0" a="2" b="0" c="0" d="0"/></elevationProfile>
+<lanes><laneSection s="0"><right><lane id="-1" type="driving"><width sOffset="0" a="3.5" b="0" c="0" d="0"/></lane></right></laneSection></lanes></road></OpenDRIVE>)";
+  const auto world = [](const std::string& name, const std::string& attributes) {
+    return R"(<Private entityRef=")" + name + R"("><PrivateAction><TeleportAction><Position><WorldPosition )" + attributes +
+           R"(/></Position></TeleportAction></PrivateAction>
+  <PrivateAction><LongitudinalAction><SpeedAction><SpeedActionDynamics dynamicsShape="step" dynamicsDimension="time" value="0"/>
+  <SpeedActionTarget><AbsoluteTargetSpeed value="10"/></SpeedActionTarget></SpeedAction></LongitudinalAction></PrivateAction></Private>)";
+  };
+  load(vehicle("A") + vehicle("B") + vehicle("C"),
+       world("A", R"(x="100" y="-1.75" z="5" h="0")") + world("B", R"(x="100" y="50" z="10" h="0")") +
+           world("C", R"(x="200" y="-1.75" h="0")"),
+       R"(<Event name="Later" priority="parallel"><Action name="Same"><PrivateAction><LongitudinalAction><SpeedAction>
+    <SpeedActionDynamics dynamicsShape="step" dynamicsDimension="time" value="0"/><SpeedActionTarget><AbsoluteTargetSpeed value="10"/></SpeedActionTarget>
+    </SpeedAction></LongitudinalAction></PrivateAction></Action>)" + at_time("LaterStart", 50) + "</Event>",
+       "", raised_road.c_str());
+  EXPECT_NEAR(runtime_->entities().at("A").height, 3.0, 1e-9);
+  EXPECT_NEAR(runtime_->entities().at("B").height, 10.0, 1e-9);
+  EXPECT_NEAR(runtime_->entities().at("C").height, 0.0, 1e-12);
+  run_until(*runtime_, 1.0);
+  EXPECT_NEAR(runtime_->entities().at("A").s, 110.0, 1e-6);
+  EXPECT_NEAR(runtime_->entities().at("A").height, 3.0, 1e-9);
+}
+
+// A trajectory through WorldPositions with z carries the entity at the heights between them
+// (position mode, 10 m/s: halfway along 5 m -> 15 m up it is 10 m up); one vertex without z
+// leaves the path on the road.
+TEST_F(RuntimeValues, ATrajectoryThroughWorldHeightsCarriesTheEntityThere) {
+  const auto flight = [](const std::string& first_z) {
+    return R"(<Event name="Fly" priority="parallel"><Action name="Up"><PrivateAction><RoutingAction><FollowTrajectoryAction>
+    <Trajectory name="T" closed="false"><Shape><Polyline>
+      <Vertex><Position><WorldPosition x="100" y="-1.75" )" + first_z + R"( h="0"/></Position></Vertex>
+      <Vertex><Position><WorldPosition x="200" y="-1.75" z="15" h="0"/></Position></Vertex></Polyline></Shape></Trajectory>
+    <TimeReference><None/></TimeReference><TrajectoryFollowingMode followingMode="position"/>
+    </FollowTrajectoryAction></RoutingAction></PrivateAction></Action>)" + at_time("FlyStart", 0) + "</Event>";
+  };
+  load(vehicle("A"), place("A", 100, -1, 10), flight(R"(z="5")"));
+  run_until(*runtime_, 0.1);  // the action has started
+  for (int i = 0; i < 98; ++i) {
+    runtime_->step(0.05);
+    const EntityState& a = runtime_->entities().at("A");
+    EXPECT_NEAR(a.height, 5.0 + 0.1 * (a.pose.x - 100.0), 1e-6) << runtime_->time();
+  }
+  EXPECT_GT(runtime_->entities().at("A").pose.x, 149.0);
+  load(vehicle("A"), place("A", 100, -1, 10), flight(""));
+  run_until(*runtime_, 5.0);
+  EXPECT_NEAR(runtime_->entities().at("A").height, 0.0, 1e-12);
+}
+
 // esmini's cut-in_cr.xosc: a towed trailer has no motion of its own. Each step its reference
 // point moves straight towards the tractor's new hitch point (a bar), whatever speed it was
 // given; before, it was first advanced along its lane at its speed and then pulled, so in a
