@@ -163,6 +163,28 @@ double farthest_on(const WaypointRoute& route, const JunctionPassage& jp, const 
   return worst;
 }
 
+// Whether the waypoints of passage jp lie within kLaneFit of the path of some other route
+// through the zone from lane piece `from` to lane piece `to` (the connection jp would drive
+// between them), or no other route drives between the two.
+bool fits_a_path_between(const WaypointFile& wf, const std::vector<JunctionPassage>& passages,
+                         const JunctionPassage& jp, int from, int to) {
+  const WaypointRoute& route = wf.routes[jp.route];
+  bool any = false;
+  for (const JunctionPassage& other : passages) {
+    if (&other == &jp || other.zone != jp.zone || other.before != from || other.after != to) continue;
+    any = true;
+    const WaypointRoute& along = wf.routes[other.route];
+    const WaypointRoute path = make_line(along.id, stretch(along, other.s0, other.s1));
+    double worst = 0;
+    for (std::size_t i = 0; i < route.points.size(); ++i) {
+      const double s = route.line.s_at_index(i);
+      if (s >= jp.s0 && s <= jp.s1) worst = std::max(worst, path.line.project(route.line.point(i)).distance);
+    }
+    if (worst <= kLaneFit) return true;
+  }
+  return !any;
+}
+
 // A route that ends inside a junction (its passage reaches its last waypoint) has no lane
 // after it, so no connection carries its waypoints there and SUMO cannot drive it: it
 // continues on the lane leaving that junction which its last waypoint lies on, or lies just
@@ -202,6 +224,15 @@ void attach_loose_ends(const WaypointFile& wf, JunctionPieces& out) {
         // Drawn beside that lane (seed 5: a route ending 0.20 m beside the lane of one that made
         // the same turn) it would lie off it: a dead-end lane of its own fits it exactly.
         if (jp.s1 - jp.s0 >= 2 * kMinLooseLane && farthest_on(route, jp, l, at_end) > kLaneFit) continue;
+        // Coming from (going on to) that lane, it would drive the connection of the routes
+        // between that lane and its own; off their path (seed 615: a route starting 1.5 m into
+        // a junction, 0.16 m beside the turn of a route coming from the lane before it, along
+        // the lane after), a dead-end lane of its own fits it, where its passage has room for one.
+        const int own = at_end ? jp.before : jp.after;
+        if (own >= 0 && jp.s1 - jp.s0 >= 2 * kMinMisfitLooseLane &&
+            !fits_a_path_between(wf, out.passages, jp, at_end ? own : static_cast<int>(k),
+                                 at_end ? static_cast<int>(k) : own))
+          continue;
         if (gap < best_gap || (best < 0 && gap <= best_gap)) {
           best = static_cast<int>(k);
           best_gap = gap;
@@ -277,8 +308,13 @@ void end_lanes_in_junctions(const WaypointFile& wf, JunctionPieces& out) {
       return other.zone == jp.zone && (loose_end ? other.before == k && other.after >= 0
                                                  : other.after == k && other.before >= 0);
     });
+    // A lane whose other end is at this junction too (the route's later lap comes back
+    // through its own start, seed 734) cannot go on through it: netconvert cuts a lane where
+    // its own junction's shape crosses it, and that shape reaches lane ends on both sides of it.
+    const RoutePiece& lane_piece = out.pieces[static_cast<std::size_t>(k)];
+    const bool returns = (loose_end ? lane_piece.from_zone : lane_piece.to_zone) == jp.zone;
     const bool all_loose = (on_lane.size() == 1 || longest[{k, loose_end}] < 2 * kMinLooseLane) &&
-                           !goes_on && !together.empty();
+                           !goes_on && !together.empty() && !returns;
     if (extended[static_cast<std::size_t>(k)] && all_loose) continue;  // the lane already goes on for it
     if (!all_loose) {
       // Its lane is driven by other routes too, which go on through the junction: the route
