@@ -92,17 +92,16 @@ int starting_lane(const LaneMap& map, int lane, const WaypointRoute& route) {
 
 // Of the candidate first lanes `starts`, the one the route follows best: `best` (scoring
 // `best_score` over the first kLookahead metres) unless a candidate tied with it there (within
-// kScoreTie) follows the route better by more than kScoreTie over a longer stretch (doubled up
-// to kMaxLookaheadDoublings times). Two lanes lying on each other where the route starts (its
-// later lap along its first stretch, seed 479: one of them ends 11 m on at a dead end, the
-// other goes on) are told apart only where they part, as tied successors are.
+// kScoreTie) follows the route better by more than kScoreTie over a longer stretch (doubled
+// until they part or the stretch is the whole route). Two lanes lying on each other where the
+// route starts (its later lap along its first stretch: seed 479, one of them ends 11 m on at a
+// dead end, the other goes on; seed 888, 130 m on) are told apart only where they part.
 template <typename Score>
-int untie_start(const std::vector<int>& starts, int best, double best_score, const Score& score) {
+int untie_start(const std::vector<int>& starts, int best, double best_score, double route_length, const Score& score) {
   std::vector<int> tied;
   for (const int l : starts)
     if (l == best || score(l, 0) <= best_score + kScoreTie) tied.push_back(l);
-  double lookahead = kLookahead;
-  for (int round = 0; round < kMaxLookaheadDoublings && tied.size() > 1; ++round) {
+  for (double lookahead = kLookahead; tied.size() > 1 && lookahead < route_length;) {
     lookahead *= 2;
     std::vector<std::pair<int, double>> scored;
     for (const int l : tied) scored.emplace_back(l, score(l, 0, false, lookahead));
@@ -187,7 +186,7 @@ RouteLanes LaneMap::walk(const WaypointRoute& route, const std::string& net_file
       lane = l;
     }
   }
-  lane = untie_start(starts, lane, best_start, score);
+  lane = untie_start(starts, lane, best_start, route.line.length(), score);
   // A route that starts a metre or two inside a junction, along the connection of routes
   // that come through it onto its first lane, starts on that connection's internal lane.
   if (place_on_lane(lane, route.line.point(0)).distance > kOffLane) {
@@ -304,7 +303,17 @@ RouteLanes LaneMap::walk(const WaypointRoute& route, const std::string& net_file
         }
       }
       if (best < 0 || best_score > kMaxMiss) {
-        if (i + 1 == route.points.size()) break;  // the last waypoint may lie past the last lane
+        if (i + 1 == route.points.size()) {
+          // The last waypoint may lie past the last lane; where it lies nearer a connection out
+          // of that lane (another route's, seed 993: a route ending 0.28 m into a junction, 0.02 m
+          // off the connection of the routes that go on straight), it ends on that one.
+          if (const int end = ending_lane(*this, lane, route, i);
+              end >= 0 && place_on_lane(end, p).distance < place_on_lane(lane, p).distance) {
+            lane = end;
+            rl.lanes.push_back(lane);
+          }
+          break;
+        }
         // A route that ends a metre or two inside a junction, along the connection of routes
         // that go on through it, ends on that connection's internal lane (SUMO stops it at
         // the end of the lane before, as any end inside a junction).
