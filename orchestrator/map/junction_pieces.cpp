@@ -8,6 +8,7 @@
 
 #include "core/checked_numeric.hpp"
 #include "map/junction_detours.hpp"
+#include "map/junction_path_fit.hpp"
 #include "map/corridor_geometry.hpp"
 
 namespace orch {
@@ -27,15 +28,12 @@ constexpr double kMaxEndGap = 3.0;
 constexpr double kMinLooseLane = 0.7;
 // m: the same where the route lies off the path of every route going on through the junction
 // on its lane, whose connection it would otherwise drive (seed 383: a route starting 1.2 m
-// inside a junction beside the turn of a route going on along its lane, 0.30 m off it).
-constexpr double kMinMisfitLooseLane = 0.4;
+// inside a junction beside the turn of a route going on along its lane, 0.30 m off it; 0.4 m
+// until fix I: seed 606's route ends 0.69 m into a junction, 0.12 m off the only path there).
+constexpr double kMinMisfitLooseLane = 0.3;
 // m: points of a shared lane's best fit closer than this to the previous one are dropped
 // (netconvert drops them from a lane's shape anyway).
 constexpr double kSameStation = kNetconvertPointGap;
-// m: `map check`'s tolerance. A route ending (starting) inside a junction whose waypoints on
-// the lane it would continue on (come from) lie farther from it gets a dead-end lane of its own
-// instead, where its passage is long enough for one.
-constexpr double kLaneFit = 0.10;
 
 }  // namespace
 
@@ -150,19 +148,6 @@ std::vector<WaypointPoint> shared_lane_points(const WaypointRoute& owner, const 
   return pts;
 }
 
-// The largest distance from lane `l` of the route's waypoints in passage jp that lie along
-// it (past its start where the route ends on it, before its end where the route starts).
-double farthest_on(const WaypointRoute& route, const JunctionPassage& jp, const Polyline& l, bool at_end) {
-  double worst = 0;
-  for (std::size_t i = 0; i < route.points.size(); ++i) {
-    const double s = route.line.s_at_index(i);
-    if (s < jp.s0 || s > jp.s1) continue;
-    const Polyline::Projection pr = l.project(route.line.point(i));
-    if (at_end ? !pr.before_start : !pr.after_end) worst = std::max(worst, pr.distance);
-  }
-  return worst;
-}
-
 // A route that ends inside a junction (its passage reaches its last waypoint) has no lane
 // after it, so no connection carries its waypoints there and SUMO cannot drive it: it
 // continues on the lane leaving that junction which its last waypoint lies on, or lies just
@@ -202,6 +187,15 @@ void attach_loose_ends(const WaypointFile& wf, JunctionPieces& out) {
         // Drawn beside that lane (seed 5: a route ending 0.20 m beside the lane of one that made
         // the same turn) it would lie off it: a dead-end lane of its own fits it exactly.
         if (jp.s1 - jp.s0 >= 2 * kMinLooseLane && farthest_on(route, jp, l, at_end) > kLaneFit) continue;
+        // Coming from (going on to) that lane, it would drive the connection of the routes
+        // between that lane and its own; off their path (seed 615: a route starting 1.5 m into
+        // a junction, 0.16 m beside the turn of a route coming from the lane before it, along
+        // the lane after), a dead-end lane of its own fits it, where its passage has room for one.
+        const int own = at_end ? jp.before : jp.after;
+        if (own >= 0 && jp.s1 - jp.s0 >= 2 * kMinMisfitLooseLane &&
+            !fits_a_path_between(wf, out.passages, jp, at_end ? own : static_cast<int>(k),
+                                 at_end ? static_cast<int>(k) : own))
+          continue;
         if (gap < best_gap || (best < 0 && gap <= best_gap)) {
           best = static_cast<int>(k);
           best_gap = gap;
@@ -213,28 +207,6 @@ void attach_loose_ends(const WaypointFile& wf, JunctionPieces& out) {
       if (std::find(routes.begin(), routes.end(), route.id) == routes.end()) routes.push_back(route.id);
     }
   }
-}
-
-// Whether the waypoints of passage jp lie within kLaneFit of the path through the zone of some
-// other route that goes on through it on lane piece k (after it where jp starts there, before
-// it where jp ends there): the connection the route would drive without a lane of its own.
-bool fits_a_path_on(const WaypointFile& wf, const std::vector<JunctionPassage>& passages, const JunctionPassage& jp,
-                    int k, bool loose_end) {
-  const WaypointRoute& route = wf.routes[jp.route];
-  for (const JunctionPassage& other : passages) {
-    if (&other == &jp || other.zone != jp.zone ||
-        !(loose_end ? other.before == k && other.after >= 0 : other.after == k && other.before >= 0))
-      continue;
-    const WaypointRoute& along = wf.routes[other.route];
-    const WaypointRoute path = make_line(along.id, stretch(along, other.s0, other.s1));
-    double worst = 0;
-    for (std::size_t i = 0; i < route.points.size(); ++i) {
-      const double s = route.line.s_at_index(i);
-      if (s >= jp.s0 && s <= jp.s1) worst = std::max(worst, path.line.project(route.line.point(i)).distance);
-    }
-    if (worst <= kLaneFit) return true;
-  }
-  return false;
 }
 
 // A route that still ends (starts) inside a junction, with no lane there to continue it
@@ -277,8 +249,13 @@ void end_lanes_in_junctions(const WaypointFile& wf, JunctionPieces& out) {
       return other.zone == jp.zone && (loose_end ? other.before == k && other.after >= 0
                                                  : other.after == k && other.before >= 0);
     });
+    // A lane whose other end is at this junction too (the route's later lap comes back
+    // through its own start, seed 734) cannot go on through it: netconvert cuts a lane where
+    // its own junction's shape crosses it, and that shape reaches lane ends on both sides of it.
+    const RoutePiece& lane_piece = out.pieces[static_cast<std::size_t>(k)];
+    const bool returns = (loose_end ? lane_piece.from_zone : lane_piece.to_zone) == jp.zone;
     const bool all_loose = (on_lane.size() == 1 || longest[{k, loose_end}] < 2 * kMinLooseLane) &&
-                           !goes_on && !together.empty();
+                           !goes_on && !together.empty() && !returns;
     if (extended[static_cast<std::size_t>(k)] && all_loose) continue;  // the lane already goes on for it
     if (!all_loose) {
       // Its lane is driven by other routes too, which go on through the junction: the route

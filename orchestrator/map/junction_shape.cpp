@@ -99,7 +99,12 @@ std::vector<Vec2> there_and_back(std::vector<Vec2> pts) {
 }
 
 
-std::vector<Vec2> uncut_tree(std::vector<TreeNode> nodes, const std::vector<LaneEnd>& ends) {
+namespace {
+
+// uncut_tree with a grid reaching `margin` beyond the tree's terminals; `too_large` says that
+// grid would have more than kMaxTreeGridPoints points (no larger one is tried then).
+std::vector<Vec2> uncut_tree_within(std::vector<TreeNode> nodes, const std::vector<LaneEnd>& ends, double margin,
+                                    bool& too_large) {
   const std::size_t terminals = nodes.size();
   if (terminals < 2) return {};
   const auto clear = [&](const Vec2& a, const Vec2& b) {
@@ -151,10 +156,13 @@ std::vector<Vec2> uncut_tree(std::vector<TreeNode> nodes, const std::vector<Lane
         lo = lo.cwiseMin(nodes[k].p);
         hi = hi.cwiseMax(nodes[k].p);
       }
-      lo -= Vec2(kTreeGridMargin, kTreeGridMargin);
-      hi += Vec2(kTreeGridMargin, kTreeGridMargin);
+      lo -= Vec2(margin, margin);
+      hi += Vec2(margin, margin);
       const auto cells = [&](double span) { return static_cast<int>(std::ceil(span / kTreeGridStep)); };
-      if (static_cast<long long>(cells(hi.x() - lo.x()) + 1) * (cells(hi.y() - lo.y()) + 1) > kMaxTreeGridPoints) return {};
+      if (static_cast<long long>(cells(hi.x() - lo.x()) + 1) * (cells(hi.y() - lo.y()) + 1) > kMaxTreeGridPoints) {
+        too_large = true;
+        return {};
+      }
       for (int i = 0; i <= cells(hi.x() - lo.x()); ++i)
         for (int j = 0; j <= cells(hi.y() - lo.y()); ++j)
           nodes.push_back({lo + Vec2(i * kTreeGridStep, j * kTreeGridStep), {}});
@@ -206,6 +214,20 @@ std::vector<Vec2> uncut_tree(std::vector<TreeNode> nodes, const std::vector<Lane
   walk(walk, 0);
   tour.pop_back();  // back at the root: netconvert closes the polygon
   return tour;
+}
+
+}  // namespace
+
+std::vector<Vec2> uncut_tree(std::vector<TreeNode> nodes, const std::vector<LaneEnd>& ends) {
+  // The grid reaches farther out only where a nearer one finds no way round: a lane that
+  // bends back between the lane ends (seed 831: a lane turning away from its road mid-block
+  // in a U, its end 40 m from its neighbour's, the way round 28 m beyond both).
+  for (const double margin : kTreeGridMargins) {
+    bool too_large = false;
+    std::vector<Vec2> tree = uncut_tree_within(nodes, ends, margin, too_large);
+    if (!tree.empty() || too_large) return tree;
+  }
+  return {};
 }
 
 }  // namespace orch

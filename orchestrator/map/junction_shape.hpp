@@ -20,7 +20,8 @@ inline constexpr double kSamePoint = 0.02;  // m: lane ends closer than this mee
 inline constexpr double kEndOnStartCut = 0.08;
 // The grid a junction's uncut tree may run through around its lanes (m; at most that many points).
 inline constexpr double kTreeGridStep = 1.5;
-inline constexpr double kTreeGridMargin = 6.0;
+// m beyond the lane ends the grid reaches, tried in turn while none finds a way round the lanes
+inline constexpr double kTreeGridMargins[] = {6.0, 12.0, 24.0, 36.0};
 inline constexpr double kTreeGridReach = 1.5 * kTreeGridStep;  // m: grid neighbours, diagonals included
 inline constexpr long long kMaxTreeGridPoints = 4000;
 

@@ -29,6 +29,8 @@ constexpr double kStartTie = 0.10;     // m: lanes this much farther from the fi
 // paths through a junction that part only after the first kLookahead metres: a detour lane)
 constexpr double kScoreTie = 0.05;
 constexpr int kMaxLookaheadDoublings = 3;
+// m: of successors still tied, one whose farthest waypoint lies this much nearer is taken
+constexpr double kFarthestTie = 0.01;
 
 bool drives(const LaneInfo& lane, const std::string& route) {
   return std::find(lane.routes.begin(), lane.routes.end(), route) != lane.routes.end();
@@ -88,6 +90,34 @@ int starting_lane(const LaneMap& map, int lane, const WaypointRoute& route) {
   return best;
 }
 
+// Of the candidate first lanes `starts`, the one the route follows best: `best` (scoring
+// `best_score` over the first kLookahead metres) unless a candidate tied with it there (within
+// kScoreTie) follows the route better by more than kScoreTie over a longer stretch (doubled
+// until they part or the stretch is the whole route). Two lanes lying on each other where the
+// route starts (its later lap along its first stretch: seed 479, one of them ends 11 m on at a
+// dead end, the other goes on; seed 888, 130 m on) are told apart only where they part.
+template <typename Score>
+int untie_start(const std::vector<int>& starts, int best, double best_score, double route_length, const Score& score) {
+  std::vector<int> tied;
+  for (const int l : starts)
+    if (l == best || score(l, 0) <= best_score + kScoreTie) tied.push_back(l);
+  for (double lookahead = kLookahead; tied.size() > 1 && lookahead < route_length;) {
+    lookahead *= 2;
+    std::vector<std::pair<int, double>> scored;
+    for (const int l : tied) scored.emplace_back(l, score(l, 0, false, lookahead));
+    const auto current = std::find_if(scored.begin(), scored.end(), [&](const auto& x) { return x.first == best; });
+    const auto least = std::min_element(scored.begin(), scored.end(),
+                                        [](const auto& a, const auto& b) { return a.second < b.second; });
+    const double current_score = current->second;
+    if (least->second < current_score - kScoreTie) best = least->first;
+    const double bar = std::min(current_score, least->second) + kScoreTie;
+    tied.clear();
+    for (const auto& [l, sc] : scored)
+      if (l == best || sc <= bar) tied.push_back(l);
+  }
+  return best;
+}
+
 }  // namespace
 
 RouteLanes LaneMap::walk(const WaypointRoute& route, const std::string& net_file) const {
@@ -106,8 +136,10 @@ RouteLanes LaneMap::walk(const WaypointRoute& route, const std::string& net_file
     return false;
   };
   // Mean distance of the route's next metres (see `whole`) from waypoint i to the chain
-  // starting at lane `l` (each point on the first lane of the chain it does not lie beyond).
-  const auto score = [&](int l, std::size_t i, bool whole = false, double lookahead = kLookahead) {
+  // starting at lane `l` (each point on the first lane of the chain it does not lie beyond);
+  // with `farthest`, the largest distance instead.
+  const auto score = [&](int l, std::size_t i, bool whole = false, double lookahead = kLookahead,
+                         bool farthest = false) {
     const double s0 = route.line.s_at_index(i);
     const LaneInfo& first = lanes_[static_cast<std::size_t>(l)];
     const double ahead = lookahead + (whole && first.internal ? first.shape.length() : 0.0);
@@ -122,10 +154,12 @@ RouteLanes LaneMap::walk(const WaypointRoute& route, const std::string& net_file
         if (it == next.end()) break;
         lane = *it;
       }
-      sum += place_on_lane(lane, p).distance;
+      const double d = place_on_lane(lane, p).distance;
+      sum = farthest ? std::max(sum, d) : sum + d;
       ++n;
     }
-    return n > 0 ? sum / n : std::numeric_limits<double>::infinity();
+    if (n == 0) return std::numeric_limits<double>::infinity();
+    return farthest ? sum : sum / n;
   };
 
   RouteLanes rl;
@@ -142,14 +176,17 @@ RouteLanes LaneMap::walk(const WaypointRoute& route, const std::string& net_file
   const LanePlace nearest = nearest_of(own, route.line.point(0));
   int lane = nearest.lane;
   double best_start = score(lane, 0);
+  std::vector<int> starts{lane};
   for (const int l : own) {
     if (l == nearest.lane || place_on_lane(l, route.line.point(0)).distance > nearest.distance + kStartTie) continue;
+    starts.push_back(l);
     const double sc = score(l, 0);
     if (sc < best_start - 1e-9) {
       best_start = sc;
       lane = l;
     }
   }
+  lane = untie_start(starts, lane, best_start, route.line.length(), score);
   // A route that starts a metre or two inside a junction, along the connection of routes
   // that come through it onto its first lane, starts on that connection's internal lane.
   if (place_on_lane(lane, route.line.point(0)).distance > kOffLane) {
@@ -233,6 +270,21 @@ RouteLanes LaneMap::walk(const WaypointRoute& route, const std::string& net_file
           best_whole = current->second;
         }
       }
+      // Still tied (a route drawn between two paths that run together into the same lane, seed
+      // 480: between a connection and the detour lane of another route's turn, 0.04 m from
+      // either on average), the one that leaves the route's farthest waypoint nearest to it:
+      // `map check` holds every waypoint within kOffLane, not their mean.
+      if (best >= 0) {
+        double best_farthest = std::numeric_limits<double>::quiet_NaN();
+        for (const auto& [next, sc] : scored) {
+          if (next == best || sc > best_whole + kScoreTie) continue;
+          if (std::isnan(best_farthest)) best_farthest = score(best, i, true, lookahead, true);
+          if (const double f = score(next, i, true, lookahead, true); f < best_farthest - kFarthestTie) {
+            best = next;
+            best_farthest = f;
+          }
+        }
+      }
       if (best >= 0) best_score = score(best, i);
       // A route ending inside the junction, its last waypoints off every connection that
       // leads to its own lanes, ends on the one of them all (another route's) they lie on
@@ -251,7 +303,17 @@ RouteLanes LaneMap::walk(const WaypointRoute& route, const std::string& net_file
         }
       }
       if (best < 0 || best_score > kMaxMiss) {
-        if (i + 1 == route.points.size()) break;  // the last waypoint may lie past the last lane
+        if (i + 1 == route.points.size()) {
+          // The last waypoint may lie past the last lane; where it lies nearer a connection out
+          // of that lane (another route's, seed 993: a route ending 0.28 m into a junction, 0.02 m
+          // off the connection of the routes that go on straight), it ends on that one.
+          if (const int end = ending_lane(*this, lane, route, i);
+              end >= 0 && place_on_lane(end, p).distance < place_on_lane(lane, p).distance) {
+            lane = end;
+            rl.lanes.push_back(lane);
+          }
+          break;
+        }
         // A route that ends a metre or two inside a junction, along the connection of routes
         // that go on through it, ends on that connection's internal lane (SUMO stops it at
         // the end of the lane before, as any end inside a junction).
