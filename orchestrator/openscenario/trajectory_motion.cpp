@@ -96,13 +96,26 @@ PathMotion make_path(std::vector<PathPoint> points, bool timed) {
   return path;
 }
 
-opendrive::Pose2 PathMotion::pose_at(double d) const {
-  d = std::clamp(d, 0.0, length());
+namespace {
+
+// The points a distance d along the path lies between, and the fraction of the way from a to b.
+struct PathSegmentAt {
+  const PathPoint& a;
+  const PathPoint& b;
+  double f;
+};
+PathSegmentAt path_segment_at(const std::vector<PathPoint>& points, double d) {
   const auto next = std::upper_bound(points.begin() + 1, points.end() - 1, d,
                                      [](double value, const PathPoint& p) { return value < p.distance; });
   const PathPoint& b = *next;
   const PathPoint& a = *(next - 1);
-  const double f = (d - a.distance) / (b.distance - a.distance);
+  return {a, b, (d - a.distance) / (b.distance - a.distance)};
+}
+
+}  // namespace
+
+opendrive::Pose2 PathMotion::pose_at(double d) const {
+  const auto [a, b, f] = path_segment_at(points, std::clamp(d, 0.0, length()));
   double heading = std::atan2(b.y - a.y, b.x - a.x);
   if (a.heading && b.heading)  // along the curve's tangent, the short way round
     heading = *a.heading + f * std::remainder(*b.heading - *a.heading, 2 * M_PI);
@@ -111,12 +124,7 @@ opendrive::Pose2 PathMotion::pose_at(double d) const {
 
 std::optional<double> PathMotion::z_at(double d) const {
   if (!points.front().z) return std::nullopt;
-  d = std::clamp(d, 0.0, length());
-  const auto next = std::upper_bound(points.begin() + 1, points.end() - 1, d,
-                                     [](double value, const PathPoint& p) { return value < p.distance; });
-  const PathPoint& b = *next;
-  const PathPoint& a = *(next - 1);
-  const double f = (d - a.distance) / (b.distance - a.distance);
+  const auto [a, b, f] = path_segment_at(points, std::clamp(d, 0.0, length()));
   return *a.z + f * (*b.z - *a.z);
 }
 
