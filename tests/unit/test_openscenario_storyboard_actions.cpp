@@ -71,6 +71,17 @@ class StoryboardActions : public ::testing::Test {
     roads_ = opendrive::read_xodr_file((dir_ / "road.xodr").string());
     runtime_ = std::make_unique<StoryboardRuntime>(scenario_, roads_);
   }
+  // A (10 m/s) closing from 100 m to 30 m behind B (10 m/s): a non-continuous
+  // LongitudinalDistanceAction from 1 s with these limits (maxSpeed 20 m/s).
+  void load_closing_in(int max_acceleration, int max_deceleration) {
+    load(object("A") + object("B"), place("A", 10, -1, 10) + place("B", 110, -1, 10),
+         event("Close",
+               R"(<LongitudinalAction><LongitudinalDistanceAction entityRef="B" distance="30" freespace="false" continuous="false">
+<DynamicConstraints maxAcceleration=")" + std::to_string(max_acceleration) + R"(" maxDeceleration=")" +
+                   std::to_string(max_deceleration) +
+                   R"(" maxSpeed="20"/></LongitudinalDistanceAction></LongitudinalAction>)",
+               at_time(1)));
+  }
   // The load error's text for a scenario with `events`.
   std::string load_error(const std::string& events, const std::string& parameters = "") {
     try {
@@ -384,11 +395,7 @@ TEST_F(StoryboardActions, CollisionByEntityAndByType) {
 // LongitudinalDistanceAction with DynamicConstraints: A (10 m/s) closes from 100 m to 30 m
 // behind B (10 m/s) within its limits and ends there.
 TEST_F(StoryboardActions, LongitudinalDistanceWithinItsLimits) {
-  load(object("A") + object("B"), place("A", 10, -1, 10) + place("B", 110, -1, 10),
-       event("Close",
-             R"(<LongitudinalAction><LongitudinalDistanceAction entityRef="B" distance="30" freespace="false" continuous="false">
-<DynamicConstraints maxAcceleration="2" maxDeceleration="3" maxSpeed="20"/></LongitudinalDistanceAction></LongitudinalAction>)",
-             at_time(1)));
+  load_closing_in(2, 3);
   double previous = entity("A").speed, top = 0;
   while (runtime_->time() < 40 - 1e-9 && first("CloseAction", "endTransition") < 0) {
     runtime_->step(0.05);
@@ -412,11 +419,7 @@ TEST_F(StoryboardActions, LongitudinalDistanceWithinItsLimits) {
 // speed: with a stiff spring (maxDeceleration 10) A arrives still 0.2 m/s faster than B (as
 // esmini ends it; distance_test.xosc).
 TEST_F(StoryboardActions, LongitudinalDistanceEndsWhenTheDistanceIsReached) {
-  load(object("A") + object("B"), place("A", 10, -1, 10) + place("B", 110, -1, 10),
-       event("Close",
-             R"(<LongitudinalAction><LongitudinalDistanceAction entityRef="B" distance="30" freespace="false" continuous="false">
-<DynamicConstraints maxAcceleration="10" maxDeceleration="10" maxSpeed="20"/></LongitudinalDistanceAction></LongitudinalAction>)",
-             at_time(1)));
+  load_closing_in(10, 10);
   while (runtime_->time() < 40 - 1e-9 && first("CloseAction", "endTransition") < 0) runtime_->step(0.05);
   ASSERT_GT(first("CloseAction", "endTransition"), 0);
   EXPECT_NEAR(entity("B").s - entity("A").s, 30.0, 0.1);
